@@ -1,9 +1,30 @@
 """contact: rough surfaces and their contact with a flat counter-face.
 
-Turns a rough surface into a contact-pressure map and pressure samples for :mod:`glstat`.
+Turns a rough surface into a contact-pressure map and pressure samples for :mod:`glstat`:
+fractal and self-affine surface generators, measured-topography I/O (npy/npz, text grids,
+XYZ point lists, ISO 25178-72 X3P), ISO 25178 roughness parameters, summit detection and the
+load-controlled semi-analytical asperity contact model.
 """
 
+from .errors import TopographyFileError
+from .generators import self_affine, weierstrass
+from .io import read, write
 from .result import ContactResult
+from .solver import effective_modulus, solve, solve_displacement
+from .summits import Summits, summits
 from .surface import Surface
 
-__all__ = ["ContactResult", "Surface"]
+__all__ = [
+    "ContactResult",
+    "Summits",
+    "Surface",
+    "TopographyFileError",
+    "effective_modulus",
+    "read",
+    "self_affine",
+    "solve",
+    "solve_displacement",
+    "summits",
+    "weierstrass",
+    "write",
+]

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+import pandas as pd
 
 __all__ = ["ContactResult"]
 
@@ -44,6 +45,8 @@ class ContactResult:
         Name of the solver that produced this result.
     info : dict
         Solver-specific extras.
+    mask : ndarray of bool or None
+        True at missing (unmeasured) points, which count neither in nor out of contact.
     """
 
     pressure: np.ndarray
@@ -59,6 +62,7 @@ class ContactResult:
     history: np.ndarray | None = None
     method: str = ""
     info: dict = field(default_factory=dict)
+    mask: np.ndarray | None = None
 
     @property
     def in_contact(self) -> np.ndarray:
@@ -72,8 +76,11 @@ class ContactResult:
 
     @property
     def alpha(self) -> float:
-        """Fraction of grid points out of contact."""
-        return float(np.mean(self.pressure <= 0))
+        """Fraction of (measured) grid points out of contact."""
+        out = self.pressure <= 0
+        if self.mask is not None:
+            return float(np.mean(out[~self.mask]))
+        return float(np.mean(out))
 
     @property
     def contact_fraction(self) -> float:
@@ -90,3 +97,66 @@ class ContactResult:
     def max_pressure(self) -> float:
         """Largest pressure on the grid (Pa)."""
         return float(self.pressure.max())
+
+    def summary(self) -> pd.Series:
+        """Key figures: separation (m), force and target (N), force error, alpha, contact
+        fraction, mean and maximal contact pressure (Pa), number of asperities in contact."""
+        n = None if self.asperities is None else len(self.asperities)
+        return pd.Series(
+            {
+                "method": self.method,
+                "nominal_pressure": self.nominal_pressure,
+                "separation": self.separation,
+                "force": self.force,
+                "target_force": self.target_force,
+                "force_error": self.force_error,
+                "alpha": self.alpha,
+                "contact_fraction": self.contact_fraction,
+                "mean_pressure": self.mean_pressure,
+                "max_pressure": self.max_pressure,
+                "n_asperities": n,
+                "converged": self.converged,
+            },
+            name="contact",
+        )
+
+    def to_frame(self) -> pd.DataFrame:
+        """Tidy table of the grid points in contact: ``i``, ``j`` and ``pressure`` (Pa)."""
+        ii, jj = np.nonzero(self.pressure > 0)
+        return pd.DataFrame({"i": ii, "j": jj, "pressure": self.pressure[ii, jj]})
+
+    def plot(self, ax=None, *, unit: str = "GPa", dx: float | None = None, cmap: str = "magma"):
+        """Show the contact-pressure map.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure is made when omitted.
+        unit : {"Pa", "MPa", "GPa"}
+            Pressure unit of the colour bar.
+        dx : float, optional
+            Grid spacing in metres; axes are in grid points when omitted.
+        cmap : str
+            Matplotlib colour map.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+        """
+        import matplotlib.pyplot as plt
+
+        scales = {"Pa": 1.0, "MPa": 1e-6, "GPa": 1e-9}
+        if unit not in scales:
+            raise ValueError(f"unit must be one of {sorted(scales)}, got {unit!r}")
+        if ax is None:
+            _, ax = plt.subplots()
+        nx, ny = self.pressure.shape
+        extent = None if dx is None else (0, nx * dx * 1e6, 0, ny * dx * 1e6)
+        image = ax.imshow(
+            self.pressure.T * scales[unit], origin="lower", cmap=cmap, extent=extent
+        )
+        label = "grid points" if dx is None else "µm"
+        ax.set_xlabel(f"x ({label})")
+        ax.set_ylabel(f"y ({label})")
+        ax.figure.colorbar(image, ax=ax, label=f"contact pressure ({unit})")
+        return ax

@@ -2,7 +2,15 @@
 
 from __future__ import annotations
 
+import os
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+from .roughness import roughness_parameters
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["Surface"]
 
@@ -34,7 +42,9 @@ class Surface:
         dy = dx if dy is None else dy
         for name, value in (("dx", dx), ("dy", dy)):
             if not (np.isfinite(value) and value > 0):
-                raise ValueError(f"{name} must be a positive finite spacing in metres, got {value!r}")
+                raise ValueError(
+                    f"{name} must be a positive finite spacing in metres, got {value!r}"
+                )
         if mask is not None:
             mask = np.array(mask, dtype=bool, copy=True)
             if mask.shape != h.shape:
@@ -68,6 +78,70 @@ class Surface:
         """Nominal (projected) area in square metres."""
         lx, ly = self.size
         return lx * ly
+
+    def roughness(self, level: str = "mean") -> pd.Series:
+        """ISO 25178-2 roughness parameters and the Hurst exponent.
+
+        Parameters
+        ----------
+        level : {"mean", "plane"}
+            Reference surface: the mean height, or the least-squares plane (form removal).
+
+        Returns
+        -------
+        pandas.Series
+            ``Sa, Sq, Sp, Sv, Sz`` (m), ``Ssk, Sku`` (1), ``Sdq`` (1), ``Sdr`` (fraction, not
+            %), ``Spd`` (1/m^2), ``Spc`` (1/m), ``hurst`` and ``fractal_dimension``; see
+            :func:`contact.roughness.roughness_parameters`.
+        """
+        valid = None if self.mask is None else ~np.asarray(self.mask, dtype=bool)
+        return roughness_parameters(self.heights, self.dx, self.dy, valid, level=level)
+
+    def write(self, path: str | os.PathLike, *, format: str | None = None) -> None:
+        """Write the surface to ``path`` (.npz, .npy, text grid, .xyz or .x3p).
+
+        See :func:`contact.io.write`.
+        """
+        from .io import write
+
+        write(self, path, format=format)
+
+    def plot(self, ax=None, *, unit: str = "µm", cmap: str = "viridis", colorbar: bool = True):
+        """Show the height map.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw on; a new figure is made when omitted.
+        unit : {"m", "mm", "µm", "nm"}
+            Unit of lengths and heights on the axes and colour bar.
+        cmap : str
+            Matplotlib colour map.
+        colorbar : bool
+            Add a colour bar.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+        """
+        import matplotlib.pyplot as plt
+
+        scales = {"m": 1.0, "mm": 1e3, "µm": 1e6, "um": 1e6, "nm": 1e9}
+        if unit not in scales:
+            raise ValueError(f"unit must be one of {sorted(scales)}, got {unit!r}")
+        k = scales[unit]
+        if ax is None:
+            _, ax = plt.subplots()
+        h = self.heights if self.mask is None else np.ma.masked_array(self.heights, self.mask)
+        lx, ly = self.size
+        image = ax.imshow(
+            np.ma.transpose(h) * k, origin="lower", extent=(0, lx * k, 0, ly * k), cmap=cmap
+        )
+        ax.set_xlabel(f"x ({unit})")
+        ax.set_ylabel(f"y ({unit})")
+        if colorbar:
+            ax.figure.colorbar(image, ax=ax, label=f"height ({unit})")
+        return ax
 
     def __repr__(self) -> str:
         lx, ly = self.size

@@ -1,0 +1,197 @@
+"""Random rough-surface generators: 2-D Weierstrass functions and self-affine Fourier surfaces."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from .surface import Surface
+
+__all__ = ["self_affine", "weierstrass"]
+
+
+def _grid(shape, length) -> tuple[int, int, float, float]:
+    try:
+        nx, ny = (int(n) for n in shape)
+    except (TypeError, ValueError):
+        raise ValueError(f"shape must be a pair of integers (nx, ny), got {shape!r}") from None
+    if (nx, ny) != tuple(shape) or nx < 3 or ny < 3:
+        raise ValueError(f"shape must be two integers >= 3, got {shape!r}")
+    lengths = (length, length) if np.ndim(length) == 0 else tuple(length)
+    if len(lengths) != 2:
+        raise ValueError(f"length must be a number or a pair (Lx, Ly) in metres, got {length!r}")
+    lx, ly = (float(v) for v in lengths)
+    for name, v in (("Lx", lx), ("Ly", ly)):
+        if not (math.isfinite(v) and v > 0):
+            raise ValueError(f"length {name} must be a positive finite size in metres, got {v!r}")
+    return nx, ny, lx, ly
+
+
+def _check_hurst(hurst: float) -> float:
+    if not (isinstance(hurst, int | float | np.floating | np.integer) and 0 <= hurst <= 1):
+        raise ValueError(f"hurst must be in [0, 1] (fractal dimension 3 - H), got {hurst!r}")
+    return float(hurst)
+
+
+def _scale(w: np.ndarray, rq: float | None) -> np.ndarray:
+    if rq is None:
+        return w
+    if not (math.isfinite(rq) and rq > 0):
+        raise ValueError(f"rq must be a positive finite RMS height in metres, got {rq!r}")
+    w = w - w.mean()
+    s = math.sqrt(float(np.mean(w * w)))
+    if s == 0:
+        raise ValueError("the generated surface is flat; it cannot be scaled to the requested rq")
+    w *= rq / s
+    return w
+
+
+def weierstrass(
+    shape: Sequence[int],
+    length: float | Sequence[float],
+    hurst: float,
+    gamma: float = 1.5,
+    rq: float | None = None,
+    rng: np.random.Generator | int | None = None,
+    *,
+    method: str = "matrix",
+) -> Surface:
+    """2-D random Weierstrass surface (Bigerelle et al. 2019; DESIGN §3.1).
+
+    ``W(x, y) = A sum_{n1=0}^{N1} sum_{n2=0}^{N2} a_{n1 n2} gamma^((n1+n2)/2)
+    / (gamma^(2 n1) + gamma^(2 n2))^((H+1)/2) cos(2 pi gamma^n1 x / L + phi_{n1 n2})
+    cos(2 pi gamma^n2 y / L + psi_{n1 n2})``
+
+    Parameters
+    ----------
+    shape : (nx, ny)
+        Number of grid points along x and y.
+    length : float or (Lx, Ly)
+        Physical size in metres; the grid spacing is ``dx = Lx / nx``, ``dy = Ly / ny``.
+    hurst : float
+        Hurst exponent H in [0, 1]; the fractal dimension is ``3 - H``.
+    gamma : float, default 1.5
+        Frequency ratio between successive terms, > 1.
+    rq : float or None
+        Requested RMS roughness Sq in metres: the surface is centred on its mean and scaled
+        to exactly this value. None keeps ``A = 1`` and no centring.
+    rng : numpy.random.Generator, int or None
+        Source of the coefficients ``a ~ N(0, 1)`` and the phases ``phi, psi ~ U[0, 2 pi)``
+        (drawn in that order, as ``(N1+1, N2+1)`` arrays).
+    method : {"matrix", "direct"}
+        ``"matrix"`` evaluates the sum as one product of small matrices, O(n^2 M) work for
+        M terms per axis; ``"direct"`` evaluates every term at every grid point, O(n^2 M^2),
+        as a reference.
+
+    Returns
+    -------
+    Surface
+        Heights in metres at ``x = i dx``, ``y = j dy``.
+
+    Notes
+    -----
+    ``L = max(Lx, Ly)`` is the longest wavelength. The frequencies ``gamma^n / L`` go up to
+    the grid's Nyquist limit ``1 / (2 dx)`` along x (``1 / (2 dy)`` along y), which sets
+    ``N1`` and ``N2``. Since ``cos(u + phi) = cos u cos phi - sin u sin phi``, the surface is
+    ``[Cx Sx] K [Cy Sy]^T`` with ``Cx[i, n] = cos(2 pi gamma^n x_i / L)`` etc. and a
+    ``2(N1+1) x 2(N2+1)`` coefficient matrix ``K``.
+    """
+    nx, ny, lx, ly = _grid(shape, length)
+    h = _check_hurst(hurst)
+    if not (math.isfinite(gamma) and gamma > 1):
+        raise ValueError(f"gamma must be a finite frequency ratio > 1, got {gamma!r}")
+    if method not in ("matrix", "direct"):
+        raise ValueError(f"method must be 'matrix' or 'direct', got {method!r}")
+    rng = np.random.default_rng(rng)
+    dx, dy = lx / nx, ly / ny
+    big = max(lx, ly)
+    # Largest n with gamma^n / L <= 1 / (2 d); a tiny slack absorbs rounding at equality.
+    n1 = math.floor(math.log(big / (2 * dx)) / math.log(gamma) + 1e-12) + 1
+    n2 = math.floor(math.log(big / (2 * dy)) / math.log(gamma) + 1e-12) + 1
+    if n1 < 1 or n2 < 1:
+        raise ValueError(f"the grid {shape} is too coarse to resolve any Weierstrass term")
+    k1 = gamma ** np.arange(n1)
+    k2 = gamma ** np.arange(n2)
+    amp = np.sqrt(np.outer(k1, k2)) / (k1[:, None] ** 2 + k2[None, :] ** 2) ** ((h + 1) / 2)
+    coef = rng.standard_normal((n1, n2)) * amp
+    phi = rng.uniform(0.0, 2 * np.pi, (n1, n2))
+    psi = rng.uniform(0.0, 2 * np.pi, (n1, n2))
+    x = np.arange(nx) * dx
+    y = np.arange(ny) * dy
+    ux = (2 * np.pi / big) * np.outer(x, k1)
+    uy = (2 * np.pi / big) * np.outer(y, k2)
+    if method == "matrix":
+        bx = np.hstack([np.cos(ux), np.sin(ux)])
+        by = np.hstack([np.cos(uy), np.sin(uy)])
+        cp, sp, cq, sq = np.cos(phi), np.sin(phi), np.cos(psi), np.sin(psi)
+        kmat = np.block([[cp * cq, -cp * sq], [-sp * cq, sp * sq]]) * np.tile(coef, (2, 2))
+        w = bx @ kmat @ by.T
+    else:
+        w = np.zeros((nx, ny))
+        for p in range(n1):
+            for q in range(n2):
+                w += coef[p, q] * (
+                    np.cos(ux[:, p, None] + phi[p, q]) * np.cos(uy[None, :, q] + psi[p, q])
+                )
+    return Surface(_scale(w, rq), dx, dy)
+
+
+def self_affine(
+    shape: Sequence[int],
+    length: float | Sequence[float],
+    hurst: float,
+    rq: float | None = None,
+    rng: np.random.Generator | int | None = None,
+    *,
+    rolloff: float | None = None,
+    cutoff: float | None = None,
+) -> Surface:
+    """Periodic self-affine random surface by Fourier filtering of white noise.
+
+    The power spectral density is ``C(q) ∝ q^(-2(H+1))`` between the roll-off and cut-off
+    wavevectors, flat below the roll-off and zero above the cut-off.
+
+    Parameters
+    ----------
+    shape : (nx, ny)
+        Number of grid points along x and y.
+    length : float or (Lx, Ly)
+        Physical size in metres (the surface is periodic with these periods).
+    hurst : float
+        Hurst exponent H in [0, 1].
+    rq : float or None
+        RMS roughness in metres; None leaves the unit-variance-noise normalisation.
+    rng : numpy.random.Generator, int or None
+        Source of the white noise.
+    rolloff, cutoff : float or None
+        Roll-off and cut-off wavevectors in rad/m; default: the lowest nonzero wavevector
+        ``2 pi / max(Lx, Ly)`` and no cut-off (the grid's Nyquist limit).
+
+    Returns
+    -------
+    Surface
+        Zero-mean heights in metres.
+    """
+    nx, ny, lx, ly = _grid(shape, length)
+    h = _check_hurst(hurst)
+    rng = np.random.default_rng(rng)
+    qx = 2 * np.pi * np.fft.fftfreq(nx, d=lx / nx)
+    qy = 2 * np.pi * np.fft.rfftfreq(ny, d=ly / ny)
+    q = np.hypot(qx[:, None], qy[None, :])
+    q0 = 2 * np.pi / max(lx, ly) if rolloff is None else float(rolloff)
+    if not (math.isfinite(q0) and q0 > 0):
+        raise ValueError(f"rolloff must be a positive wavevector in rad/m, got {rolloff!r}")
+    if cutoff is not None and not (math.isfinite(cutoff) and cutoff > q0):
+        raise ValueError(
+            f"cutoff must be a wavevector above rolloff={q0:.6g} rad/m, got {cutoff!r}"
+        )
+    filt = np.maximum(q, q0) ** (-(h + 1))
+    filt[0, 0] = 0.0
+    if cutoff is not None:
+        filt[q > cutoff] = 0.0
+    noise = np.fft.rfft2(rng.standard_normal((nx, ny)))
+    w = np.fft.irfft2(noise * filt, s=(nx, ny))
+    w -= w.mean()
+    return Surface(_scale(w, rq), lx / nx, ly / ny)

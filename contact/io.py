@@ -1,0 +1,319 @@
+"""Reading and writing measured topographies.
+
+Built-in formats, chosen by the file extension (or ``format=``):
+
+========  ===========================================  ==========================
+format    extensions                                   spacing stored in the file
+========  ===========================================  ==========================
+npy       ``.npy`` (heights only)                      no: pass ``dx`` (and ``dy``)
+npz       ``.npz`` (``heights``, ``dx``, ``dy``,       yes
+          optional ``mask``)
+text      ``.txt``, ``.asc``, ``.dat``, ``.csv``       in ``# dx = ...`` header lines,
+          (a grid: one row per x, NaN for missing)     else pass ``dx``
+xyz       ``.xyz`` (one ``x y z`` point per line)      yes (from the coordinates)
+x3p       ``.x3p`` (ISO 25178-72)                      yes
+========  ===========================================  ==========================
+
+Other extensions are read with SurfaceTopography's readers when that optional package is
+installed (``pip install "glstat[topography]"``). All heights and lengths are in metres.
+Reading is all-or-nothing: a corrupt, truncated or inconsistent file raises
+:class:`~contact.errors.TopographyFileError` and returns nothing.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+from .errors import TopographyFileError
+from .surface import Surface
+from .x3p import read_x3p, write_x3p
+
+__all__ = ["FORMATS", "read", "write"]
+
+FORMATS = {
+    ".npy": "npy",
+    ".npz": "npz",
+    ".txt": "text",
+    ".asc": "text",
+    ".dat": "text",
+    ".csv": "text",
+    ".xyz": "xyz",
+    ".x3p": "x3p",
+}
+
+_UNITS = {"m": 1.0, "mm": 1e-3, "µm": 1e-6, "um": 1e-6, "μm": 1e-6, "nm": 1e-9, "pm": 1e-12,
+          "Å": 1e-10, "A": 1e-10}
+
+
+def _format(path: Path, fmt: str | None) -> str:
+    if fmt is not None:
+        if fmt not in set(FORMATS.values()) | {"surfacetopography"}:
+            raise ValueError(
+                f"format must be one of {sorted(set(FORMATS.values()))} or "
+                f"'surfacetopography', got {fmt!r}"
+            )
+        return fmt
+    return FORMATS.get(path.suffix.lower(), "surfacetopography")
+
+
+def _spacing(dx, dy, found_dx, found_dy, fname):
+    dx = found_dx if dx is None else dx
+    dy = found_dy if dy is None else dy
+    if dx is None:
+        raise ValueError(f"{fname} stores no grid spacing; pass dx= (and dy=) in metres")
+    return float(dx), float(dx if dy is None else dy)
+
+
+def _surface(heights, dx, dy, mask, fname) -> Surface:
+    if mask is None and not np.isfinite(heights).all():
+        mask = ~np.isfinite(heights)
+    try:
+        return Surface(heights, dx, dy, mask=mask)
+    except ValueError as exc:
+        raise TopographyFileError(f"{fname}: {exc}") from None
+
+
+def _read_npy(path, dx, dy, fname):
+    try:
+        h = np.load(path, allow_pickle=False)
+    except (ValueError, OSError, EOFError) as exc:
+        raise TopographyFileError(
+            f"{fname}: not a readable .npy array (truncated?): {exc}"
+        ) from None
+    if h.ndim != 2:
+        raise TopographyFileError(f"{fname}: holds a {h.ndim}-D array; a 2-D height map is needed")
+    return h.astype(float), *_spacing(dx, dy, None, None, fname), None
+
+
+def _read_npz(path, dx, dy, fname):
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            content = {k: data[k] for k in data.files}
+    except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
+        raise TopographyFileError(
+            f"{fname}: not a readable .npz archive (truncated?): {exc}"
+        ) from None
+    if "heights" not in content:
+        raise TopographyFileError(
+            f"{fname}: no 'heights' array (found {sorted(content)}); save with "
+            "Surface.write or numpy.savez(path, heights=..., dx=..., dy=...)"
+        )
+    h = content["heights"]
+    if h.ndim != 2:
+        raise TopographyFileError(f"{fname}: 'heights' is {h.ndim}-D; a 2-D height map is needed")
+    found = [float(content[k]) if k in content else None for k in ("dx", "dy")]
+    mask = content.get("mask")
+    if mask is not None and mask.shape != h.shape:
+        raise TopographyFileError(
+            f"{fname}: mask shape {mask.shape} differs from heights {h.shape}"
+        )
+    return h.astype(float), *_spacing(dx, dy, *found, fname), mask
+
+
+_HEADER = re.compile(r"^\s*#\s*(dx|dy)\s*[=:]\s*(\S+)\s*$", re.IGNORECASE)
+
+
+def _read_text(path, dx, dy, fname):
+    found = {"dx": None, "dy": None}
+    rows: list[list[float]] = []
+    delimiter = "," if Path(path).suffix.lower() == ".csv" else None
+    try:
+        with open(path, encoding="utf-8") as fh:
+            for lineno, line in enumerate(fh, 1):
+                m = _HEADER.match(line)
+                if m:
+                    found[m.group(1).lower()] = float(m.group(2))
+                    continue
+                body = line.split("#", 1)[0].strip()
+                if not body:
+                    continue
+                try:
+                    rows.append([float(t) for t in body.split(delimiter)])
+                except ValueError:
+                    raise TopographyFileError(
+                        f"{fname}: line {lineno} holds a non-number"
+                    ) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
+    if not rows:
+        raise TopographyFileError(f"{fname}: holds no data rows")
+    widths = {len(r) for r in rows}
+    if len(widths) != 1:
+        raise TopographyFileError(
+            f"{fname}: rows have different lengths {sorted(widths)} (truncated or ragged grid)"
+        )
+    return np.array(rows), *_spacing(dx, dy, found["dx"], found["dy"], fname), None
+
+
+def _axis(values: np.ndarray, name: str, fname: str) -> tuple[np.ndarray, float]:
+    """Index of each coordinate on a uniform axis, and the spacing."""
+    u = np.unique(values)
+    if u.size < 3:
+        raise TopographyFileError(f"{fname}: only {u.size} distinct {name} values; need >= 3")
+    steps = np.diff(u)
+    step = (u[-1] - u[0]) / (u.size - 1)
+    if not np.allclose(steps, step, rtol=1e-6, atol=0):
+        raise TopographyFileError(
+            f"{fname}: non-uniform spacing along {name}: steps from {steps.min():.6g} to "
+            f"{steps.max():.6g} m; resample onto a regular grid first"
+        )
+    return np.rint((values - u[0]) / step).astype(np.int64), float(step)
+
+
+def _read_xyz(path, dx, dy, fname):
+    try:
+        data = np.loadtxt(path, comments="#", ndmin=2)
+    except (ValueError, OSError) as exc:
+        raise TopographyFileError(f"{fname}: not a readable x y z point list: {exc}") from None
+    if data.shape[1] != 3 or data.shape[0] == 0:
+        raise TopographyFileError(f"{fname}: expected 3 columns (x y z), got {data.shape[1]}")
+    if not np.isfinite(data[:, :2]).all():
+        raise TopographyFileError(f"{fname}: x or y coordinates contain NaN or inf")
+    ii, sx = _axis(data[:, 0], "x", fname)
+    jj, sy = _axis(data[:, 1], "y", fname)
+    nx, ny = int(ii.max()) + 1, int(jj.max()) + 1
+    flat = ii * ny + jj
+    if np.unique(flat).size != flat.size:
+        raise TopographyFileError(f"{fname}: several points share the same (x, y) position")
+    h = np.full((nx, ny), np.nan)
+    h[ii, jj] = data[:, 2]
+    return h, *_spacing(dx, dy, sx, sy, fname), None
+
+
+def _read_surfacetopography(path, dx, dy, fname):
+    try:
+        import SurfaceTopography
+    except ImportError as exc:
+        raise ImportError(
+            f"reading '{Path(fname).suffix}' files needs the optional package "
+            f"SurfaceTopography (pip install \"glstat[topography]\"); built-in formats are "
+            f"{', '.join(sorted(FORMATS))}"
+        ) from exc
+    try:
+        topo = SurfaceTopography.read_topography(fname)
+    except Exception as exc:  # the reader's own exception types vary by format
+        raise TopographyFileError(f"{fname}: SurfaceTopography cannot read it: {exc}") from None
+    if topo.dim != 2:
+        raise TopographyFileError(f"{fname}: holds a {topo.dim}-D topography; need an areal map")
+    unit = topo.unit
+    if unit not in _UNITS:
+        raise TopographyFileError(f"{fname}: unknown length unit {unit!r}")
+    scale = _UNITS[unit]
+    h = np.ma.filled(np.ma.asarray(topo.heights(), dtype=float), np.nan) * scale
+    (nx, ny), (sx, sy) = topo.nb_grid_pts, topo.physical_sizes
+    return h, *_spacing(dx, dy, sx / nx * scale, sy / ny * scale, fname), None
+
+
+_READERS = {
+    "npy": _read_npy,
+    "npz": _read_npz,
+    "text": _read_text,
+    "xyz": _read_xyz,
+    "surfacetopography": _read_surfacetopography,
+}
+
+
+def read(
+    path: str | os.PathLike,
+    *,
+    dx: float | None = None,
+    dy: float | None = None,
+    format: str | None = None,
+) -> Surface:
+    """Read a measured or saved topography.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file; its extension selects the format (see the module documentation).
+    dx, dy : float, optional
+        Grid spacing in metres; required when the file stores none (``.npy``, text grids
+        without a header), and override the stored spacing otherwise. ``dy`` defaults to
+        ``dx``.
+    format : {"npy", "npz", "text", "xyz", "x3p", "surfacetopography"}, optional
+        Force a format instead of guessing from the extension.
+
+    Returns
+    -------
+    Surface
+        Heights in metres; missing points (NaN in the file) are masked.
+
+    Raises
+    ------
+    TopographyFileError
+        Corrupt, truncated or inconsistent file (a subclass of ValueError).
+    ImportError
+        The format needs SurfaceTopography, which is not installed.
+    FileNotFoundError
+        No such file.
+    """
+    p = Path(path)
+    fname = os.fspath(path)
+    if not p.is_file():
+        raise FileNotFoundError(f"no such topography file: {fname}")
+    for name, v in (("dx", dx), ("dy", dy)):
+        if v is not None and not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{name} must be a positive finite spacing in metres, got {v!r}")
+    fmt = _format(p, format)
+    if fmt == "x3p":
+        h, sx, sy, mask = read_x3p(p)
+        sx, sy = _spacing(dx, dy, sx, sy, fname)
+    else:
+        h, sx, sy, mask = _READERS[fmt](p, dx, dy, fname)
+    return _surface(h, sx, sy, mask, fname)
+
+
+def write(surface: Surface, path: str | os.PathLike, *, format: str | None = None) -> None:
+    """Write a surface; the format follows the extension (see the module documentation).
+
+    ``.npy`` stores the heights only (the spacing is lost; prefer ``.npz``). Missing
+    points are written as NaN (npy, text, XYZ, X3P) or as the ``mask`` array (npz).
+    The file is first written next to ``path`` and moved into place, so a failed write
+    leaves no partial file.
+    """
+    p = Path(path)
+    fmt = _format(p, format)
+    h = np.array(surface.heights, dtype=float, copy=True)
+    mask = None if surface.mask is None else np.asarray(surface.mask, dtype=bool)
+    if fmt == "x3p":
+        write_x3p(p, h, surface.dx, surface.dy, mask)
+        return
+    if fmt == "surfacetopography":
+        raise ValueError(
+            f"cannot write '{p.suffix}' files; use one of {', '.join(sorted(FORMATS))}"
+        )
+    if mask is not None and fmt in ("text", "npy", "xyz"):
+        h[mask] = np.nan
+    tmp = p.with_name(p.name + ".part")
+    try:
+        if fmt == "npy":
+            with open(tmp, "wb") as fh:
+                np.save(fh, h)
+        elif fmt == "npz":
+            arrays = {"heights": h, "dx": np.float64(surface.dx), "dy": np.float64(surface.dy)}
+            if mask is not None:
+                arrays["mask"] = mask
+            with open(tmp, "wb") as fh:
+                np.savez_compressed(fh, **arrays)
+        elif fmt == "text":
+            delimiter = "," if p.suffix.lower() == ".csv" else " "
+            header = (
+                "contact surface grid: heights in metres; row i is x = i * dx, column j is "
+                f"y = j * dy; NaN marks missing points\ndx = {surface.dx!r}\ndy = {surface.dy!r}"
+            )
+            np.savetxt(tmp, h, fmt="%.17g", delimiter=delimiter, header=header)
+        else:  # xyz
+            nx, ny = h.shape
+            ii, jj = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+            pts = np.column_stack([ii.ravel() * surface.dx, jj.ravel() * surface.dy, h.ravel()])
+            np.savetxt(tmp, pts, fmt="%.17g", header="x y z in metres")
+        os.replace(tmp, p)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
