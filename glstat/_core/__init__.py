@@ -1,0 +1,1 @@
+"""Pure numerical core of glstat (numba kernels, no scipy.stats or pandas)."""

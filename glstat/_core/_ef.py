@@ -1,0 +1,106 @@
+"""Error-free transformations and small accurate elementary functions.
+
+Double-double helpers (Dekker/Knuth) used where the GLD tail inversion needs more than
+double precision in an intermediate result, and series for functions whose direct
+evaluation cancels.
+"""
+
+import math
+
+from numba import njit
+
+EPS = 2.220446049250313e-16
+_SPLITTER = 134217729.0  # 2**27 + 1
+
+
+@njit(cache=True)
+def two_sum(a, b):
+    """Return (s, e) with s = fl(a + b) and a + b = s + e exactly."""
+    s = a + b
+    bb = s - a
+    e = (a - (s - bb)) + (b - bb)
+    return s, e
+
+
+@njit(cache=True)
+def fast_two_sum(a, b):
+    """Like two_sum, for |a| >= |b|."""
+    s = a + b
+    e = b - (s - a)
+    return s, e
+
+
+@njit(cache=True)
+def _split(a):
+    c = _SPLITTER * a
+    hi = c - (c - a)
+    return hi, a - hi
+
+
+@njit(cache=True)
+def two_prod(a, b):
+    """Return (p, e) with p = fl(a * b) and a * b = p + e exactly (no overflow assumed)."""
+    p = a * b
+    if abs(a) > 1e150 or abs(b) > 1e150 or not math.isfinite(p):
+        return p, 0.0
+    ah, al = _split(a)
+    bh, bl = _split(b)
+    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+    return p, e
+
+
+@njit(cache=True)
+def reciprocal_dd(a):
+    """1/a as a double-double (hi, lo)."""
+    hi = 1.0 / a
+    p, e = two_prod(a, hi)
+    lo = ((1.0 - p) - e) / a
+    return hi, lo
+
+
+@njit(cache=True)
+def dd_root(s, t, a):
+    """(s + t) ** (1/a) and its logarithm, for s > 0, |t| <= ulp(s), a != 0.
+
+    The exponent 1/a is split into a double-double so that its rounding does not cost
+    ``eps * |log(result)|`` of relative accuracy; the power itself is one libm ``pow``.
+    Returns (value, log_value).
+    """
+    e_hi, e_lo = reciprocal_dd(a)
+    ls = math.log(s)
+    corr = e_hi * math.log1p(t / s) + e_lo * ls
+    logv = e_hi * ls + corr
+    base = s**e_hi
+    if base == 0.0 or not math.isfinite(base):
+        return math.exp(logv), logv
+    return base * math.exp(corr), logv
+
+
+@njit(cache=True)
+def expm1mx(x):
+    """expm1(x) - x without cancellation."""
+    if abs(x) < 0.5:
+        term = 0.5 * x * x
+        s = term
+        k = 2.0
+        while abs(term) > 1e-17 * abs(s):
+            k += 1.0
+            term *= x / k
+            s += term
+        return s
+    return math.expm1(x) - x
+
+
+@njit(cache=True)
+def log1mp_m(p):
+    """-log1p(-p) - p = p**2/2 + p**3/3 + ... without cancellation, 0 <= p < 1."""
+    if p < 0.125:
+        pk = p * p
+        s = 0.5 * pk
+        k = 2.0
+        while pk > 1e-17 * s * k:
+            k += 1.0
+            pk *= p
+            s += pk / k
+        return s
+    return -math.log1p(-p) - p
