@@ -1,0 +1,208 @@
+"""Topography files: round trips, hand-built X3P archives, and corrupt or truncated files."""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import zipfile
+
+import numpy as np
+import pytest
+
+import contact
+from contact import TopographyFileError
+
+
+@pytest.fixture
+def surface():
+    rng = np.random.default_rng(0)
+    h = rng.standard_normal((12, 9)) * 1e-6
+    mask = np.zeros(h.shape, dtype=bool)
+    mask[3, 4] = mask[7, 1] = True
+    return contact.Surface(h, 2e-6, 3e-6, mask=mask)
+
+
+def same(a: contact.Surface, b: contact.Surface):
+    assert a.shape == b.shape
+    assert a.dx == b.dx and a.dy == b.dy
+    np.testing.assert_array_equal(a.mask, b.mask)
+    np.testing.assert_array_equal(a.heights[~a.mask], b.heights[~b.mask])
+
+
+@pytest.mark.parametrize("name", ["s.npz", "s.x3p", "s.txt", "s.csv", "s.asc", "s.xyz"])
+def test_round_trip(tmp_path, surface, name):
+    path = tmp_path / name
+    surface.write(path)
+    same(surface, contact.read(path))
+    assert not list(tmp_path.glob("*.part"))
+
+
+def test_npy_needs_spacing(tmp_path, surface):
+    path = tmp_path / "s.npy"
+    contact.write(surface, path)
+    with pytest.raises(ValueError, match=r"stores no grid spacing; pass dx="):
+        contact.read(path)
+    same(surface, contact.read(path, dx=2e-6, dy=3e-6))
+
+
+def test_text_grid_without_header_and_override(tmp_path):
+    path = tmp_path / "g.dat"
+    path.write_text("1 2 3\n4 5 6\n7 8 9\n")
+    s = contact.read(path, dx=1e-6)
+    np.testing.assert_array_equal(s.heights, [[1, 2, 3], [4, 5, 6], [7, 8, 9]])
+    assert s.dx == s.dy == 1e-6
+
+
+def test_x3p_hand_built_int16_with_scaling_and_validity(tmp_path):
+    # ISO 5436-2: x varies fastest; z = raw * increment + offset; validity bits LSB first.
+    raw = np.arange(6, dtype="<i2")  # SizeX = 3, SizeY = 2
+    valid = bytes([0b111011])  # point 2 (x = 2, y = 0) is invalid
+    xml = f"""<?xml version="1.0" encoding="UTF-8"?>
+<p:ISO5436_2 xmlns:p="http://www.opengps.eu/2008/ISO5436_2">
+ <Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>
+  <CX><AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment></CX>
+  <CY><AxisType>I</AxisType><DataType>D</DataType><Increment>2e-6</Increment></CY>
+  <CZ><AxisType>A</AxisType><DataType>I</DataType><Increment>1e-9</Increment>
+   <Offset>5e-9</Offset></CZ></Axes></Record1>
+ <Record3><MatrixDimension><SizeX>3</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension>
+  <DataLink><PointDataLink>bindata/data.bin</PointDataLink>
+   <MD5ChecksumPointData>{hashlib.md5(raw.tobytes()).hexdigest()}</MD5ChecksumPointData>
+   <ValidPointsLink>bindata/valid.bin</ValidPointsLink></DataLink></Record3>
+</p:ISO5436_2>"""
+    path = tmp_path / "h.x3p"
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("main.xml", xml)
+        z.writestr("bindata/data.bin", raw.tobytes())
+        z.writestr("bindata/valid.bin", valid)
+    heights, dx, dy, mask = contact.x3p.read_x3p(path)
+    assert (dx, dy) == (1e-6, 2e-6)
+    expected = (np.arange(6.0).reshape(2, 3).T) * 1e-9 + 5e-9  # [i, j] = raw[j * 3 + i]
+    assert mask is not None and mask.tolist() == [[False, False], [False, False], [True, False]]
+    np.testing.assert_allclose(heights[~mask], expected[~mask], rtol=1e-15)
+
+
+def test_x3p_inline_data_list(tmp_path):
+    xml = """<?xml version="1.0"?><ISO5436_2><Record1><FeatureType>SUR</FeatureType><Axes>
+<CX><AxisType>I</AxisType><Increment>1e-6</Increment></CX>
+<CY><AxisType>I</AxisType><Increment>1e-6</Increment></CY>
+<CZ><AxisType>A</AxisType><DataType>D</DataType></CZ></Axes></Record1>
+<Record3><MatrixDimension><SizeX>3</SizeX><SizeY>3</SizeY><SizeZ>1</SizeZ></MatrixDimension>
+<DataList>""" + "".join(f"<Datum>{v}</Datum>" for v in range(8)) + "<Datum/></DataList>" \
+        "</Record3></ISO5436_2>"
+    path = tmp_path / "l.x3p"
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("main.xml", xml)
+    s = contact.read(path)
+    assert s.mask[2, 2] and s.mask.sum() == 1
+    assert s.heights[1, 2] == 7.0  # index 7 = y 2 * SizeX 3 + x 1
+
+
+def test_x3p_truncated_file(tmp_path, surface):
+    path = tmp_path / "s.x3p"
+    surface.write(path)
+    blob = path.read_bytes()
+    for cut in (len(blob) // 2, len(blob) - 30, 10):
+        bad = tmp_path / f"cut{cut}.x3p"
+        bad.write_bytes(blob[:cut])
+        with pytest.raises(TopographyFileError, match=r"not a valid X3P file|cannot read"):
+            contact.read(bad)
+
+
+def test_x3p_corrupt_data_and_xml(tmp_path, surface):
+    path = tmp_path / "s.x3p"
+    surface.write(path)
+    with zipfile.ZipFile(path) as z:
+        members = {n: z.read(n) for n in z.namelist()}
+
+    def rebuild(name, **change):
+        out = tmp_path / name
+        with zipfile.ZipFile(out, "w") as z:
+            for n, data in {**members, **change}.items():
+                z.writestr(n, data)
+        return out
+
+    data = bytearray(members["bindata/data.bin"])
+    data[5] ^= 0xFF
+    with pytest.raises(TopographyFileError, match=r"fail their MD5 checksum"):
+        contact.read(rebuild("flip.x3p", **{"bindata/data.bin": bytes(data)}))
+    with pytest.raises(TopographyFileError, match=r"main.xml does not match its MD5"):
+        contact.read(rebuild("xml.x3p", **{"main.xml": members["main.xml"] + b" "}))
+    short_xml = members["main.xml"].replace(b"<MD5ChecksumPointData>", b"<Ignored>").replace(
+        b"</MD5ChecksumPointData>", b"</Ignored>"
+    )
+    short = rebuild(
+        "short.x3p",
+        **{
+            "bindata/data.bin": members["bindata/data.bin"][:-8],
+            "main.xml": short_xml,
+            "md5checksum.hex": hashlib.md5(short_xml).hexdigest().encode() + b" *main.xml",
+        },
+    )
+    with pytest.raises(TopographyFileError, match=r"truncated or corrupt"):
+        contact.read(short)
+    with pytest.raises(TopographyFileError, match=r"not well-formed XML"):
+        contact.read(rebuild("bad.x3p", **{"main.xml": b"<ISO5436_2><Record1>"}))
+
+
+def test_truncated_or_ragged_other_formats(tmp_path, surface):
+    npz = tmp_path / "s.npz"
+    surface.write(npz)
+    (tmp_path / "t.npz").write_bytes(npz.read_bytes()[:-40])
+    with pytest.raises(TopographyFileError, match=r"not a readable .npz archive"):
+        contact.read(tmp_path / "t.npz")
+    npy = tmp_path / "s.npy"
+    surface.write(npy)
+    (tmp_path / "t.npy").write_bytes(npy.read_bytes()[:-40])
+    with pytest.raises(TopographyFileError, match=r"not a readable .npy array"):
+        contact.read(tmp_path / "t.npy", dx=1e-6)
+    txt = tmp_path / "s.txt"
+    surface.write(txt)
+    lines = txt.read_text().splitlines()
+    lines[-1] = " ".join(lines[-1].split()[:-3])
+    (tmp_path / "t.txt").write_text("\n".join(lines))
+    with pytest.raises(TopographyFileError, match=r"rows have different lengths"):
+        contact.read(tmp_path / "t.txt")
+    (tmp_path / "w.npz").write_bytes(b"")
+    np.savez(tmp_path / "w.npz", z=np.zeros((4, 4)))
+    with pytest.raises(TopographyFileError, match=r"no 'heights' array \(found \['z'\]\)"):
+        contact.read(tmp_path / "w.npz")
+
+
+def test_xyz_non_uniform_and_duplicates(tmp_path):
+    path = tmp_path / "p.xyz"
+    pts = [(x, y, 0.0) for x in (0.0, 1e-6, 3e-6) for y in (0.0, 1e-6, 2e-6)]
+    np.savetxt(path, pts)
+    with pytest.raises(TopographyFileError, match=r"non-uniform spacing along x"):
+        contact.read(path)
+    pts = [(x, y, 0.0) for x in (0.0, 1e-6, 2e-6) for y in (0.0, 1e-6, 2e-6)]
+    np.savetxt(path, [*pts, pts[0]])
+    with pytest.raises(TopographyFileError, match=r"share the same \(x, y\) position"):
+        contact.read(path)
+
+
+def test_missing_file_and_bad_spacing(tmp_path):
+    with pytest.raises(FileNotFoundError, match=r"no such topography file"):
+        contact.read(tmp_path / "nothing.x3p")
+    (tmp_path / "a.txt").write_text("1 2 3\n4 5 6\n7 8 9\n")
+    with pytest.raises(ValueError, match=r"dx must be a positive finite spacing"):
+        contact.read(tmp_path / "a.txt", dx=-1.0)
+
+
+def test_other_formats_go_through_surfacetopography(tmp_path):
+    path = tmp_path / "scan.sur"
+    path.write_bytes(b"not a real instrument file")
+    if importlib.util.find_spec("SurfaceTopography") is None:
+        with pytest.raises(ImportError, match=r"needs the optional package SurfaceTopography"):
+            contact.read(path)
+    else:
+        with pytest.raises(TopographyFileError, match=r"SurfaceTopography cannot read it"):
+            contact.read(path)
+    with pytest.raises(ValueError, match=r"cannot write '.sur' files"):
+        contact.weierstrass((8, 8), 1e-3, 0.5).write(path)
+
+
+def test_write_does_not_touch_the_surface(tmp_path, surface):
+    before = surface.heights.copy()
+    surface.write(tmp_path / "s.txt")
+    surface.write(tmp_path / "s.x3p")
+    np.testing.assert_array_equal(surface.heights, before)

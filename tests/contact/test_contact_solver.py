@@ -1,0 +1,179 @@
+"""The asperity contact model against hand-computed answers.
+
+References: for a paraboloid ``z = -x^2/(2 Rx) - y^2/(2 Ry)`` cut at depth delta the
+crossings are ``sqrt(2 R delta)`` and the slope ``delta / r``; for a cone of slope
+``tan(theta)`` the crossings are ``delta / tan(theta)`` and the attack angle is theta. The
+elliptic profile ``1.5 p_m sqrt(1 - (x/a)^2 - (y/b)^2)`` integrates to ``p_m pi a b``
+(DESIGN §3.3), which the grid sum must approach under refinement.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import contact
+
+E, NU, C = 210e9, 0.3, 0.2
+E_STAR = E / (1 - NU**2)
+
+
+def paraboloid(n: int, length=1e-3, rx=2e-3, ry=4e-3) -> contact.Surface:
+    dx = length / (n - 1)
+    x = (np.arange(n) - (n - 1) // 2) * dx
+    return contact.Surface(-(x[:, None] ** 2 / (2 * rx) + x[None, :] ** 2 / (2 * ry)), dx)
+
+
+def cone(n: int, length=1e-3, slope=0.1) -> contact.Surface:
+    dx = length / (n - 1)
+    x = (np.arange(n) - (n - 1) // 2) * dx
+    return contact.Surface(-slope * np.hypot(x[:, None], x[None, :]), dx)
+
+
+def paraboloid_answer(delta, rx=2e-3, ry=4e-3, c=C):
+    a, b = math.sqrt(2 * rx * delta), math.sqrt(2 * ry * delta)
+    beta = 0.5 * (math.atan(delta / a) + math.atan(delta / b))
+    p_m = c * E_STAR * math.tan(beta)
+    return a, b, beta, p_m, p_m * math.pi * a * b
+
+
+def test_paraboloid_geometry_and_force_converge():
+    delta = 7e-6  # the crossings fall between grid points at every resolution
+    a0, b0, beta0, pm0, f0 = paraboloid_answer(delta)
+    errors = []
+    for n in (51, 201, 801):
+        res = contact.solve_displacement(paraboloid(n), -delta, E, NU)
+        assert len(res.asperities) == 1
+        row = res.asperities.iloc[0]
+        assert row.delta == pytest.approx(delta, rel=1e-12)
+        errors.append(
+            [abs(row.a / a0 - 1), abs(row.b / b0 - 1), abs(row.beta / beta0 - 1),
+             abs(row.p_m / pm0 - 1), abs(row.F / f0 - 1)]
+        )
+        assert res.force == pytest.approx(row.F, rel=1e-12)
+        assert res.pressure.sum() * res.cell_area == pytest.approx(res.force, rel=1e-12)
+    errors = np.array(errors)
+    assert (np.diff(errors, axis=0) < 0).all(), errors
+    assert errors[-1, :4].max() < 1e-5
+    assert errors[-1, 4] < 1e-4
+
+
+def test_cone_is_exact_in_geometry_and_converges_in_force():
+    slope, delta = 0.1, 20e-6
+    a0 = delta / slope
+    f0 = C * E_STAR * slope * math.pi * a0**2
+    errors = []
+    for n in (51, 201, 801):
+        res = contact.solve_displacement(cone(n, slope=slope), -delta, E, NU)
+        row = res.asperities.iloc[0]
+        # Heights are linear along grid lines through the apex: crossings are exact.
+        assert row.a == pytest.approx(a0, rel=1e-12)
+        assert row.b == pytest.approx(a0, rel=1e-12)
+        assert row.beta == pytest.approx(math.atan(slope), rel=1e-12)
+        assert row.p_m == pytest.approx(C * E_STAR * slope, rel=1e-12)
+        errors.append(abs(row.F / f0 - 1))
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[-1] < 1e-4
+
+
+def test_cone_factor_and_counter_face_scale_the_pressure():
+    s = cone(101)
+    base = contact.solve_displacement(s, -20e-6, E, NU)
+    sneddon = contact.solve_displacement(s, -20e-6, E, NU, cone_factor=0.5)
+    np.testing.assert_allclose(sneddon.pressure, base.pressure * 2.5, rtol=1e-12)
+    same = contact.solve_displacement(s, -20e-6, E, NU, counter_face=(E, NU))
+    # Two identical elastic bodies: 1/E* doubles (Johnson, Contact Mechanics, eq. 4.3).
+    np.testing.assert_allclose(same.pressure, base.pressure / 2, rtol=1e-12)
+    assert contact.effective_modulus(E, NU) == pytest.approx(E_STAR, rel=1e-15)
+
+
+def test_load_control_matches_force_and_paraboloid_depth():
+    s = paraboloid(401)
+    for pressure in (1e3, 1e5, 1e6, 1e7):
+        res = contact.solve(s, pressure, E, NU)
+        target = pressure * s.area
+        assert res.target_force == pytest.approx(target, rel=1e-15)
+        assert abs(res.force / target - 1) <= 1e-6
+        assert abs(res.force_error) <= 1e-6
+        assert res.pressure.sum() * res.cell_area == pytest.approx(res.force, rel=1e-12)
+        # The depth solves the continuum F(delta) = p_m pi a b up to the grid error, once
+        # the patch spans several grid steps (at 1e3 Pa it is about one step wide).
+        if pressure >= 1e6:
+            assert res.asperities["a"].iloc[0] > 10 * s.dx
+            assert paraboloid_answer(-res.separation)[4] == pytest.approx(target, rel=1e-3)
+
+
+def test_force_is_monotone_in_separation():
+    s = contact.weierstrass((128, 128), 1e-3, 0.5, rq=50e-6, rng=3)
+    top = s.heights.max()
+    ds = np.linspace(top - 4 * 50e-6, top, 200)
+    forces = [contact.solve_displacement(s, d, E, NU).force for d in ds]
+    assert np.all(np.diff(forces) <= 0)
+    assert forces[0] > 0 and forces[-1] == 0
+
+
+@pytest.mark.parametrize("hurst", [0.0, 0.5, 1.0])
+def test_rough_surface_force_balance_and_consistency(hurst):
+    s = contact.weierstrass((256, 256), 1e-3, hurst, rq=50e-6, rng=11)
+    res = contact.solve(s, 20e6, E, NU)
+    assert abs(res.force_error) <= 1e-6
+    assert res.force == pytest.approx(20e6 * 1e-6, rel=1e-6)
+    assert res.pressure.sum() * res.cell_area == pytest.approx(res.force, rel=1e-9)
+    tab = res.asperities
+    assert list(tab.columns) == ["i", "j", "x", "y", "height", "delta", "a", "b", "beta",
+                                 "p_m", "F"]
+    assert tab["F"].sum() == pytest.approx(res.force, rel=1e-12)
+    assert (tab["delta"] > 0).all() and (tab["a"] > 0).all() and (tab["b"] > 0).all()
+    np.testing.assert_allclose(tab["delta"], tab["height"] - res.separation, atol=1e-18)
+    np.testing.assert_allclose(tab["p_m"], C * E_STAR * np.tan(tab["beta"]), rtol=1e-12)
+    # Every point in contact lies in some asperity's patch: the samples are its pressures.
+    assert res.samples.size == int((res.pressure > 0).sum())
+    assert 0 < res.alpha < 1
+    assert 0 <= res.info["blend_weight"] <= 1
+
+
+def test_paper_settings_mean_pressure_rises_as_hurst_falls():
+    # Bigerelle et al. 2019 (DESIGN §1): Rq = 50 µm on 1 mm², 1024², 20 MPa, E = 210 GPa.
+    means = {}
+    for hurst in (1.0, 0.5, 0.0):
+        s = contact.weierstrass((1024, 1024), 1e-3, hurst, rq=50e-6, rng=2019)
+        res = contact.solve(s, 20e6, E, NU)
+        assert abs(res.force_error) <= 1e-6
+        assert 1 - res.alpha < 0.05
+        means[hurst] = res.mean_pressure
+    assert means[1.0] < means[0.5] < means[0.0]
+
+
+def test_mask_points_never_carry_pressure_and_alpha_ignores_them():
+    s = contact.weierstrass((128, 128), 1e-3, 0.7, rq=50e-6, rng=5)
+    mask = np.zeros(s.shape, dtype=bool)
+    mask[40:60, :] = True
+    masked = contact.Surface(s.heights, s.dx, mask=mask)
+    res = contact.solve(masked, 20e6, E, NU)
+    assert (res.pressure[mask] == 0).all()
+    assert res.alpha == pytest.approx(np.mean(res.pressure[~mask] <= 0))
+    assert res.target_force == pytest.approx(20e6 * (~mask).sum() * s.dx * s.dy)
+
+
+def test_inputs_are_not_mutated():
+    s = contact.weierstrass((64, 64), 1e-3, 0.5, rq=50e-6, rng=1)
+    before = s.heights.copy()
+    contact.solve(s, 20e6, E, NU)
+    contact.summits(s)
+    s.roughness()
+    np.testing.assert_array_equal(s.heights, before)
+    raw = before.copy()
+    wrapped = contact.Surface(raw, 1e-6)
+    wrapped.heights[0, 0] = 1.0
+    np.testing.assert_array_equal(raw, before)
+
+
+def test_summary_and_frames():
+    res = contact.solve(paraboloid(101), 1e5, E, NU)
+    summary = res.summary()
+    assert summary["force"] == res.force and summary["n_asperities"] == 1
+    frame = res.to_frame()
+    assert len(frame) == res.samples.size
+    assert frame["pressure"].sum() == pytest.approx(res.samples.sum())
