@@ -1,0 +1,319 @@
+"""Elastic boundary-element contact solver: the reference for the asperity model.
+
+Frictionless normal contact of a linear elastic half-space with a rigid rough surface (or of
+two elastic bodies, through the contact modulus ``E*``), solved on the grid of the surface by
+the constrained conjugate gradient of Polonsky & Keer (1999) with FFT convolution. Unlike the
+asperity model of :func:`contact.solve`, every point interacts elastically with every other
+one. The numerical core is in :mod:`contact._bem_core` and :mod:`contact._bem_kernel`; this
+module validates input and builds the :class:`~contact.result.ContactResult`.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import warnings
+from collections.abc import Sequence
+
+import numpy as np
+
+from ._bem_core import PKOutcome, initial_pressure, polonsky_keer
+from ._bem_kernel import NonPeriodicOperator, PeriodicOperator
+from .result import ContactResult
+from .solver import effective_modulus
+from .surface import Surface
+
+__all__ = ["BEMConvergenceWarning", "solve_bem", "solve_bem_displacement"]
+
+
+class BEMConvergenceWarning(RuntimeWarning):
+    """The boundary-element solver stopped before reaching its tolerance."""
+
+
+def _check_surface(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
+    if not isinstance(surface, Surface):
+        raise TypeError(
+            f"surface must be a contact.Surface, got {type(surface).__name__}; "
+            "wrap a height array with contact.Surface(heights, dx)"
+        )
+    h = np.array(surface.heights, dtype=np.float64)
+    if surface.mask is None:
+        valid = np.ones(h.shape, dtype=np.bool_)
+    else:
+        valid = ~np.asarray(surface.mask, dtype=np.bool_)
+        if valid.shape != h.shape:
+            raise ValueError(
+                f"mask shape {valid.shape} does not match heights shape {h.shape}"
+            )
+    if not np.isfinite(h[valid]).all():
+        raise ValueError(
+            "surface heights contain NaN or inf at points that are not masked; "
+            "set surface.mask = ~np.isfinite(surface.heights)"
+        )
+    if not valid.any():
+        raise ValueError("the mask hides every point; nothing can carry the load")
+    h[~valid] = 0.0  # never used: masked points carry no pressure
+    return h, valid
+
+
+def _check_options(tol: float, max_iter: int, workers: int | None) -> None:
+    if not (isinstance(tol, numbers.Real) and math.isfinite(tol) and 0 < tol < 1):
+        raise ValueError(
+            f"tol must be a relative tolerance in (0, 1), got {tol!r}; 1e-8 is typical"
+        )
+    if isinstance(max_iter, bool) or not isinstance(max_iter, numbers.Integral) or max_iter < 1:
+        raise ValueError(f"max_iter must be a positive integer, got {max_iter!r}")
+    if workers is not None and (
+        isinstance(workers, bool) or not isinstance(workers, numbers.Integral) or workers == 0
+    ):
+        raise ValueError(
+            f"workers must be None or a non-zero integer (scipy.fft convention), got {workers!r}"
+        )
+
+
+def _operator(surface: Surface, e_star: float, periodic: bool, workers: int | None):
+    if not isinstance(periodic, bool | np.bool_):
+        raise TypeError(f"periodic must be True or False, got {periodic!r}")
+    cls = PeriodicOperator if periodic else NonPeriodicOperator
+    return cls(surface.shape, surface.dx, surface.dy, e_star, workers=workers)
+
+
+def _result(
+    out: PKOutcome,
+    surface: Surface,
+    nominal_pressure: float | None,
+    method: str,
+    info: dict,
+    max_iter: int,
+    tol: float,
+) -> ContactResult:
+    if not np.isfinite(out.pressure).all() or out.reason.startswith(("non-finite", "pressure")):
+        raise FloatingPointError(
+            f"the boundary-element iteration broke down after {out.n_iterations} "
+            f"iterations ({out.reason}); check the surface heights and units"
+        )
+    if out.reason == "contact set became empty":
+        raise RuntimeError(
+            f"the contact set became empty after {out.n_iterations} iterations; "
+            "the problem is degenerate for this surface"
+        )
+    cell_area = surface.dx * surface.dy
+    force = float(out.pressure.sum() * cell_area)
+    if nominal_pressure is None:
+        target = None
+        force_error = 0.0
+    else:
+        target = float(nominal_pressure) * surface.area
+        force_error = (force - target) / target
+    last = float(out.history[-1]) if out.history.size else float("nan")
+    if not out.converged:
+        warnings.warn(
+            f"solve_bem did not converge: {out.reason} after {out.n_iterations} iterations "
+            f"(max_iter={max_iter}); the last relative pressure change is {last:.3g}, above "
+            f"tol={tol:g}. The result is marked converged=False; raise max_iter or loosen tol.",
+            BEMConvergenceWarning,
+            stacklevel=3,
+        )
+    info = dict(info)
+    info.update(
+        reason=out.reason,
+        tol=tol,
+        gap_residual=out.gap_residual,
+        penetration=out.penetration,
+        displacement=out.displacement,
+        gap=out.gap,
+    )
+    return ContactResult(
+        pressure=out.pressure,
+        separation=out.separation,
+        force=force,
+        target_force=target,
+        force_error=force_error,
+        nominal_pressure=None if nominal_pressure is None else float(nominal_pressure),
+        cell_area=cell_area,
+        asperities=None,
+        converged=out.converged,
+        n_iterations=out.n_iterations,
+        history=out.history,
+        method=method,
+        info=info,
+    )
+
+
+def solve_bem(
+    surface: Surface,
+    nominal_pressure: float,
+    E: float,
+    nu: float,
+    *,
+    periodic: bool = False,
+    tol: float = 1e-8,
+    max_iter: int = 1000,
+    counter_face: Sequence[float] | None = None,
+    workers: int | None = None,
+) -> ContactResult:
+    """Elastic contact of a flat with a rough surface under a given nominal pressure.
+
+    Boundary-element solution of frictionless normal contact between a linear elastic
+    half-space and a rough surface, by the constrained conjugate gradient of Polonsky &
+    Keer (1999) with the load as a constraint inside the iteration.
+
+    Parameters
+    ----------
+    surface : Surface
+        The rough surface (heights in metres, grid spacing ``dx``, ``dy`` in metres).
+        Masked points carry no pressure.
+    nominal_pressure : float
+        Imposed nominal pressure in pascals (force / nominal area), > 0.
+    E : float
+        Young's modulus of the rough body in pascals, > 0.
+    nu : float
+        Poisson ratio of the rough body, in (-1, 0.5].
+    periodic : bool, default False
+        False: the surface is an isolated patch on an unloaded half-space (Love's influence
+        coefficients of uniformly loaded rectangular cells, linear convolution by zero
+        padding to twice the size). True: the surface repeats periodically (spectral
+        half-space kernel ``2 / (E* |q|)`` on the grid's wave vectors).
+    tol : float, default 1e-8
+        Convergence tolerance on the relative change of the pressure field between two
+        iterations, ``sum|p_k - p_(k-1)| / sum p_k``.
+    max_iter : int, default 1000
+        Iteration limit. Each iteration costs two FFT convolutions.
+    counter_face : (E2, nu2) or None
+        Elastic constants of the flat counter-face (Pa, dimensionless); None for a rigid
+        flat. The two bodies enter through ``1/E* = (1 - nu^2)/E + (1 - nu2^2)/E2``.
+    workers : int, optional
+        Threads for :mod:`scipy.fft` (its convention: negative counts from the number of
+        CPUs); None uses scipy's default (one).
+
+    Returns
+    -------
+    ContactResult
+        ``pressure`` (Pa) on the grid, ``separation`` (m, height of the flat in the
+        surface's coordinate, i.e. the mean of ``h - u`` over the contact), ``force`` (N),
+        ``force_error`` (relative, at rounding level), ``converged``, ``n_iterations``,
+        ``history`` (relative pressure change per iteration) and ``method="bem"``.
+        ``info`` holds ``e_star`` (Pa), ``periodic``, ``reason`` (why the iteration
+        stopped), ``gap_residual`` (largest |gap| on the contact set, m),
+        ``penetration`` (largest interpenetration off the contact set, m),
+        ``displacement`` (elastic normal displacement, m) and ``gap`` (m) maps.
+
+    Raises
+    ------
+    TypeError
+        ``surface`` is not a :class:`~contact.surface.Surface`.
+    ValueError
+        Non-positive or non-finite load, invalid elastic constants, NaN heights outside
+        the mask, a tolerance outside (0, 1), a non-positive ``max_iter``.
+
+    Warns
+    -----
+    BEMConvergenceWarning
+        The tolerance was not reached within ``max_iter`` iterations; the result is
+        returned with ``converged=False``.
+
+    Notes
+    -----
+    With ``u = K p`` the elastic displacement and ``g = u - h + d`` the gap to the flat at
+    height ``d``, the solution satisfies ``p >= 0``, ``g >= 0``, ``p g = 0`` and
+    ``sum(p) dx dy = nominal_pressure * area``. The iteration minimises the complementary
+    energy ``p K p / 2 - p h`` over non-negative pressures of the given total, conjugate
+    gradient on the current contact set, with the mean gap removed there (the Lagrange
+    multiplier of the load, ``-d``), projection onto ``p >= 0``, interpenetrating points
+    added to the contact set (and a restart to steepest descent when that happens), and
+    rescaling to the load. See ``docs/bem.md``.
+
+    References
+    ----------
+    I. A. Polonsky, L. M. Keer, Wear 231 (1999) 206-219. A. E. H. Love, Phil. Trans. R.
+    Soc. A 228 (1929) 377-420. H. M. Stanley, T. Kato, J. Tribol. 119 (1997) 481-485.
+    """
+    if not (
+        isinstance(nominal_pressure, numbers.Real)
+        and math.isfinite(nominal_pressure)
+        and nominal_pressure > 0
+    ):
+        raise ValueError(
+            f"nominal_pressure must be a positive finite pressure in pascals, got "
+            f"{nominal_pressure!r}; a compressive load is positive"
+        )
+    h, valid = _check_surface(surface)
+    e_star = effective_modulus(E, nu, counter_face)
+    _check_options(tol, max_iter, workers)
+    op = _operator(surface, e_star, periodic, workers)
+    p0 = initial_pressure(h, valid, float(nominal_pressure), e_star, surface.dx, surface.dy)
+    out = polonsky_keer(
+        op,
+        h,
+        valid,
+        total_pressure=float(nominal_pressure) * h.size,
+        tol=float(tol),
+        max_iter=int(max_iter),
+        p0=p0,
+    )
+    return _result(
+        out, surface, nominal_pressure, "bem",
+        {"e_star": e_star, "periodic": bool(periodic)}, int(max_iter), float(tol),
+    )
+
+
+def solve_bem_displacement(
+    surface: Surface,
+    separation: float,
+    E: float,
+    nu: float,
+    *,
+    tol: float = 1e-8,
+    max_iter: int = 1000,
+    counter_face: Sequence[float] | None = None,
+    workers: int | None = None,
+) -> ContactResult:
+    """Elastic contact with the flat held at a given height (displacement control).
+
+    Parameters
+    ----------
+    surface : Surface
+        The rough surface (heights in metres).
+    separation : float
+        Height of the flat in metres, in the surface's height coordinate: points of the
+        undeformed surface above it interpenetrate and are pressed down.
+    E, nu, tol, max_iter, counter_face, workers
+        As in :func:`solve_bem`.
+
+    Returns
+    -------
+    ContactResult
+        As in :func:`solve_bem`, with ``target_force`` and ``nominal_pressure`` None,
+        ``force_error`` 0 and ``method="bem-displacement"``. A flat above the highest
+        point gives zero pressure.
+
+    Raises
+    ------
+    TypeError, ValueError
+        As in :func:`solve_bem`, and for a non-finite separation.
+
+    Warns
+    -----
+    BEMConvergenceWarning
+        As in :func:`solve_bem`.
+
+    Notes
+    -----
+    The same iteration as :func:`solve_bem` with ``d`` fixed: no mean-gap removal and no
+    rescaling to a load. The surface is an isolated patch (``periodic=False`` of
+    :func:`solve_bem`): on a periodic half-space the mean displacement under a non-zero
+    mean pressure is unbounded, so a rigid-body approach has no absolute meaning there.
+    """
+    if not (isinstance(separation, numbers.Real) and math.isfinite(separation)):
+        raise ValueError(f"separation must be a finite height in metres, got {separation!r}")
+    h, valid = _check_surface(surface)
+    e_star = effective_modulus(E, nu, counter_face)
+    _check_options(tol, max_iter, workers)
+    op = _operator(surface, e_star, False, workers)
+    out = polonsky_keer(
+        op, h, valid, separation=float(separation), tol=float(tol), max_iter=int(max_iter)
+    )
+    return _result(
+        out, surface, None, "bem-displacement",
+        {"e_star": e_star, "periodic": False}, int(max_iter), float(tol),
+    )
