@@ -56,6 +56,7 @@ def weierstrass(
     rq: float | None = None,
     rng: np.random.Generator | int | None = None,
     *,
+    n_terms: int | Sequence[int] | None = None,
     method: str = "matrix",
 ) -> Surface:
     """2-D random Weierstrass surface (Bigerelle et al. 2019; DESIGN §3.1).
@@ -80,10 +81,14 @@ def weierstrass(
     rng : numpy.random.Generator, int or None
         Source of the coefficients ``a ~ N(0, 1)`` and the phases ``phi, psi ~ U[0, 2 pi)``
         (drawn in that order, as ``(N1+1, N2+1)`` arrays).
+    n_terms : int or (int, int), optional
+        Number of terms ``N1+1``, ``N2+1`` per axis; default: every frequency up to the
+        grid's Nyquist limit. A fixed number of terms gives the same band-limited function
+        on every grid of the same physical size (for convergence studies).
     method : {"matrix", "direct"}
         ``"matrix"`` evaluates the sum as one product of small matrices, O(n^2 M) work for
-        M terms per axis; ``"direct"`` evaluates every term at every grid point, O(n^2 M^2),
-        as a reference.
+        M terms per axis; ``"direct"`` evaluates both cosines of every term at every grid
+        point, O(n^2 M^2) cosines, as a reference.
 
     Returns
     -------
@@ -112,6 +117,14 @@ def weierstrass(
     n2 = math.floor(math.log(big / (2 * dy)) / math.log(gamma) + 1e-12) + 1
     if n1 < 1 or n2 < 1:
         raise ValueError(f"the grid {shape} is too coarse to resolve any Weierstrass term")
+    if n_terms is not None:
+        m1, m2 = (n_terms, n_terms) if np.ndim(n_terms) == 0 else tuple(n_terms)
+        if not (1 <= m1 <= n1 and 1 <= m2 <= n2) or int(m1) != m1 or int(m2) != m2:
+            raise ValueError(
+                f"n_terms must be integers from 1 up to the Nyquist limit of this grid, "
+                f"({n1}, {n2}); got {n_terms!r}"
+            )
+        n1, n2 = int(m1), int(m2)
     k1 = gamma ** np.arange(n1)
     k2 = gamma ** np.arange(n2)
     amp = np.sqrt(np.outer(k1, k2)) / (k1[:, None] ** 2 + k2[None, :] ** 2) ** ((h + 1) / 2)
@@ -129,11 +142,14 @@ def weierstrass(
         kmat = np.block([[cp * cq, -cp * sq], [-sp * cq, sp * sq]]) * np.tile(coef, (2, 2))
         w = bx @ kmat @ by.T
     else:
+        # Every term's two cosines at every grid point: O(nx ny M1 M2) cosines.
+        gx, gy = np.meshgrid(x, y, indexing="ij")
         w = np.zeros((nx, ny))
         for p in range(n1):
             for q in range(n2):
                 w += coef[p, q] * (
-                    np.cos(ux[:, p, None] + phi[p, q]) * np.cos(uy[None, :, q] + psi[p, q])
+                    np.cos((2 * np.pi * k1[p] / big) * gx + phi[p, q])
+                    * np.cos((2 * np.pi * k2[q] / big) * gy + psi[p, q])
                 )
     return Surface(_scale(w, rq), dx, dy)
 

@@ -12,7 +12,7 @@ import pandas as pd
 
 from ._kernels import find_summits
 
-__all__ = ["UNITS", "hurst_exponent", "roughness_parameters"]
+__all__ = ["UNITS", "hurst_exponent", "level_heights", "roughness_parameters"]
 
 #: Unit of each parameter returned by :func:`roughness_parameters`.
 UNITS = {
@@ -32,8 +32,13 @@ UNITS = {
 }
 
 
-def _level(h: np.ndarray, valid: np.ndarray, dx: float, dy: float, level: str) -> np.ndarray:
-    """Heights relative to the mean plane (``"mean"``) or least-squares plane (``"plane"``)."""
+def level_heights(
+    h: np.ndarray, valid: np.ndarray, dx: float, dy: float, level: str
+) -> np.ndarray:
+    """Heights (m) relative to their mean (``"mean"``) or least-squares plane (``"plane"``).
+
+    Only points where ``valid`` is True enter the fit; a new array is returned.
+    """
     if level == "mean":
         return h - h[valid].mean()
     if level == "plane":
@@ -133,7 +138,7 @@ def roughness_parameters(
     """
     if valid is None:
         valid = np.ones(h.shape, dtype=bool)
-    z = _level(h, valid, dx, dy, level)
+    z = level_heights(h, valid, dx, dy, level)
     zv = z[valid]
     sq = math.sqrt(float(np.mean(zv * zv)))
     if sq == 0:

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .roughness import roughness_parameters
+from .roughness import level_heights, roughness_parameters
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -96,6 +96,13 @@ class Surface:
         """
         valid = None if self.mask is None else ~np.asarray(self.mask, dtype=bool)
         return roughness_parameters(self.heights, self.dx, self.dy, valid, level=level)
+
+    def detrend(self, level: str = "plane") -> Surface:
+        """A new surface with the mean (``"mean"``) or least-squares plane (``"plane"``)
+        subtracted, fitted on the measured points; spacing and mask are kept."""
+        valid = np.ones(self.shape, bool) if self.mask is None else ~np.asarray(self.mask, bool)
+        h = level_heights(self.heights, valid, self.dx, self.dy, level)
+        return Surface(h, self.dx, self.dy, mask=self.mask)
 
     def write(self, path: str | os.PathLike, *, format: str | None = None) -> None:
         """Write the surface to ``path`` (.npz, .npy, text grid, .xyz or .x3p).

@@ -10,14 +10,14 @@ import pytest
 import contact
 
 
-def weierstrass_by_formula(n, length, hurst, gamma, seed):
+def weierstrass_by_formula(n, length, hurst, gamma, seed, m=None):
     """DESIGN §3.1 term by term, with the documented draw order (a, then phi, then psi)."""
     dx = length / n
     # Nyquist: gamma^N / L <= 1 / (2 dx), i.e. gamma^N <= n / 2.
     top = 0
     while gamma ** (top + 1) <= n / 2:
         top += 1
-    m = top + 1
+    m = top + 1 if m is None else m
     rng = np.random.default_rng(seed)
     a = rng.standard_normal((m, m))
     phi = rng.uniform(0, 2 * np.pi, (m, m))
@@ -43,6 +43,16 @@ def test_weierstrass_matches_formula(hurst):
     got = contact.weierstrass((64, 64), 1e-3, hurst, rng=42)
     np.testing.assert_allclose(got.heights, ref, rtol=0, atol=1e-12 * np.abs(ref).max())
     assert got.dx == pytest.approx(1e-3 / 64)
+
+
+def test_fixed_number_of_terms_is_the_same_function_on_every_grid():
+    coarse = contact.weierstrass((64, 64), 1e-3, 0.6, rng=9, n_terms=5)
+    fine = contact.weierstrass((256, 256), 1e-3, 0.6, rng=9, n_terms=5)
+    np.testing.assert_allclose(fine.heights[::4, ::4], coarse.heights, rtol=0, atol=1e-12)
+    ref, _ = weierstrass_by_formula(64, 1e-3, 0.6, 1.5, seed=9, m=5)
+    np.testing.assert_allclose(coarse.heights, ref, rtol=0, atol=1e-12)
+    with pytest.raises(ValueError, match=r"n_terms must be integers from 1 up to the Nyquist"):
+        contact.weierstrass((64, 64), 1e-3, 0.6, n_terms=10)
 
 
 def test_matrix_and_direct_sums_agree_to_1e_10():
