@@ -18,11 +18,15 @@ try:  # scipy >= 1.11
 except ImportError:  # pragma: no cover - older scipy
     _ShapeInfo = None
 
-from ._core import _gld, moments
+from ._core import _gld, _table, moments
 from .errors import ConvergenceWarning
 from .regions import fkml_valid, rs_valid
 
 __all__ = ["gld_fkml", "gld_rs"]
+
+# below this many points with one set of shapes, the per-point solver is cheaper than
+# building the interpolation table
+_TABLE_MIN_POINTS = 20_000
 
 _WHAT = {"cdf": 0, "sf": 1, "logcdf": 2, "logsf": 3, "pdf": 4, "logpdf": 5}
 
@@ -51,7 +55,10 @@ def evaluate(family: int, what: str, y, lam3, lam4):
     a, b = _shapes(lam3, lam4)
     out = np.empty(yf.shape)
     status = np.zeros(yf.shape, dtype=np.int64)
-    _gld.invert_kernel(yf, a, b, family, _WHAT[what], out, status)
+    if a.size == 1 and b.size == 1 and yf.size >= _TABLE_MIN_POINTS:
+        _table.invert_table_kernel(yf, float(a[0]), float(b[0]), family, _WHAT[what], out, status)
+    else:
+        _gld.invert_kernel(yf, a, b, family, _WHAT[what], out, status)
     failed = int(status.sum())
     if failed:
         warnings.warn(
