@@ -3,9 +3,11 @@
 Turns a rough surface into a contact-pressure map and pressure samples for :mod:`glstat`:
 fractal and self-affine surface generators, measured-topography I/O (npy/npz, text grids,
 XYZ point lists, ISO 25178-72 X3P), ISO 25178 roughness parameters, summit detection and the
-load-controlled semi-analytical asperity contact model.
+load-controlled semi-analytical asperity contact model, with an elastic boundary-element
+solver (:func:`solve_bem`) as its reference.
 """
 
+from .bem import solve_bem
 from .errors import TopographyFileError
 from .generators import self_affine, weierstrass
 from .io import read, write
@@ -23,6 +25,7 @@ __all__ = [
     "read",
     "self_affine",
     "solve",
+    "solve_bem",
     "solve_displacement",
     "summits",
     "weierstrass",
