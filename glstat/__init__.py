@@ -1,7 +1,9 @@
 """glstat: Generalized Lambda Distributions and the statistics of contact pressures."""
 
+from .damage import damage_probability, guaranteed_threshold, integrity_probability
 from .distributions import gld_fkml, gld_rs
 from .errors import ConvergenceWarning, FitError, InvalidParameterError
+from .extremes import MaximumDistribution, OrderStatisticDistribution, maximum, order_statistic
 from .gld import GLD
 from .regions import rs_region
 
@@ -12,7 +14,14 @@ __all__ = [
     "ConvergenceWarning",
     "FitError",
     "InvalidParameterError",
+    "MaximumDistribution",
+    "OrderStatisticDistribution",
+    "damage_probability",
     "gld_fkml",
     "gld_rs",
+    "guaranteed_threshold",
+    "integrity_probability",
+    "maximum",
+    "order_statistic",
     "rs_region",
 ]
