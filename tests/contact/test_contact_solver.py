@@ -177,3 +177,33 @@ def test_summary_and_frames():
     frame = res.to_frame()
     assert len(frame) == res.samples.size
     assert frame["pressure"].sum() == pytest.approx(res.samples.sum())
+
+
+def test_load_inside_the_first_contact_jump_is_balanced_by_blending():
+    # Cone of slope 0.1: as the plane passes the apex, the apex point alone carries
+    # 1.5 c E* tan(theta) at once, i.e. a force jump of 1.5 c E* 0.1 dx^2 (DESIGN §3.3).
+    s = cone(401, slope=0.1)
+    jump = 1.5 * C * E_STAR * 0.1 * s.dx * s.dy
+    target = 0.25 * jump
+    res = contact.solve(s, target / s.area, E, NU)
+    assert res.force == pytest.approx(target, rel=1e-12)
+    assert res.info["blend_weight"] == pytest.approx(0.25, rel=1e-9)
+    assert res.info["force_jump"] == pytest.approx(4.0, rel=1e-9)
+    assert abs(res.separation) < 1e-15  # the apex height
+    centre = (s.shape[0] // 2, s.shape[1] // 2)
+    assert res.pressure[centre] == pytest.approx(target / (s.dx * s.dy), rel=1e-12)
+    assert (res.pressure > 0).sum() == 1
+
+
+def test_rectangular_cells():
+    # Elliptic paraboloid on a grid with dy = 2 dx: same analytic answer as square cells.
+    n, dx, delta = 801, 1.25e-6, 7e-6
+    x = (np.arange(n) - n // 2) * dx
+    y = (np.arange(n // 2 + 1) - n // 4) * 2 * dx
+    s = contact.Surface(-(x[:, None] ** 2 / 4e-3 + y[None, :] ** 2 / 8e-3), dx, 2 * dx)
+    row = contact.solve_displacement(s, -delta, E, NU).asperities.iloc[0]
+    a0, b0, beta0, _, f0 = paraboloid_answer(delta)
+    assert row.a == pytest.approx(a0, rel=1e-5)
+    assert row.b == pytest.approx(b0, rel=1e-4)
+    assert row.beta == pytest.approx(beta0, rel=1e-4)
+    assert row.F == pytest.approx(f0, rel=1e-3)
