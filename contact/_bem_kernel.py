@@ -17,6 +17,8 @@ rectangle.
 
 from __future__ import annotations
 
+from typing import Protocol
+
 import numpy as np
 import scipy.fft as sfft
 
@@ -107,21 +109,20 @@ def love_coefficients(nx: int, ny: int, dx: float, dy: float) -> np.ndarray:
     return out
 
 
-class LinearOperator2D:
-    """Base class: ``apply(p)`` returns the surface displacement (m) of pressure ``p`` (Pa)."""
+class LinearOperator2D(Protocol):
+    """Compliance operator: ``apply(p)`` is the surface displacement (m) of pressure ``p`` (Pa)."""
 
     shape: tuple[int, int]
 
-    def apply(self, p: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
-        raise NotImplementedError
+    def apply(self, p: np.ndarray) -> np.ndarray: ...
 
     @property
     def self_compliance(self) -> float:
         """Displacement of a cell under a unit pressure on itself, m/Pa."""
-        raise NotImplementedError  # pragma: no cover - interface
+        ...
 
 
-class NonPeriodicOperator(LinearOperator2D):
+class NonPeriodicOperator:
     """Boussinesq convolution on an isolated patch (the half-space outside is load-free).
 
     The pressure is zero-padded to ``2 nx`` by ``2 ny``, which makes the circular
@@ -157,9 +158,11 @@ class NonPeriodicOperator(LinearOperator2D):
 
     @property
     def self_compliance(self) -> float:
+        """Displacement of a cell under a unit pressure on itself, m/Pa."""
         return self._self
 
     def apply(self, p: np.ndarray) -> np.ndarray:
+        """Displacement (m) at the grid points of the cell-wise uniform pressure ``p`` (Pa)."""
         nx, ny = self.shape
         w = self.workers
         a = sfft.rfft(p, n=2 * ny, axis=1, workers=w)
@@ -169,7 +172,7 @@ class NonPeriodicOperator(LinearOperator2D):
         return sfft.irfft(a, n=2 * ny, axis=1, workers=w)[:, :ny]
 
 
-class PeriodicOperator(LinearOperator2D):
+class PeriodicOperator:
     """Boussinesq convolution on a periodic surface.
 
     Uses the Fourier transform of the half-space Green function, ``2 / (E* |q|)``
@@ -204,9 +207,11 @@ class PeriodicOperator(LinearOperator2D):
 
     @property
     def self_compliance(self) -> float:
+        """Displacement of a grid point under a unit pressure on it alone, m/Pa."""
         return self._self
 
     def apply(self, p: np.ndarray) -> np.ndarray:
+        """Displacement (m) of the periodic pressure ``p`` (Pa), zero mean."""
         w = self.workers
         a = sfft.rfft2(p, workers=w)
         a *= self._kernel_hat

@@ -3,14 +3,15 @@
 Reference solutions:
 - Love (1929): displacement of a half-space under a uniformly loaded rectangle, the
   closed-form integral of 1/r (evaluated here in 40-digit arithmetic with mpmath).
-- Johnson, *Contact Mechanics* (1985), §3.2/eq. (3.41)-(3.42) and §4.2: Hertz contact of a
+- Johnson, *Contact Mechanics* (1985), §4.2: Hertz contact of a
   sphere of radius R with a flat, a = (3 W R / (4 E*))^(1/3), p0 = 3 W / (2 pi a^2),
   approach delta = a^2 / R, p(r) = p0 sqrt(1 - r^2/a^2).
 - Johnson §13.2 (Westergaard 1939): periodic wavy surface h = Delta cos(2 pi x / lambda),
   p* = pi E* Delta / lambda, pbar = p* sin^2(pi a / lambda),
   p(x) = 2 pbar cos(pi x/lambda) / sin^2(pi a/lambda) sqrt(sin^2(pi a/lambda) - sin^2(pi x/lambda)).
-- Johnson §2.? (half-space Green function in Fourier space): a pressure cos(q x) gives the
-  surface displacement 2 cos(q x) / (E* q).
+- Johnson §13.2 (the full-contact wavy surface): a pressure p* cos(q x) gives the surface
+  displacement Delta cos(q x) with p* = pi E* Delta / lambda, i.e. u = 2 p / (E* q).
+- Love (1929) at the centre of a uniformly loaded square of side s: ∫∫ 1/r = 4 s asinh(1).
 """
 
 from __future__ import annotations
@@ -56,7 +57,7 @@ def test_love_coefficients_match_closed_form_near_and_far(dx, dy):
 
 
 def test_love_coefficient_of_a_square_cell_on_itself():
-    # centre of a uniformly loaded square of side s: ∫∫ 1/r = 4 s asinh(1) (Johnson §3.9)
+    # centre of a uniformly loaded square of side s: ∫∫ 1/r = 4 s asinh(1) (Love 1929)
     s = 2e-6
     assert love_coefficients(2, 2, s, s)[0, 0] == pytest.approx(4 * s * math.asinh(1.0), rel=1e-14)
 
