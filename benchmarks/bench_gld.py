@@ -33,6 +33,7 @@ import glstat
 from glstat._core import _gld
 
 N = 1_000_000
+N_BRENTQ = 2000
 CASES = [
     ("RS N(0,1) approx.", "rs", (0.0, 0.197451, 0.134912, 0.134912)),
     ("RS heavy (region 4)", "rs", (0.0, -1.0, -0.2, -0.1)),
@@ -124,8 +125,7 @@ def main():
             p, _ = tail_probability(fam, lam[2], lam[3], y[i])
             if p > 0:
                 err_bis = max(err_bis, float(abs(bis_tail[j] - p) / p))
-        m = 2000
-        t_brent = best_of(lambda g=g, x=x: brentq_cdf(g, x[:m]), repeat=1) * N / m
+        t_brent = best_of(lambda g=g, x=x: brentq_cdf(g, x[:N_BRENTQ]), repeat=1) * N / N_BRENTQ
         rows.append((label, t_cdf, t_pdf, t_ppf, err_mp, err_solver, t_bis, err_bis, t_brent))
     fc = first_call_seconds()
     print(f"numba first call (import + compile or cache load): {fc[0]:.2f} s, then {fc[1]:.2f} s\n")
