@@ -173,6 +173,8 @@ class _Parent:
     def tail(self, x):
         """(F, log F, S, log S) at x, each to a few ulp in both tails."""
         x = np.asarray(x, dtype=float)
+        shape = x.shape
+        x = x.reshape(-1)
         s = np.array(self.sf(x), dtype=float, copy=True).reshape(x.shape)
         with np.errstate(divide="ignore", invalid="ignore"):
             f = 1.0 - s
@@ -192,7 +194,20 @@ class _Parent:
         deep = s < _TINY
         if deep.any():
             logs[deep] = self.logsf(x[deep])
-        return f, logf, s, logs
+        return f.reshape(shape), logf.reshape(shape), s.reshape(shape), logs.reshape(shape)
+
+
+def _flat(method):
+    """Run ``method`` on a 1-D float copy of its argument and restore the argument's shape."""
+
+    def wrapper(self, x):
+        x = np.asarray(x, dtype=float)
+        out = np.asarray(method(self, x.reshape(-1)), dtype=float)
+        return out.reshape(x.shape)
+
+    wrapper.__name__ = method.__name__
+    wrapper.__doc__ = method.__doc__
+    return wrapper
 
 
 def _check_n(n, name="n") -> float:
@@ -243,24 +258,29 @@ class _ExtremeGen(rv_continuous):
         return dct
 
     # functions of v and of its complement, both accurate -------------------------------
-    def _quantile_vq(self, logv, logq):  # pragma: no cover - overridden
+    def _quantile_vq(self, v, q, logv, logq):  # pragma: no cover - overridden
+        """Quantile at probability v with complement q (and their logs), all accurate."""
         raise NotImplementedError
 
+    @_flat
     def _ppf(self, v):
         v = np.asarray(v, dtype=float)
         with np.errstate(divide="ignore", invalid="ignore"):
-            out = self._quantile_vq(np.log(v), np.log1p(-v))
+            out = self._quantile_vq(v, 1.0 - v, np.log(v), np.log1p(-v))
         return np.where((v >= 0) & (v <= 1), out, np.nan)
 
+    @_flat
     def _isf(self, q):
         q = np.asarray(q, dtype=float)
         with np.errstate(divide="ignore", invalid="ignore"):
-            out = self._quantile_vq(np.log1p(-q), np.log(q))
+            out = self._quantile_vq(1.0 - q, q, np.log1p(-q), np.log(q))
         return np.where((q >= 0) & (q <= 1), out, np.nan)
 
+    @_flat
     def _cdf(self, x):
         return np.exp(self._logcdf(x))
 
+    @_flat
     def _pdf(self, x):
         return np.exp(self._logpdf(x))
 
@@ -271,7 +291,9 @@ class _ExtremeGen(rv_continuous):
     # moments by quadrature over the order statistic's own uniform variable ------------------
     def _quad_values(self):
         if self._moment_cache is None:
-            g = self._quantile_vq(_QUAD_LOGV, _QUAD_LOG1MV)
+            g = self._quantile_vq(
+                np.exp(_QUAD_LOGV), np.exp(_QUAD_LOG1MV), _QUAD_LOGV, _QUAD_LOG1MV
+            )
             self._moment_cache = g
         return self._moment_cache
 
@@ -383,19 +405,29 @@ class _ExtremeFrozen(rv_continuous_frozen):
 class _MaximumGen(_ExtremeGen):
     """Maximum of n i.i.d. draws; ``order = n`` (real, >= 1)."""
 
+    @_flat
     def _logcdf(self, x):
         _, logf, _, _ = self._parent.tail(x)
         return self._order * logf
 
+    @_flat
+    def _cdf(self, x):
+        f, logf, _, _ = self._parent.tail(x)
+        return f if self._order == 1 else np.exp(self._order * logf)
+
+    @_flat
     def _sf(self, x):
         n = self._order
         _, logf, s, logs = self._parent.tail(x)
+        if n == 1:
+            return s
         with np.errstate(invalid="ignore"):
             out = -np.expm1(n * logf)
         deep = s < _TINY
         out[deep] = np.exp(math.log(n) + logs[deep])
         return out
 
+    @_flat
     def _logsf(self, x):
         n = self._order
         _, logf, s, logs = self._parent.tail(x)
@@ -404,6 +436,7 @@ class _MaximumGen(_ExtremeGen):
         out[deep] = math.log(n) + logs[deep]
         return out
 
+    @_flat
     def _logpdf(self, x):
         n = self._order
         _, logf, _, _ = self._parent.tail(x)
@@ -411,12 +444,11 @@ class _MaximumGen(_ExtremeGen):
         body = 0.0 if n == 1 else (n - 1.0) * logf
         return math.log(n) + body + lp
 
-    def _quantile_vq(self, logv, logq):
+    def _quantile_vq(self, v, q, logv, logq):
         n = self._order
-        logv = np.asarray(logv, dtype=float)
         if n == 1:
-            return self._parent.quantile(np.exp(logv), np.exp(np.asarray(logq, dtype=float)))
-        t = logv / n
+            return self._parent.quantile(v, q)
+        t = np.asarray(logv, dtype=float) / n
         return self._parent.quantile(np.exp(t), -np.expm1(t))
 
 
@@ -500,20 +532,25 @@ class _OrderStatisticGen(_ExtremeGen):
             sf = np.where(lower, special.betaincc(k, m, f), special.betainc(m, k, s))
         return cdf, sf
 
+    @_flat
     def _cdf(self, x):
         return self._both(x)[0]
 
+    @_flat
     def _sf(self, x):
         return self._both(x)[1]
 
+    @_flat
     def _logcdf(self, x):
         with np.errstate(divide="ignore"):
             return np.log(self._both(x)[0])
 
+    @_flat
     def _logsf(self, x):
         with np.errstate(divide="ignore"):
             return np.log(self._both(x)[1])
 
+    @_flat
     def _logpdf(self, x):
         k, m = self._km()
         _, logf, _, logs = self._parent.tail(x)
@@ -522,11 +559,9 @@ class _OrderStatisticGen(_ExtremeGen):
         b = 0.0 if m == 1 else (m - 1.0) * logs
         return a + b + lp - special.betaln(k, m)
 
-    def _quantile_vq(self, logv, logq):
+    def _quantile_vq(self, v, q, logv, logq):
         k, m = self._km()
-        logv, logq = np.broadcast_arrays(np.asarray(logv, float), np.asarray(logq, float))
-        v = np.exp(logv)
-        q = np.exp(logq)
+        v, q = np.broadcast_arrays(np.asarray(v, float), np.asarray(q, float))
         with np.errstate(invalid="ignore"):
             # u = F at the quantile, s = 1 - u; each from the better-conditioned inverse
             u = np.where(v <= 0.5, special.betaincinv(k, m, v), special.betainccinv(k, m, q))
