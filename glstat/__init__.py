@@ -4,6 +4,7 @@ from .damage import damage_probability, guaranteed_threshold, integrity_probabil
 from .distributions import gld_fkml, gld_rs
 from .errors import ConvergenceWarning, FitError, InvalidParameterError
 from .extremes import MaximumDistribution, OrderStatisticDistribution, maximum, order_statistic
+from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
 from .gld import GLD
 from .regions import rs_region
 
@@ -13,10 +14,16 @@ __all__ = [
     "GLD",
     "ConvergenceWarning",
     "FitError",
+    "GLDFit",
     "InvalidParameterError",
     "MaximumDistribution",
     "OrderStatisticDistribution",
     "damage_probability",
+    "fit",
+    "fit_batch",
+    "fit_lmoments",
+    "fit_moments",
+    "fit_percentiles",
     "gld_fkml",
     "gld_rs",
     "guaranteed_threshold",

@@ -1,0 +1,10 @@
+"""GLD fitting: moments, percentiles, L-moments (every root), ML, MPS and starship.
+
+See :func:`fit` for data and :func:`fit_moments`, :func:`fit_percentiles`,
+:func:`fit_lmoments` for summary statistics; :func:`fit_batch` is the compiled
+statistics-to-lambdas core meant for bootstrap loops.
+"""
+
+from .core import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
+
+__all__ = ["GLDFit", "fit", "fit_batch", "fit_lmoments", "fit_moments", "fit_percentiles"]

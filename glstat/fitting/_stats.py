@@ -1,0 +1,132 @@
+"""Sample statistics matched by the fits and their conversion to the solver coordinates."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import FitError
+from . import _kernels as K
+
+MIN_N = 5
+_NAN_POLICIES = ("raise", "omit", "propagate")
+
+
+def prepare_data(data, nan_policy: str = "raise") -> tuple[np.ndarray | None, int]:
+    """Sorted finite copy of ``data`` (never the caller's array), or None for ``propagate``.
+
+    Returns the sorted sample (None when ``nan_policy="propagate"`` meets a non-finite value)
+    and the number of non-finite values removed.
+    """
+    if nan_policy not in _NAN_POLICIES:
+        raise ValueError(f"nan_policy must be one of {_NAN_POLICIES}, got {nan_policy!r}")
+    x = np.array(data, dtype=float, copy=True).ravel()
+    bad = ~np.isfinite(x)
+    nbad = int(bad.sum())
+    if nbad:
+        if nan_policy == "raise":
+            raise ValueError(
+                f"data contain {nbad} non-finite value(s) (NaN or inf) out of {x.size}; remove them "
+                "or pass nan_policy='omit' (drop them) or 'propagate' (return a NaN fit)"
+            )
+        if nan_policy == "propagate":
+            return None, nbad
+        x = x[~bad]
+    if x.size < MIN_N:
+        raise FitError(
+            f"a GLD fit needs at least {MIN_N} finite data points, got {x.size}"
+            + (f" ({nbad} non-finite value(s) omitted)" if nbad else "")
+        )
+    x.sort()
+    if x[0] == x[-1]:
+        raise FitError(f"the {x.size} data points are all equal to {x[0]!r}: a constant sample has no "
+                       "GLD fit (zero variance)")
+    return x, nbad
+
+
+def sample_moments(x: np.ndarray) -> tuple[float, float, float, float]:
+    """Mean, standard deviation, skewness and (Pearson) kurtosis, all with divisor n."""
+    m = float(np.mean(x))
+    d = x - m
+    m2 = float(np.mean(d * d))
+    m3 = float(np.mean(d**3))
+    m4 = float(np.mean(d**4))
+    if not m2 > 0.0:
+        raise FitError("the data have zero variance: no GLD matches them")
+    return m, math.sqrt(m2), m3 / m2**1.5, m4 / (m2 * m2)
+
+
+def sample_quantiles(x: np.ndarray, u: float) -> np.ndarray:
+    """Sample quantiles at (u, 1/4, 1/2, 3/4, 1-u), order statistic at (n+1)p (interpolated)."""
+    return np.quantile(x, [u, 0.25, 0.5, 0.75, 1.0 - u], method="weibull")
+
+
+def rho_from_quantiles(q) -> tuple[float, float, float, float]:
+    """Karian–Dudewicz rho1..rho4 from the quantiles at (u, 1/4, 1/2, 3/4, 1-u)."""
+    qu, q25, q50, q75, q1u = (float(v) for v in q)
+    r2 = q1u - qu
+    return q50, r2, (q50 - qu) / (q1u - q50) if q1u != q50 else math.inf, (q75 - q25) / r2 if r2 else math.nan
+
+
+def sample_lmoments(x: np.ndarray) -> tuple[float, float, float, float]:
+    """Unbiased sample L-moments l1, l2 and ratios t3, t4 (Hosking 1990) of sorted ``x``."""
+    n = x.size
+    i = np.arange(n, dtype=float)
+    b0 = x.mean()
+    b1 = np.sum(i / (n - 1) * x) / n
+    b2 = np.sum(i * (i - 1) / ((n - 1) * (n - 2)) * x) / n
+    b3 = np.sum(i * (i - 1) * (i - 2) / ((n - 1) * (n - 2) * (n - 3)) * x) / n
+    l2 = 2 * b1 - b0
+    l3 = 6 * b2 - 6 * b1 + b0
+    l4 = 20 * b3 - 30 * b2 + 12 * b1 - b0
+    return float(b0), float(l2), float(l3 / l2), float(l4 / l2)
+
+
+def check_moment_stats(mean, std, skew, kurt) -> None:
+    """Reject statistics no distribution has."""
+    for name, v in (("mean", mean), ("std", std), ("skew", skew), ("kurt", kurt)):
+        if not np.isfinite(v):
+            raise FitError(f"{name} must be finite, got {v!r}")
+    if std <= 0:
+        raise FitError(f"std must be positive, got {std!r}")
+    if kurt <= 1.0 + skew * skew:
+        raise FitError(
+            f"kurtosis {kurt:g} <= 1 + skew^2 = {1 + skew * skew:g}: no distribution has these moments "
+            "(Pearson's inequality); check that kurt is Pearson's kurtosis (3 for the normal), not the "
+            "excess kurtosis (pass fisher=True for excess kurtosis)"
+        )
+
+
+def check_rho(r1, r2, r3, r4) -> None:
+    """Reject percentile statistics no continuous distribution has."""
+    for name, v in (("rho1", r1), ("rho2", r2), ("rho3", r3), ("rho4", r4)):
+        if not np.isfinite(v):
+            raise FitError(f"{name} must be finite, got {v!r} (tied quantiles?)")
+    if r2 <= 0 or r3 <= 0 or not (0 < r4 < 1):
+        raise FitError(
+            f"percentile statistics out of range: need rho2 > 0, rho3 > 0 and 0 < rho4 < 1, got "
+            f"rho2={r2:g}, rho3={r3:g}, rho4={r4:g} (tied sample quantiles: too few distinct values)"
+        )
+
+
+def check_lmoment_stats(l1, l2, t3, t4) -> None:
+    """Reject L-moment statistics no distribution has (Hosking's bounds)."""
+    for name, v in (("l1", l1), ("l2", l2), ("t3", t3), ("t4", t4)):
+        if not np.isfinite(v):
+            raise FitError(f"{name} must be finite, got {v!r}")
+    if l2 <= 0 or abs(t3) >= 1 or t4 < (5 * t3 * t3 - 1) / 4 or t4 >= 1:
+        raise FitError(
+            f"L-moments out of range: need l2 > 0, |t3| < 1 and (5 t3^2 - 1)/4 <= t4 < 1, got l2={l2:g}, "
+            f"t3={t3:g}, t4={t4:g}"
+        )
+
+
+def shape_targets(kind: int, stats) -> tuple[float, float, float, float]:
+    """(loc_stat, scale_stat, s1, s2) in the solver coordinates of ``kind``."""
+    a, b, c, d = (float(v) for v in stats)
+    if kind == K.MOMENTS:
+        return a, b, c, math.log(d - c * c - 1.0)
+    if kind == K.PERCENTILES:
+        return a, b, math.log(c), d
+    return a, b, c, d

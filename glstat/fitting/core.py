@@ -1,0 +1,508 @@
+"""Fitting a GLD: every root of the moment, percentile and L-moment equations, ML, MPS, starship.
+
+The public functions here handle input checking, candidate bookkeeping and selection; the
+numerical work is in the compiled kernels of :mod:`glstat.fitting._kernels` (shape equations
+and Newton solver) and :mod:`glstat.fitting._likelihood` (data-based objectives).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .._core import _gld
+from ..errors import FitError, InvalidParameterError
+from ..gld import GLD
+from ..regions import rs_region
+from . import _kernels as K
+from . import _stats as S
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+
+__all__ = ["GLDFit", "fit", "fit_batch", "fit_lmoments", "fit_moments", "fit_percentiles"]
+
+METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
+_KIND = {"moments": K.MOMENTS, "percentiles": K.PERCENTILES, "lmoments": K.LMOMENTS}
+_FAM = {"rs": _gld.RS, "fkml": _gld.FKML}
+_STAT_NAMES = {
+    "moments": ("mean", "std", "skew", "kurt"),
+    "percentiles": ("rho1", "rho2", "rho3", "rho4"),
+    "lmoments": ("l1", "l2", "t3", "t4"),
+}
+
+
+# ---------------------------------------------------------------------------------------------
+# result
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class GLDFit:
+    """Result of a GLD fit.
+
+    Attributes
+    ----------
+    lambdas : tuple of float
+        Selected (lambda1, lambda2, lambda3, lambda4), in the units of the data for lambda1
+        and of 1/data for lambda2; NaN when ``nan_policy="propagate"`` met a NaN.
+    param : str
+        ``"rs"`` or ``"fkml"``.
+    method : str
+        Fitting method.
+    dist : GLD or None
+        The selected frozen distribution (None for a NaN fit).
+    n : int or None
+        Number of data points used (None for a fit from summary statistics).
+    statistics : dict
+        The matched sample statistics (moments, rho, L-moments) or, for the data-based
+        methods, the value of the objective at the optimum.
+    solutions : pandas.DataFrame
+        Every root or candidate found: ``lambda1..lambda4``, ``region`` (RS), ``valid``,
+        ``converged``, ``objective`` (residual of the equations or value of the objective),
+        ``covers_data``, ``ks`` (Kolmogorov–Smirnov distance to the data), ``selected``.
+    options : dict
+        Options the fit used (e.g. ``u`` for percentiles).
+    """
+
+    lambdas: tuple[float, float, float, float]
+    param: str
+    method: str
+    dist: GLD | None
+    n: int | None
+    statistics: dict[str, float]
+    solutions: pd.DataFrame
+    options: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def region(self) -> int | None:
+        """RS region of the selected fit (None for FKML or a NaN fit)."""
+        return None if self.dist is None else self.dist.region
+
+    def to_frame(self) -> pd.DataFrame:
+        """Every candidate as a tidy table (a copy of ``solutions``)."""
+        return self.solutions.copy()
+
+    def summary(self) -> pd.DataFrame:
+        """One-row table: method, parameterisation, n, selected lambdas, matched statistics."""
+        import pandas as pd
+
+        row: dict[str, Any] = {"method": self.method, "param": self.param, "n": self.n}
+        for i, v in enumerate(self.lambdas, start=1):
+            row[f"lambda{i}"] = v
+        row["region"] = self.region
+        row["n_solutions"] = len(self.solutions)
+        row.update(self.statistics)
+        return pd.DataFrame([row])
+
+    def __repr__(self) -> str:
+        l1, l2, l3, l4 = self.lambdas
+        return (f"GLDFit(method={self.method!r}, param={self.param!r}, lambdas=({l1:.6g}, {l2:.6g}, "
+                f"{l3:.6g}, {l4:.6g}), n={self.n}, solutions={len(self.solutions)})")
+
+
+# ---------------------------------------------------------------------------------------------
+# helpers
+# ---------------------------------------------------------------------------------------------
+def _check_param(param: str) -> str:
+    p = str(param).lower()
+    if p not in _FAM:
+        raise ValueError(f"param must be 'rs' or 'fkml', got {param!r}")
+    return p
+
+
+@lru_cache(maxsize=32)
+def _table(kind: int, fam: int, u: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Seed table of the statistics of ``kind`` on the shape grid (computed once)."""
+    nodes = K.grid_nodes(kind)
+    t1 = np.empty((nodes.size, nodes.size))
+    t2 = np.empty_like(t1)
+    K.build_table(kind, fam, u, nodes, t1, t2)
+    for arr in (nodes, t1, t2):
+        arr.setflags(write=False)
+    return nodes, t1, t2
+
+
+def _check_u(u: float) -> float:
+    u = float(u)
+    if not 0.0 < u < 0.25:
+        raise ValueError(f"u must be in (0, 0.25) so that u < 1/4 < 3/4 < 1 - u, got {u!r}")
+    return u
+
+
+def ks_distance(dist: GLD, x: np.ndarray) -> float:
+    """Kolmogorov–Smirnov distance between ``dist`` and the sorted sample ``x``."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        f = np.asarray(dist.cdf(x), dtype=float)
+    n = x.size
+    i = np.arange(1, n + 1)
+    return float(max(np.max(i / n - f), np.max(f - (i - 1) / n)))
+
+
+def covers(dist: GLD, x: np.ndarray) -> bool:
+    """True when the support of ``dist`` contains every data point."""
+    lo, hi = dist.support()
+    return bool(lo <= x[0] and hi >= x[-1])
+
+
+def _candidate(lams, param, converged, objective, x):
+    l1, l2, l3, l4 = (float(v) for v in lams)
+    row = {"lambda1": l1, "lambda2": l2, "lambda3": l3, "lambda4": l4,
+           "region": int(rs_region(l3, l4)) if param == "rs" else 0,
+           "valid": False, "converged": bool(converged), "objective": float(objective),
+           "covers_data": None, "ks": math.nan, "selected": False, "dist": None}
+    try:
+        dist = GLD(l1, l2, l3, l4, param=param)
+    except InvalidParameterError:
+        return row
+    row["valid"] = bool(np.all(np.isfinite([l1, l2, l3, l4])))
+    row["dist"] = dist
+    if x is not None and row["valid"]:
+        row["covers_data"] = covers(dist, x)
+        row["ks"] = ks_distance(dist, x)
+    return row
+
+
+def _select(rows: list[dict], have_data: bool, by_objective: bool = False) -> int:
+    """Index of the selected candidate (the documented rule), -1 when none qualifies.
+
+    Valid and converged first; with data, a support that covers the data; then the smallest
+    KS distance (data) or objective (``by_objective``); without data, the root with the
+    least extreme shapes, the smallest max(|lambda3|, |lambda4|).
+    """
+    best = -1
+    best_key: tuple = ()
+    for i, r in enumerate(rows):
+        if not (r["valid"] and r["converged"]):
+            continue
+        if have_data:
+            key = (0 if r["covers_data"] else 1,
+                   r["objective"] if by_objective else r["ks"], r["objective"])
+        else:
+            key = (max(abs(r["lambda3"]), abs(r["lambda4"])), r["objective"])
+        if best < 0 or key < best_key:
+            best, best_key = i, key
+    return best
+
+
+def _frame(rows: list[dict]):
+    import pandas as pd
+
+    cols = ["lambda1", "lambda2", "lambda3", "lambda4", "region", "valid", "converged", "objective",
+            "covers_data", "ks", "selected"]
+    return pd.DataFrame([{c: r[c] for c in cols} for r in rows], columns=cols)
+
+
+def _make_fit(rows, sel, param, method, n, statistics, options) -> GLDFit:
+    if sel >= 0:
+        rows[sel]["selected"] = True
+        dist = rows[sel]["dist"]
+        lams = dist.lambdas
+    else:
+        dist = None
+        lams = (math.nan,) * 4
+    return GLDFit(lambdas=tuple(float(v) for v in lams), param=param, method=method, dist=dist, n=n,
+                  statistics=statistics, solutions=_frame(rows), options=options)
+
+
+def _nan_fit(param, method, n, options) -> GLDFit:
+    return GLDFit(lambdas=(math.nan,) * 4, param=param, method=method, dist=None, n=n,
+                  statistics={}, solutions=_frame([]), options=options)
+
+
+def _roots(method: str, param: str, stats, u: float) -> list[tuple]:
+    """Every root of the shape equations: list of (lambdas, converged, residual)."""
+    kind = _KIND[method]
+    fam = _FAM[param]
+    loc, scale, s1, s2 = S.shape_targets(kind, stats)
+    nodes, t1, t2 = _table(kind, fam, u)
+    out = np.empty((K.MAXROOTS, K.NCOL))
+    nr = K.solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, out)
+    res = []
+    for k in range(nr):
+        a, b = out[k, K.R_A], out[k, K.R_B]
+        conv = bool(out[k, K.R_CONV]) and bool(K.shape_valid(fam, a, b))
+        if conv or K.shape_valid(fam, a, b):
+            l1, l2 = K.location_scale(kind, fam, a, b, loc, scale, u)
+        else:
+            l1, l2 = math.nan, math.nan
+        res.append(((l1, l2, a, b), conv, out[k, K.R_RES]))
+    return res
+
+
+def _reach_message(method: str, param: str, stats, u: float) -> str:
+    names = _STAT_NAMES[method]
+    desc = ", ".join(f"{nm}={float(v):.6g}" for nm, v in zip(names[2:], stats[2:], strict=True))
+    other = "fkml" if param == "rs" else "rs"
+    alt = []
+    try:
+        if any(c for _, c, _ in _roots(method, other, stats, u)):
+            alt.append(f"param='{other}' with method='{method}' reaches them")
+    except (FloatingPointError, ValueError, ZeroDivisionError):
+        pass
+    hint = {
+        "moments": "method='percentiles' or 'lmoments' (which need no 3rd or 4th moment) or a "
+                   "data-based method ('mle', 'mps', 'starship')",
+        "percentiles": "method='lmoments' or a data-based method ('mle', 'mps', 'starship')",
+        "lmoments": "method='percentiles' or a data-based method ('mle', 'mps', 'starship')",
+    }[method]
+    where = ""
+    if method == "moments" and param == "rs":
+        where = " (RS has a 4th moment only in regions 3 and 4)"
+    msg = (f"no {param.upper()} GLD matches the {method} statistics {desc}{where}. ")
+    if alt:
+        msg += alt[0] + "; "
+    return msg + "other options: " + hint
+
+
+def _fit_from_stats(method, param, stats, u, x, n, statistics, options) -> GLDFit:
+    roots = _roots(method, param, stats, u)
+    rows = [_candidate(lams, param, conv, res, x) for lams, conv, res in roots]
+    sel = _select(rows, x is not None)
+    if sel < 0:
+        raise FitError(_reach_message(method, param, stats, u))
+    return _make_fit(rows, sel, param, method, n, statistics, options)
+
+
+# ---------------------------------------------------------------------------------------------
+# public API: fits from summary statistics
+# ---------------------------------------------------------------------------------------------
+def fit_moments(mean: float, std: float, skew: float, kurt: float, param: str = "rs", *,
+                fisher: bool = False) -> GLDFit:
+    """GLD matching four moments: every root of the moment equations.
+
+    Parameters
+    ----------
+    mean, std : float
+        Mean and standard deviation (units of the data).
+    skew : float
+        Skewness alpha3 = mu3 / mu2^1.5 (dimensionless).
+    kurt : float
+        Kurtosis alpha4 = mu4 / mu2^2 (Pearson's, 3 for the normal), or the excess
+        kurtosis when ``fisher=True`` (dimensionless).
+    param : {"rs", "fkml"}
+        Parameterisation. RS reaches moments only in regions 3 and 4.
+    fisher : bool
+        True when ``kurt`` is the excess kurtosis (``scipy.stats.kurtosis`` default).
+
+    Returns
+    -------
+    GLDFit
+        All roots in ``solutions``; the selected one is the valid root with the smallest
+        max(|lambda3|, |lambda4|) (no data to compare with).
+
+    Raises
+    ------
+    FitError
+        When the moments are impossible (kurt <= 1 + skew^2) or no GLD of this
+        parameterisation matches them; the message names the statistics and what can
+        reach them.
+
+    Examples
+    --------
+    >>> from glstat import fit_moments
+    >>> f = fit_moments(0, 1, 0, 3)          # the normal: two RS roots
+    >>> [round(v, 4) for v in f.lambdas]
+    [0.0, 0.1975, 0.1349, 0.1349]
+    """
+    param = _check_param(param)
+    kurt = float(kurt) + (3.0 if fisher else 0.0)
+    stats = (float(mean), float(std), float(skew), kurt)
+    S.check_moment_stats(*stats)
+    return _fit_from_stats("moments", param, stats, 0.1, None, None,
+                           dict(zip(_STAT_NAMES["moments"], stats, strict=True)), {})
+
+
+def fit_percentiles(rho=None, param: str = "rs", *, quantiles=None, u: float = 0.1) -> GLDFit:
+    """GLD matching the Karian–Dudewicz percentile statistics: every root.
+
+    Parameters
+    ----------
+    rho : sequence of 4 float, optional
+        (rho1, rho2, rho3, rho4): median, pi(1-u) - pi(u) (units of the data), the
+        left-right tail-weight ratio (pi(.5) - pi(u)) / (pi(1-u) - pi(.5)) and the
+        tail-weight factor (pi(.75) - pi(.25)) / rho2 (dimensionless).
+    param : {"rs", "fkml"}
+        Parameterisation.
+    quantiles : sequence of 5 float, optional
+        Instead of ``rho``: the quantiles pi(u), pi(1/4), pi(1/2), pi(3/4), pi(1-u).
+    u : float
+        Percentile probability, 0 < u < 1/4 (Karian & Dudewicz use 0.1).
+
+    Returns
+    -------
+    GLDFit
+
+    Raises
+    ------
+    FitError
+        Tied or out-of-range statistics, or statistics no GLD of this type matches.
+    """
+    param = _check_param(param)
+    u = _check_u(u)
+    if (rho is None) == (quantiles is None):
+        raise ValueError("give exactly one of rho=(rho1, rho2, rho3, rho4) or quantiles=(5 values)")
+    if quantiles is not None:
+        q = np.asarray(quantiles, dtype=float)
+        if q.shape != (5,):
+            raise ValueError("quantiles must hold pi(u), pi(.25), pi(.5), pi(.75), pi(1-u); "
+                             f"got shape {q.shape}")
+        if np.any(np.diff(q) <= 0):
+            raise FitError(f"quantiles must be strictly increasing, got {q.tolist()} (tied quantiles)")
+        stats = S.rho_from_quantiles(q)
+    else:
+        stats = tuple(float(v) for v in rho)
+        if len(stats) != 4:
+            raise ValueError(f"rho must hold 4 values, got {len(stats)}")
+    S.check_rho(*stats)
+    return _fit_from_stats("percentiles", param, stats, u, None, None,
+                           dict(zip(_STAT_NAMES["percentiles"], stats, strict=True)), {"u": u})
+
+
+def fit_lmoments(l1: float, l2: float, t3: float, t4: float, param: str = "rs") -> GLDFit:
+    """GLD matching the first two L-moments and the L-moment ratios tau3, tau4: every root.
+
+    Parameters
+    ----------
+    l1, l2 : float
+        First two L-moments (units of the data).
+    t3, t4 : float
+        L-skewness and L-kurtosis (dimensionless).
+    param : {"rs", "fkml"}
+        Parameterisation.
+
+    Returns
+    -------
+    GLDFit
+    """
+    param = _check_param(param)
+    stats = (float(l1), float(l2), float(t3), float(t4))
+    S.check_lmoment_stats(*stats)
+    return _fit_from_stats("lmoments", param, stats, 0.1, None, None,
+                           dict(zip(_STAT_NAMES["lmoments"], stats, strict=True)), {})
+
+
+def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0.1,
+              ref=None) -> tuple[np.ndarray, np.ndarray]:
+    """Fits for many rows of statistics in one compiled call (the bootstrap core).
+
+    Parameters
+    ----------
+    stats : array_like, shape (B, 4)
+        One row per resample: (mean, std, skew, kurt) for ``"moments"`` (Pearson kurtosis),
+        (rho1, rho2, rho3, rho4) for ``"percentiles"``, (l1, l2, t3, t4) for ``"lmoments"``.
+    method : {"moments", "percentiles", "lmoments"}
+    param : {"rs", "fkml"}
+    u : float
+        Percentile probability.
+    ref : (float, float), optional
+        Reference shapes (lambda3, lambda4), typically those of the full-sample fit: of
+        several roots the one closest to ``ref`` is kept. Default: the shapes of the
+        normal-like root (0.1349, 0.1349).
+
+    Returns
+    -------
+    lambdas : ndarray, shape (B, 4)
+        lambda1..lambda4 per row; NaN where no valid root exists.
+    n_roots : ndarray of int, shape (B,)
+        Number of valid roots per row (0 = no fit).
+    """
+    param = _check_param(param)
+    if method not in _KIND:
+        raise ValueError(f"fit_batch supports {tuple(_KIND)}, got {method!r}")
+    u = _check_u(u)
+    kind = _KIND[method]
+    st = np.array(stats, dtype=float, copy=True, ndmin=2)
+    if st.ndim != 2 or st.shape[1] != 4:
+        raise ValueError(f"stats must have shape (B, 4), got {np.shape(stats)}")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        if kind == K.MOMENTS:
+            st[:, 3] = np.log(st[:, 3] - st[:, 2] ** 2 - 1.0)
+        elif kind == K.PERCENTILES:
+            st[:, 2] = np.log(st[:, 2])
+    st[~np.isfinite(st)] = np.nan
+    nodes, t1, t2 = _table(kind, _FAM[param], u)
+    r = np.array([0.134912, 0.134912] if ref is None else ref, dtype=float)
+    out = np.empty((st.shape[0], 4))
+    status = np.zeros(st.shape[0], dtype=np.int64)
+    K.fit_many(kind, _FAM[param], st, u, nodes, t1, t2, r, out, status)
+    return out, status
+
+
+# ---------------------------------------------------------------------------------------------
+# public API: fit to data
+# ---------------------------------------------------------------------------------------------
+def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "raise",
+        **options) -> GLDFit:
+    """Fit a GLD to data.
+
+    Parameters
+    ----------
+    data : array_like
+        Sample (any shape; flattened, never modified). Units: those of the data.
+    param : {"rs", "fkml"}
+        Parameterisation.
+    method : {"moments", "percentiles", "lmoments", "mle", "mps", "starship"}
+        ``"moments"``: match mean, variance, skewness, kurtosis (divisor n). ``"percentiles"``:
+        Karian–Dudewicz rho statistics at ``u`` (option, default 0.1; sample quantile at
+        (n+1)p). ``"lmoments"``: unbiased sample L-moments. ``"mle"``: maximum likelihood;
+        ``"mps"``: maximum product of spacings; ``"starship"``: minimum Anderson–Darling
+        statistic of the probability integral transform. The last three start from the
+        percentile, L-moment and moment fits and keep the support covering the data.
+    nan_policy : {"raise", "omit", "propagate"}
+        Non-finite values (NaN, inf): raise ``ValueError``, drop them, or return a NaN fit.
+    **options
+        ``u`` (percentiles), ``maxiter`` and ``starts`` (data-based methods).
+
+    Returns
+    -------
+    GLDFit
+        Selection rule: valid lambdas; support covering the data; then the smallest
+        Kolmogorov–Smirnov distance (equation methods) or objective (data-based methods).
+        Every root or candidate stays in ``solutions``.
+
+    Raises
+    ------
+    FitError
+        Fewer than 5 finite points, constant data, tied quantiles, or statistics out of
+        reach (the message says which method or parameterisation reaches them).
+    ValueError
+        Unknown ``method``, ``param``, ``nan_policy`` or option, or non-finite data with
+        ``nan_policy="raise"``.
+    """
+    param = _check_param(param)
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    allowed = {"u"} if method == "percentiles" else set()
+    if method in ("mle", "mps", "starship"):
+        allowed = {"maxiter", "starts"}
+    unknown = set(options) - allowed
+    if unknown:
+        raise ValueError(f"unknown option(s) {sorted(unknown)} for method {method!r}; "
+                         f"allowed: {sorted(allowed) or 'none'}")
+    x, _ = S.prepare_data(data, nan_policy)
+    if x is None:
+        return _nan_fit(param, method, None, dict(options))
+    n = x.size
+    if method == "moments":
+        stats = S.sample_moments(x)
+        return _fit_from_stats(method, param, stats, 0.1, x, n,
+                               dict(zip(_STAT_NAMES[method], stats, strict=True)), {})
+    if method == "percentiles":
+        u = _check_u(options.get("u", 0.1))
+        stats = S.rho_from_quantiles(S.sample_quantiles(x, u))
+        S.check_rho(*stats)
+        return _fit_from_stats(method, param, stats, u, x, n,
+                               dict(zip(_STAT_NAMES[method], stats, strict=True)), {"u": u})
+    if method == "lmoments":
+        stats = S.sample_lmoments(x)
+        S.check_lmoment_stats(*stats)
+        return _fit_from_stats(method, param, stats, 0.1, x, n,
+                               dict(zip(_STAT_NAMES[method], stats, strict=True)), {})
+    from ._likelihood import fit_data_objective
+
+    return fit_data_objective(x, param, method, **options)

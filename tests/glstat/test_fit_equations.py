@@ -1,0 +1,185 @@
+"""Moment, percentile and L-moment fits: every root, reference values, recovery, bad input."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy import stats
+
+import glstat
+from glstat import GLD, FitError, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
+
+P = np.array([0.01, 0.05, 0.1, 0.25, 0.5, 0.75, 0.9, 0.95, 0.99])
+
+
+def _mvsk(dist):
+    m, v, s, k = (float(t) for t in dist.stats("mvsk"))
+    return m, math.sqrt(v), s, k + 3.0
+
+
+def _has_root(f, lams, rtol=2e-3):
+    """True when one of the roots equals ``lams`` as a distribution (quantiles agree)."""
+    ref = GLD(*lams, param=f.param)
+    spread = ref.ppf(0.9) - ref.ppf(0.1)
+    for _, r in f.solutions.iterrows():
+        if not r["valid"]:
+            continue
+        g = GLD(r.lambda1, r.lambda2, r.lambda3, r.lambda4, param=f.param)
+        if np.max(np.abs(g.ppf(P) - ref.ppf(P))) < rtol * spread:
+            return True
+    return False
+
+
+# --- DESIGN.md §2 reference values (Karian & Dudewicz, Handbook of Fitting Statistical
+# Distributions with R, 2011, ch. 3 and 5 tables; Freimer et al. 1988 for FKML) ----------------
+def test_normal_rs_moments_both_roots():
+    f = fit_moments(0, 1, 0, 3)
+    assert _has_root(f, (0, 0.197451, 0.134912, 0.134912))
+    assert _has_root(f, (0, 0.418108, 5.2029, 5.2029))
+    assert f.solutions["selected"].sum() == 1
+    # the selected root is the published (normal-like) one; compare quantiles with N(0, 1)
+    np.testing.assert_allclose(f.dist.ppf(P), stats.norm.ppf(P), atol=0.02)
+
+
+def test_normal_fkml_moments():
+    f = fit_moments(0, 1, 0, 3, param="fkml")
+    assert _has_root(f, (0, 1.46355, 0.134912, 0.134912))
+    np.testing.assert_allclose(f.dist.stats("mvsk"), [0, 1, 0, 0], atol=1e-9)
+
+
+def test_normal_rs_percentiles():
+    q = stats.norm.ppf([0.1, 0.25, 0.5, 0.75, 0.9])
+    f = fit_percentiles(quantiles=q)
+    assert _has_root(f, (0, 0.214248, 0.148820, 0.148820))
+    np.testing.assert_allclose(f.dist.ppf([0.1, 0.25, 0.5, 0.75, 0.9]), q, atol=1e-10)
+
+
+def test_uniform_both_roots():
+    f = fit_moments(0.5, 1 / math.sqrt(12), 0, 1.8)
+    assert _has_root(f, (0.5, 2, 1, 1))
+    assert _has_root(f, (0.5, 2, 2, 2))
+    # every valid root matches all four moments
+    for _, r in f.solutions[f.solutions.valid].iterrows():
+        g = GLD(r.lambda1, r.lambda2, r.lambda3, r.lambda4)
+        np.testing.assert_allclose(g.stats("mvsk"), [0.5, 1 / 12, 0, -1.2], atol=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("dist", "lams"),
+    [
+        (stats.weibull_min(5), (0.993497, 1.04910, 0.212087, 0.106133)),
+        (stats.lognorm(1 / 3), (0.845057, 0.108542, 0.0101669, 0.0342151)),
+        (stats.gamma(5, scale=3), (10.7621, 0.014452, 0.0251988, 0.093884)),
+    ],
+    ids=["weibull5", "lognormal", "gamma5"],
+)
+def test_published_rs_moment_fits(dist, lams):
+    f = fit_moments(*_mvsk(dist))
+    assert _has_root(f, lams)
+    # the selected fit matches the four moments to solver precision
+    m, s, sk, ku = _mvsk(dist)
+    np.testing.assert_allclose(f.dist.stats("mvsk"), [m, s * s, sk, ku - 3], rtol=1e-8, atol=1e-10)
+
+
+def test_moment_roots_solve_the_equations():
+    for param in ("rs", "fkml"):
+        for sk, ku in [(0.5, 3.5), (-1.0, 5.0), (0.0, 2.2), (1.5, 9.0)]:
+            f = fit_moments(1.0, 2.0, sk, ku, param=param)
+            for _, r in f.solutions[f.solutions.valid & f.solutions.converged].iterrows():
+                g = GLD(r.lambda1, r.lambda2, r.lambda3, r.lambda4, param=param)
+                np.testing.assert_allclose(g.stats("mvsk"), [1.0, 4.0, sk, ku - 3], rtol=1e-7, atol=1e-9)
+
+
+def test_lmoment_fit_matches_lmoments():
+    g0 = GLD(1.0, 0.7, 0.2, 0.05, param="fkml")
+    lm = g0.lmoment_ratios(4)
+    f = fit_lmoments(*lm, param="fkml")
+    assert _has_root(f, g0.lambdas, rtol=1e-6)
+    g0 = GLD(0.0, 0.3, 0.1, 0.3, param="rs")
+    f = fit_lmoments(*g0.lmoment_ratios(4), param="rs")
+    assert _has_root(f, g0.lambdas, rtol=1e-6)
+
+
+# --- recovery from data: error shrinks as n grows -----------------------------------------------
+@pytest.mark.parametrize("method", ["moments", "percentiles", "lmoments"])
+@pytest.mark.parametrize("param", ["rs", "fkml"])
+def test_recovery_converges(method, param):
+    true = GLD(2.0, 0.5, 0.15, 0.05, param=param) if param == "fkml" else GLD(2.0, 0.2, 0.1, 0.2)
+    rng = np.random.default_rng(12345)
+    errs = []
+    for n in (200, 20000):
+        worst = []
+        for _ in range(5):
+            x = true.rvs(size=n, random_state=rng)
+            f = fit(x, param, method)
+            worst.append(np.max(np.abs(f.dist.ppf(P[1:-1]) - true.ppf(P[1:-1]))))
+        errs.append(np.median(worst))
+    assert errs[1] < errs[0] / 3
+    assert errs[1] < 0.1
+
+
+def test_data_fit_selection_and_table():
+    x = stats.gamma(5, scale=3).rvs(size=500, random_state=np.random.default_rng(3))
+    f = fit(x, "rs", "percentiles")
+    sol = f.solutions
+    assert sol["selected"].sum() == 1
+    sel = sol[sol.selected].iloc[0]
+    ok = sol[sol.valid & sol.converged & (sol.covers_data == True)]  # noqa: E712
+    assert sel.ks == ok.ks.min()
+    assert f.n == 500
+    assert set(f.statistics) == {"rho1", "rho2", "rho3", "rho4"}
+    assert f.summary().shape[0] == 1
+    assert list(f.to_frame().columns)[:4] == ["lambda1", "lambda2", "lambda3", "lambda4"]
+
+
+def test_fit_batch_matches_single_fits():
+    rng = np.random.default_rng(0)
+    rows = np.column_stack([rng.normal(size=20), 1 + rng.random(20), rng.uniform(-0.5, 0.5, 20),
+                            rng.uniform(3.0, 4.0, 20)])
+    lam, cnt = fit_batch(rows, "moments", "rs")
+    assert np.all(cnt >= 1)
+    for r, lm in zip(rows, lam, strict=True):
+        g = GLD(*lm)
+        np.testing.assert_allclose(g.stats("mvsk"), [r[0], r[1] ** 2, r[2], r[3] - 3], rtol=1e-7, atol=1e-9)
+
+
+# --- bad input -----------------------------------------------------------------------------------
+def test_bad_input_messages():
+    x = np.array([1.0, 2.0, np.nan, 4.0, 5.0, 7.0, 3.0])
+    x0 = x.copy()
+    with pytest.raises(ValueError, match="nan_policy"):
+        fit(x)
+    f = fit(x, method="percentiles", nan_policy="omit")
+    assert f.n == 6
+    np.testing.assert_array_equal(x, x0)  # never mutated
+    assert np.all(np.isnan(fit(x, nan_policy="propagate").lambdas))
+    with pytest.raises(FitError, match="at least 5"):
+        fit([1.0, 2.0, 3.0])
+    with pytest.raises(FitError, match="all equal"):
+        fit(np.ones(10))
+    with pytest.raises(ValueError, match="method"):
+        fit(np.arange(10.0), method="magic")
+    with pytest.raises(ValueError, match="param"):
+        fit(np.arange(10.0), param="xyz")
+    with pytest.raises(FitError, match="Pearson"):
+        fit_moments(0, 1, 2.0, 4.0)
+    with pytest.raises(FitError, match="tied"):
+        fit(np.r_[np.zeros(50), np.arange(5.0)], method="percentiles")
+
+
+def test_out_of_reach_names_alternatives():
+    # flat symmetric shape below the reach of both parameterisations (the smallest kurtosis of a
+    # symmetric GLD is about 1.75, Karian & Dudewicz 2011, sec. 3.3)
+    with pytest.raises(FitError, match="regions 3 and 4") as e:
+        fit_moments(0, 1, 0, 1.5)
+    assert "percentiles" in str(e.value) and "kurt=1.5" in str(e.value)
+    with pytest.raises(FitError, match="lmoments"):
+        fit_moments(0, 1, 0, 1.5, param="fkml")
+    # skewness 1 with kurtosis 2.5: a valid pair (> 1 + skew^2) that no GLD reaches
+    with pytest.raises(FitError, match="skew=1"):
+        fit_moments(0, 1, 1.0, 2.5)
+
+
+def test_exported():
+    for name in ("fit", "fit_moments", "fit_percentiles", "fit_lmoments", "fit_batch", "GLDFit"):
+        assert hasattr(glstat, name)
