@@ -73,7 +73,8 @@ def _log_integrity(dist, threshold, n, area_factor, outside_support):
     x = np.asarray(threshold, dtype=float)
     if not np.isfinite(x).all():
         raise ValueError(f"threshold must be finite; got {x[~np.isfinite(x)].ravel()[0]}")
-    x, kn = np.broadcast_arrays(x, k * n)
+    kn = k * n
+    shape = np.broadcast_shapes(x.shape, kn.shape)
     out = []
     for i, p in enumerate(parents):
         if outside_support == "raise":
@@ -88,8 +89,8 @@ def _log_integrity(dist, threshold, n, area_factor, outside_support):
                     f"{which}dist, where F is exactly {limit:g}; pass outside_support='limit' "
                     "to accept the limiting probabilities 0 and 1"
                 )
-        _, logf, _, _ = p.tail(x)
-        out.append(kn * logf)
+        _, logf, _, _ = p.tail(x)  # evaluated once per threshold, then broadcast
+        out.append(np.broadcast_to(kn * logf, shape))
     return np.stack(out) if many else out[0]
 
 
