@@ -71,7 +71,7 @@ def brentq_cdf(g, x):
     lo, hi = g.support()
     out = np.empty_like(x)
     for i, xi in enumerate(x):
-        out[i] = brentq(lambda u, xi=xi: g.ppf(u) - xi, 0.0, 1.0, xtol=1e-300, rtol=4.5e-16)
+        out[i] = brentq(lambda u, xi=xi: g.ppf(u) - xi, 0.0, 1.0, xtol=1e-300, rtol=1e-15)
     _ = lo, hi
     return out
 
