@@ -7,7 +7,8 @@ load-controlled semi-analytical asperity contact model, with an elastic boundary
 solver (:func:`solve_bem`) as its reference.
 """
 
-from .bem import solve_bem
+from .bem import BEMConvergenceWarning, solve_bem, solve_bem_displacement
+from .bem_compare import compare_models
 from .errors import TopographyFileError
 from .generators import self_affine, weierstrass
 from .io import read, write
@@ -17,15 +18,18 @@ from .summits import Summits, summits
 from .surface import Surface
 
 __all__ = [
+    "BEMConvergenceWarning",
     "ContactResult",
     "Summits",
     "Surface",
     "TopographyFileError",
+    "compare_models",
     "effective_modulus",
     "read",
     "self_affine",
     "solve",
     "solve_bem",
+    "solve_bem_displacement",
     "solve_displacement",
     "summits",
     "weierstrass",
