@@ -160,6 +160,23 @@ class _GLDGen(rv_continuous):
         u = random_state.uniform(size=size)
         return self._ppf(u, lam3, lam4)
 
+    def fit(self, data, *args, **kwds):
+        """Fit by :func:`glstat.fit`; returns ``(lam3, lam4, loc, scale)`` as scipy does.
+
+        ``method`` is any :func:`glstat.fit` method (default ``"mle"``; scipy's ``"MLE"`` and
+        ``"MM"`` map to ``"mle"`` and ``"moments"``). With initial guesses or fixed
+        parameters (``f0``, ``floc``, ...) the generic ``rv_continuous.fit`` is used.
+        """
+        if args or any(k.startswith("f") or k in ("loc", "scale", "optimizer") for k in kwds):
+            return super().fit(data, *args, **kwds)
+        from .fitting import fit as _fit
+
+        method = kwds.pop("method", "mle")
+        method = {"MLE": "mle", "MM": "moments"}.get(method, method)
+        res = _fit(data, param="rs" if self._family == _gld.RS else "fkml", method=method, **kwds)
+        l1, l2, l3, l4 = res.lambdas
+        return l3, l4, l1, 1.0 / abs(l2)
+
     def lmoments(self, r: int, lam3, lam4, loc=0.0, scale=1.0):
         """L-moments lambda_1 .. lambda_r (last axis), for broadcast shapes, loc and scale.
 
