@@ -212,7 +212,8 @@ def _integrate(g, func):
     """Integrate func(x) * pdf(x) over the support, in pieces split at quantiles."""
     xs = g.ppf(_BREAKS)
     total = 0.0
-    with warnings.catch_warnings():
+    # far tails overflow x^k or exp(s) harmlessly (the integrand there is taken as 0)
+    with warnings.catch_warnings(), np.errstate(over="ignore", invalid="ignore"):
         warnings.simplefilter("ignore", integrate.IntegrationWarning)
         for x0, x1 in itertools.pairwise(xs):
             if x1 <= x0:
