@@ -31,6 +31,15 @@ _TABLE_MIN_POINTS = 20_000
 _WHAT = {"cdf": 0, "sf": 1, "logcdf": 2, "logsf": 3, "pdf": 4, "logpdf": 5}
 
 
+def _broadcast_flat(x, lam3, lam4):
+    """Flat float arrays of x and the shapes broadcast together (copies only when needed),
+    and the common shape."""
+    x, lam3, lam4 = (np.asarray(v, dtype=float) for v in (x, lam3, lam4))
+    shape = np.broadcast_shapes(x.shape, lam3.shape, lam4.shape)
+    flat = [np.ascontiguousarray(np.broadcast_to(v, shape)).ravel() for v in (x, lam3, lam4)]
+    return *flat, shape
+
+
 def _shapes(lam3, lam4):
     """1-D float arrays of the shapes; length 1 when all entries are equal."""
     a = np.asarray(lam3, dtype=float).ravel()
@@ -48,10 +57,7 @@ def evaluate(family: int, what: str, y, lam3, lam4):
     Broadcasts ``y`` against the shapes. Emits :class:`ConvergenceWarning` when the
     inversion of Q hit its iteration limit anywhere (those entries hold the best estimate).
     """
-    y, lam3, lam4 = np.broadcast_arrays(np.asarray(y, float), np.asarray(lam3, float),
-                                        np.asarray(lam4, float))
-    shape = y.shape
-    yf = np.ascontiguousarray(y.ravel())
+    yf, lam3, lam4, shape = _broadcast_flat(y, lam3, lam4)
     a, b = _shapes(lam3, lam4)
     out = np.empty(yf.shape)
     status = np.zeros(yf.shape, dtype=np.int64)
@@ -72,10 +78,7 @@ def evaluate(family: int, what: str, y, lam3, lam4):
 
 def quantile(family: int, u, lam3, lam4, upper: bool = False):
     """Standardized Q(u) (or Q(1-u) when ``upper``), broadcasting u against the shapes."""
-    u, lam3, lam4 = np.broadcast_arrays(np.asarray(u, float), np.asarray(lam3, float),
-                                        np.asarray(lam4, float))
-    shape = u.shape
-    uf = np.ascontiguousarray(u.ravel())
+    uf, lam3, lam4, shape = _broadcast_flat(u, lam3, lam4)
     a, b = _shapes(lam3, lam4)
     out = np.empty(uf.shape)
     _gld.quantile_kernel(uf, a, b, family, 1 if upper else 0, out)
@@ -134,9 +137,13 @@ class _GLDGen(rv_continuous):
     def _stats(self, lam3, lam4):
         a, b = np.broadcast_arrays(np.asarray(lam3, float), np.asarray(lam4, float))
         shape = a.shape
-        out = np.empty((a.size, 4))
-        moments.mvsk_kernel(self._family, np.ascontiguousarray(a.ravel()),
-                            np.ascontiguousarray(b.ravel()), out)
+        out = np.full((a.size, 4), np.nan)
+        valid = np.asarray(self._argcheck(a, b)).ravel()
+        if valid.any():
+            sub = np.empty((int(valid.sum()), 4))
+            moments.mvsk_kernel(self._family, np.ascontiguousarray(a.ravel()[valid]),
+                                np.ascontiguousarray(b.ravel()[valid]), sub)
+            out[valid] = sub
         res = [out[:, i].reshape(shape) for i in range(4)]
         if shape == ():
             res = [r[()] for r in res]

@@ -165,6 +165,10 @@ def mvsk_kernel(fam, a, b, out):
             continue
         v = central_moment(fam, ai, bi, 2)
         out[i, 1] = v
+        if not v > 0.0:
+            out[i, 2] = math.nan
+            out[i, 3] = math.nan
+            continue
         if moment_exists(ai, bi, 3):
             out[i, 2] = central_moment(fam, ai, bi, 3) / v**1.5
         else:
@@ -241,11 +245,16 @@ def entropy_kernel(fam, a, b, out):
     for i in range(a.shape[0]):
         total = 0.0
         for j in range(_LOGU.shape[0]):
+            w = math.exp(_LOGW[j])
+            if w == 0.0:
+                # node beyond the double range: log Q' may be -inf there, and the
+                # contribution (of order u log u) is below every representable weight
+                continue
             lu = _LOGU[j]
             l1 = _LOG1MU[j]
             if lu <= l1:
                 lq = log_qprime_lower(fam, a[i], b[i], lu, l1)
             else:
                 lq = log_qprime_lower(fam, b[i], a[i], l1, lu)
-            total += lq * math.exp(_LOGW[j])
+            total += lq * w
         out[i] = total
