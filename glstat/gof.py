@@ -37,6 +37,7 @@ _NAN_POLICIES = ("raise", "omit", "propagate")
 _QDEV_GRID = np.round(np.arange(1, 100) / 100.0, 2)
 _KNOWN = "known parameters: KS exact, A², W² and chi² asymptotic"
 _NOT_AVAILABLE = "not available (parameters estimated; set n_resamples)"
+_PROPAGATED = "not available (data contain NaN; nan_policy='propagate')"
 _LOG_HALF = math.log(0.5)
 
 
@@ -423,7 +424,7 @@ def _report(x: np.ndarray | None, n_total: int, models: list[_Model], n_resample
     rows = []
     for model in models:
         if x is None:
-            rows.append(_empty_row(model, n_total, "not available (data contain NaN; nan_policy='propagate')"))
+            rows.append(_empty_row(model, n_total, _PROPAGATED))
             continue
         n = x.size
         s = _statistics(model.dist, x, bins)
@@ -572,7 +573,7 @@ def gof_report(data, *fits_or_dists, names: Sequence[str] | None = None, n_resam
     b = _check_n_resamples(n_resamples)
     bins = _check_bins(bins)
     models = _models(fits_or_dists, names, estimated, refit, n_params)
-    x, nbad = _prepare(data, nan_policy)
+    x, _ = _prepare(data, nan_policy)
     n_total = int(np.size(data))
     return _report(x, n_total, models, b, np.random.default_rng(rng), bins)
 
@@ -592,7 +593,8 @@ def _fit_family(name: str, x: np.ndarray, gld_method: str) -> _Model:
                       _gld_refit(param, gld_method, dict(res.options)))
     gen = getattr(stats, name, None)
     if not isinstance(gen, stats.rv_continuous):
-        raise ValueError(f"{name!r} is neither 'gld_rs', 'gld_fkml' nor a continuous scipy.stats distribution")
+        raise ValueError(f"{name!r} is neither 'gld_rs', 'gld_fkml' nor a continuous scipy.stats "
+                         "distribution")
     fixed: dict[str, float] = {}
     if name in _POSITIVE_FAMILIES and x[0] > 0:
         fixed["floc"] = 0.0
