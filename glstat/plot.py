@@ -1,6 +1,8 @@
 """Figures (matplotlib, imported only when a figure is drawn).
 
-Every function draws on ``ax`` when given (a new figure otherwise) and returns the Axes.
+Every function draws on ``ax`` (or ``axes``) when given, on a new figure otherwise, and
+returns the Axes (or the Figure for multi-panel plots). No global matplotlib state (rcParams,
+styles) is changed.
 """
 
 from __future__ import annotations
@@ -9,7 +11,14 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["plot_integrity_vs_area", "plot_maximum_density"]
+__all__ = [
+    "plot_histogram",
+    "plot_integrity_vs_area",
+    "plot_lambda_densities",
+    "plot_maximum_density",
+    "plot_pp",
+    "plot_qq",
+]
 
 
 def _axes(ax):
@@ -104,3 +113,231 @@ def plot_integrity_vs_area(dist, threshold: float, n: float, area_factors, ax=No
     ax.set_ylabel(f"P(max < {threshold:g})")
     ax.legend()
     return ax
+
+
+# ---------------------------------------------------------------------------------------------
+# fitted distributions against data
+# ---------------------------------------------------------------------------------------------
+def _sample(data) -> np.ndarray:
+    from .gof import _as_float
+
+    x = _as_float(data)
+    x = x[np.isfinite(x)]
+    if x.size < 2:
+        raise ValueError(f"a plot of the data needs at least 2 finite points, got {x.size}")
+    return np.sort(x)
+
+
+def _named_dists(fits_or_dists, names) -> list[tuple[str, Any]]:
+    from .gof import _models
+
+    models = _models(fits_or_dists, names, False, None, None)
+    return [(m.name, m.dist) for m in models]
+
+
+def plot_histogram(data, *fits_or_dists, bins: str | int | Any = "auto", names=None, ax=None) -> Any:
+    """Density histogram of the data with the pdf of each fitted distribution.
+
+    Parameters
+    ----------
+    data : array_like
+        The sample (flattened; non-finite values are left out), in its units.
+    *fits_or_dists : GLDFit, GLD or frozen continuous scipy.stats distribution
+        Models whose densities are drawn (none: only the histogram).
+    bins : str, int or sequence, optional
+        As for ``numpy.histogram`` (default ``"auto"``).
+    names : sequence of str, optional
+        Legend labels of the models (default as in :func:`glstat.gof_report`).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The histogram bars (label ``"data"``, heights in 1/(data unit), integrating to 1) and
+        one line per model, in the order given, evaluated on 400 points spanning the data.
+    """
+    x = _sample(data)
+    models = _named_dists(fits_or_dists, names)
+    ax = _axes(ax)
+    ax.hist(x, bins=bins, density=True, color="0.75", edgecolor="0.4", label="data")
+    pad = 0.05 * (x[-1] - x[0])
+    grid = np.linspace(x[0] - pad, x[-1] + pad, 400)
+    for j, (name, dist) in enumerate(models):
+        with np.errstate(all="ignore"):
+            y = np.asarray(dist.pdf(grid), dtype=float)
+        ax.plot(grid, y, color=f"C{j}", label=name)
+    ax.set_xlabel("value")
+    ax.set_ylabel("probability density")
+    ax.legend()
+    return ax
+
+
+def _hazen(n: int) -> np.ndarray:
+    return (np.arange(1, n + 1) - 0.5) / n
+
+
+def plot_qq(data, *fits_or_dists, names=None, ax=None) -> Any:
+    """Quantile–quantile plot: sorted data against each model's quantiles.
+
+    Parameters
+    ----------
+    data : array_like
+        The sample (flattened; non-finite values are left out), in its units.
+    *fits_or_dists : GLDFit, GLD or frozen continuous scipy.stats distribution
+        At least one model.
+    names : sequence of str, optional
+        Legend labels of the models.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        One marker line per model (x: model quantile at the plotting positions
+        (i − 0.5)/n, y: the i-th smallest data value, both in data units), then the
+        reference line y = x (label ``"y = x"``).
+    """
+    if not fits_or_dists:
+        raise ValueError("plot_qq needs at least one fit or distribution")
+    x = _sample(data)
+    models = _named_dists(fits_or_dists, names)
+    ax = _axes(ax)
+    p = _hazen(x.size)
+    lo, hi = x[0], x[-1]
+    for j, (name, dist) in enumerate(models):
+        q = np.asarray(dist.ppf(p), dtype=float)
+        ax.plot(q, x, linestyle="none", marker="o", markersize=3, color=f"C{j}", label=name)
+        fin = q[np.isfinite(q)]
+        if fin.size:
+            lo, hi = min(lo, fin.min()), max(hi, fin.max())
+    ax.plot([lo, hi], [lo, hi], color="k", linewidth=1, label="y = x")
+    ax.set_xlabel("model quantile")
+    ax.set_ylabel("sample quantile")
+    ax.legend()
+    return ax
+
+
+def plot_pp(data, *fits_or_dists, names=None, ax=None) -> Any:
+    """Probability–probability plot: each model's cdf at the data against the plotting positions.
+
+    Parameters
+    ----------
+    data : array_like
+        The sample (flattened; non-finite values are left out), in its units.
+    *fits_or_dists : GLDFit, GLD or frozen continuous scipy.stats distribution
+        At least one model.
+    names : sequence of str, optional
+        Legend labels of the models.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        One marker line per model (x: empirical probability (i − 0.5)/n, y: F(x_(i)), both
+        dimensionless), then the diagonal (label ``"y = x"``).
+    """
+    if not fits_or_dists:
+        raise ValueError("plot_pp needs at least one fit or distribution")
+    x = _sample(data)
+    models = _named_dists(fits_or_dists, names)
+    ax = _axes(ax)
+    p = _hazen(x.size)
+    for j, (name, dist) in enumerate(models):
+        with np.errstate(all="ignore"):
+            f = np.asarray(dist.cdf(x), dtype=float)
+        ax.plot(p, f, linestyle="none", marker="o", markersize=3, color=f"C{j}", label=name)
+    ax.plot([0, 1], [0, 1], color="k", linewidth=1, label="y = x")
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1)
+    ax.set_xlabel("empirical probability")
+    ax.set_ylabel("model probability")
+    ax.legend()
+    return ax
+
+
+# ---------------------------------------------------------------------------------------------
+# bootstrap lambdas
+# ---------------------------------------------------------------------------------------------
+_LAMBDA_COLUMNS = ("lambda1", "lambda2", "lambda3", "lambda4")
+
+
+def _lambda_array(lambdas) -> np.ndarray:
+    obj = getattr(lambdas, "lambdas", lambdas)
+    if hasattr(obj, "columns"):
+        missing = [c for c in _LAMBDA_COLUMNS if c not in obj.columns]
+        if missing:
+            raise ValueError(f"the lambda table lacks column(s) {missing}")
+        obj = obj[list(_LAMBDA_COLUMNS)].to_numpy()
+    try:
+        arr = np.asarray(obj, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError("lambdas must be a DataFrame with columns lambda1..lambda4, a (B, 4) array or an "
+                        f"object with such a .lambdas table, got {type(lambdas).__name__}") from exc
+    if arr.ndim != 2 or arr.shape[1] != 4:
+        raise ValueError(f"lambdas must have shape (B, 4), got {arr.shape}")
+    return arr
+
+
+def plot_lambda_densities(lambdas, true=None, axes=None) -> Any:
+    """Kernel density estimates of bootstrapped lambda1..lambda4 on a 2 × 2 grid.
+
+    Parameters
+    ----------
+    lambdas : pandas.DataFrame, array_like or object with a ``lambdas`` DataFrame
+        Columns ``lambda1``..``lambda4`` (one row per resample), a (B, 4) array, or e.g. a
+        bootstrap result carrying such a table as ``.lambdas``. Non-finite entries (failed
+        fits) are left out column by column; the number used is shown in each title.
+    true : sequence of 4 float, optional
+        Reference lambdas (e.g. the fit to the full sample, or the true values in a
+        simulation), drawn as vertical dashed lines.
+    axes : array of 4 matplotlib.axes.Axes, optional
+        Axes to draw on (any shape holding 4 Axes, in the order lambda1..lambda4).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Each panel: the Gaussian kernel density estimate (``scipy.stats.gaussian_kde``,
+        Scott's bandwidth; label ``"KDE"``) on 200 points, or a vertical line when all
+        values are equal (label ``"all equal"``), then the reference line (label ``"true"``).
+        lambda1 is in data units, lambda2 in 1/(data unit), lambda3 and lambda4 are
+        dimensionless.
+    """
+    from scipy.stats import gaussian_kde
+
+    arr = _lambda_array(lambdas)
+    if true is not None:
+        true = np.asarray(true, dtype=float).ravel()
+        if true.size != 4:
+            raise ValueError(f"true must hold 4 lambdas, got {true.size}")
+    created = axes is None
+    if created:
+        import matplotlib.pyplot as plt
+
+        _, axes = plt.subplots(2, 2, figsize=(8, 6))
+    flat = list(np.asarray(axes, dtype=object).ravel())
+    if len(flat) != 4:
+        raise ValueError(f"axes must hold 4 Axes, got {len(flat)}")
+    fig = flat[0].figure
+    for j, ax in enumerate(flat):
+        v = arr[:, j]
+        v = v[np.isfinite(v)]
+        if v.size < 2:
+            raise ValueError(f"lambda{j + 1} has {v.size} finite value(s); a density needs at least 2")
+        if v.min() == v.max():
+            ax.axvline(v[0], color="C0", label="all equal")
+        else:
+            kde = gaussian_kde(v)
+            bw = float(np.sqrt(kde.covariance[0, 0]))
+            grid = np.linspace(v.min() - 3 * bw, v.max() + 3 * bw, 200)
+            ax.plot(grid, kde(grid), color="C0", label="KDE")
+        if true is not None:
+            ax.axvline(true[j], color="C3", linestyle="--", label="true")
+        ax.set_title(f"lambda{j + 1} ({v.size} values)")
+        ax.set_xlabel(f"lambda{j + 1}")
+        ax.set_ylabel("density")
+        ax.legend()
+    if created:
+        fig.tight_layout()
+    return fig
