@@ -6,6 +6,7 @@ from .errors import ConvergenceWarning, FitError, InvalidParameterError
 from .extremes import MaximumDistribution, OrderStatisticDistribution, maximum, order_statistic
 from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
 from .gld import GLD
+from .gof import compare_families, edf_statistics, gof_report
 from .regions import rs_region
 
 __version__ = "0.1.0"
@@ -18,7 +19,9 @@ __all__ = [
     "InvalidParameterError",
     "MaximumDistribution",
     "OrderStatisticDistribution",
+    "compare_families",
     "damage_probability",
+    "edf_statistics",
     "fit",
     "fit_batch",
     "fit_lmoments",
@@ -26,6 +29,7 @@ __all__ = [
     "fit_percentiles",
     "gld_fkml",
     "gld_rs",
+    "gof_report",
     "guaranteed_threshold",
     "integrity_probability",
     "maximum",
