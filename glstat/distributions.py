@@ -51,20 +51,24 @@ def _shapes(lam3, lam4):
     return np.ascontiguousarray(a), np.ascontiguousarray(b)
 
 
-def evaluate(family: int, what: str, y, lam3, lam4):
-    """Evaluate a cdf-type function of the standardized GLD at standardized points ``y``.
+def evaluate(family: int, what: str, y, lam3, lam4, loc: float = 0.0, inv_scale: float = 1.0):
+    """Evaluate a cdf-type function of the GLD at points ``y``.
 
-    Broadcasts ``y`` against the shapes. Emits :class:`ConvergenceWarning` when the
-    inversion of Q hit its iteration limit anywhere (those entries hold the best estimate).
+    Broadcasts ``y`` against the shapes; ``loc`` (lambda1) and ``inv_scale`` (|lambda2|) are
+    scalars (the standardized distribution by default). Emits :class:`ConvergenceWarning`
+    when the inversion of Q hit its iteration limit anywhere (those entries hold the best
+    estimate).
     """
     yf, lam3, lam4, shape = _broadcast_flat(y, lam3, lam4)
     a, b = _shapes(lam3, lam4)
     out = np.empty(yf.shape)
     status = np.zeros(yf.shape, dtype=np.int64)
     if a.size == 1 and b.size == 1 and yf.size >= _TABLE_MIN_POINTS:
-        _table.invert_table_kernel(yf, float(a[0]), float(b[0]), family, _WHAT[what], out, status)
+        _table.invert_table_kernel(yf, float(a[0]), float(b[0]), family, _WHAT[what], out, status,
+                                   float(loc), float(inv_scale))
     else:
-        _gld.invert_kernel(yf, a, b, family, _WHAT[what], out, status)
+        _gld.invert_kernel(yf, a, b, family, _WHAT[what], out, status, float(loc),
+                           float(inv_scale))
     failed = int(status.sum())
     if failed:
         warnings.warn(
@@ -76,12 +80,14 @@ def evaluate(family: int, what: str, y, lam3, lam4):
     return out.reshape(shape)
 
 
-def quantile(family: int, u, lam3, lam4, upper: bool = False):
-    """Standardized Q(u) (or Q(1-u) when ``upper``), broadcasting u against the shapes."""
+def quantile(family: int, u, lam3, lam4, upper: bool = False, loc: float = 0.0,
+             inv_scale: float = 1.0):
+    """Q(u) (or Q(1-u) when ``upper``), broadcasting u against the shapes; scalar loc
+    (lambda1) and inv_scale (|lambda2|)."""
     uf, lam3, lam4, shape = _broadcast_flat(u, lam3, lam4)
     a, b = _shapes(lam3, lam4)
     out = np.empty(uf.shape)
-    _gld.quantile_kernel(uf, a, b, family, 1 if upper else 0, out)
+    _gld.quantile_kernel(uf, a, b, family, 1 if upper else 0, out, float(loc), float(inv_scale))
     return out.reshape(shape)
 
 

@@ -86,16 +86,9 @@ class GLD(rv_continuous_frozen):
         return hash((self._lambdas, self._param))
 
     # -- fast paths -----------------------------------------------------------------------
-    def _std(self, x):
-        l1, l2 = self._lambdas[:2]
-        return (np.asarray(x, dtype=float) - l1) * abs(l2)
-
     def _eval(self, what, x):
-        out = evaluate(self._family, what, self._std(x), self._lambdas[2], self._lambdas[3])
-        if what == "pdf":
-            out = out * abs(self._lambdas[1])
-        elif what == "logpdf":
-            out = out + np.log(abs(self._lambdas[1]))
+        l1, l2, l3, l4 = self._lambdas
+        out = evaluate(self._family, what, x, l3, l4, loc=l1, inv_scale=abs(l2))
         return out[()] if out.ndim == 0 else out
 
     def cdf(self, x):
@@ -123,8 +116,8 @@ class GLD(rv_continuous_frozen):
         return self._eval("logpdf", x)
 
     def _quantile(self, u, upper):
-        out = quantile(self._family, u, self._lambdas[2], self._lambdas[3], upper=upper)
-        out = self._lambdas[0] + out / abs(self._lambdas[1])
+        l1, l2, l3, l4 = self._lambdas
+        out = quantile(self._family, u, l3, l4, upper=upper, loc=l1, inv_scale=abs(l2))
         return out[()] if out.ndim == 0 else out
 
     def ppf(self, q):

@@ -393,20 +393,22 @@ def _invert(fam, a, b, y):
 
 # what = 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf
 @njit(cache=True)
-def invert_kernel(y, a, b, fam, what, out, status):
+def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
     """Evaluate cdf-type quantities at standardized points y (1-D arrays).
 
     ``a`` and ``b`` have length len(y) or 1. Non-finite y and out-of-support points get
     the limiting values; NaN stays NaN. ``status[i]`` is set to 1 where the iteration
-    limit was hit.
+    limit was hit. With ``loc`` and ``inv_scale`` the points are ``(y - loc) * inv_scale``
+    and the density is scaled accordingly.
     """
+    log_scale = math.log(inv_scale)
     n = y.shape[0]
     na = a.shape[0]
     nb = b.shape[0]
     for i in range(n):
         ai = a[i] if na > 1 else a[0]
         bi = b[i] if nb > 1 else b[0]
-        yi = y[i]
+        yi = (y[i] - loc) * inv_scale if (loc != 0.0 or inv_scale != 1.0) else y[i]
         if yi != yi or ai != ai or bi != bi:
             out[i] = math.nan
             continue
@@ -440,13 +442,13 @@ def invert_kernel(y, a, b, fam, what, out, status):
                 continue
             l1 = math.log1p(-p)
             lq = log_qprime_lower(fam, ae, be, lp, l1)
-            out[i] = math.exp(-lq) if what == 4 else -lq
+            out[i] = math.exp(-lq) * inv_scale if what == 4 else log_scale - lq
 
 
 # what = 0 ppf(u), 1 isf(q)
 @njit(cache=True)
-def quantile_kernel(u, a, b, fam, what, out):
-    """Standardized Q(u) (what=0) or Q(1-u) (what=1); u outside [0, 1] gives NaN."""
+def quantile_kernel(u, a, b, fam, what, out, loc=0.0, inv_scale=1.0):
+    """Q(u) (what=0) or Q(1-u) (what=1), as ``loc + Q_std / inv_scale``; u outside [0, 1]: NaN."""
     n = u.shape[0]
     na = a.shape[0]
     nb = b.shape[0]
@@ -471,9 +473,9 @@ def quantile_kernel(u, a, b, fam, what, out):
             t = math.log(small)
             l1 = math.log1p(-small)
         if lower:
-            out[i] = q_lower(fam, ai, bi, t, l1)
+            out[i] = loc + q_lower(fam, ai, bi, t, l1) / inv_scale
         else:
-            out[i] = -q_lower(fam, bi, ai, t, l1)
+            out[i] = loc - q_lower(fam, bi, ai, t, l1) / inv_scale
 
 
 @njit(cache=True)

@@ -76,7 +76,7 @@ def _node(fam, a, b, t, case):
     return y, 1.0 / g1, -g2 / (g1 * g1 * g1)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _hermite5(y, y0, y1, f0, f1, d0, d1, s0, s1):
     h = y1 - y0
     s = (y - y0) / h
@@ -134,7 +134,7 @@ def build_table(fam, a, b, use_offset):
     return ys, ts, d1, d2, ok, y0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _lookup(y, ys, ts, d1, d2, ok):
     """Interpolated t for y, or NaN when y is outside the verified table."""
     n = ys.shape[0]
@@ -153,7 +153,7 @@ def _lookup(y, ys, ts, d1, d2, ok):
     return _hermite5(y, ys[lo], ys[hi], ts[lo], ts[hi], d1[lo], d1[hi], d2[lo], d2[hi])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _lookup2(y, direct, offset):
     """t from the offset table near the end point, else from the direct one."""
     ys, ts, d1, d2, ok, y0 = offset
@@ -166,15 +166,16 @@ def _lookup2(y, direct, offset):
 
 
 @njit(cache=True)
-def invert_table_kernel(y, a, b, fam, what, out, status):
+def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
     """Same contract as ``_gld.invert_kernel`` for scalar shapes a, b and many points."""
+    log_scale = math.log(inv_scale)
     lower_direct = build_table(fam, a, b, False)
     upper_direct = build_table(fam, b, a, False)
     lower_offset = build_table(fam, a, b, True) if _offset(fam, a, b)[1] else lower_direct
     upper_offset = build_table(fam, b, a, True) if _offset(fam, b, a)[1] else upper_direct
     med = q_lower(fam, a, b, -LN2, -LN2)
     for i in range(y.shape[0]):
-        yi = y[i]
+        yi = (y[i] - loc) * inv_scale if (loc != 0.0 or inv_scale != 1.0) else y[i]
         if yi != yi:
             out[i] = math.nan
             continue
@@ -207,4 +208,4 @@ def invert_table_kernel(y, a, b, fam, what, out, status):
                 out[i] = 0.0 if what == 4 else -math.inf
                 continue
             lq = log_qprime_lower(fam, ae, be, t, math.log1p(-p))
-            out[i] = math.exp(-lq) if what == 4 else -lq
+            out[i] = math.exp(-lq) * inv_scale if what == 4 else log_scale - lq
