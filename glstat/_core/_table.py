@@ -28,7 +28,9 @@ from ._gld import (
 )
 
 T_MIN = -36.0
-N_NODES = 4096
+N_NODES = 2048
+# an interval failing the interpolation check is halved at most this many times
+MAX_SPLIT = 3
 # accepted absolute interpolation error in t = log p (relative error of p)
 TOL = 2e-15
 
@@ -93,50 +95,89 @@ def _hermite5(y, y0, y1, f0, f1, d0, d1, s0, s1):
 
 
 @njit(cache=True)
-def build_table(fam, a, b, use_offset):
-    """Nodes (y, t, dt/dy, d2t/dy2), per-interval validity flags and the end-point offset.
+def _interval_ok(fam, a, b, case, t0, y0, d10, d20, t1, y1, d11, d21):
+    """Check one interval at its midpoint: (interpolation ok, rounding ok)."""
+    if not (y1 > y0) or not (math.isfinite(d10) and math.isfinite(d11)):
+        return False, False
+    if not (math.isfinite(d20) and math.isfinite(d21)):
+        return False, False
+    tm = 0.5 * (t0 + t1)
+    ym = _value(fam, a, b, tm, math.log1p(-math.exp(tm)), case)
+    if not (ym > y0 and ym < y1):
+        return False, False
+    th = _hermite5(ym, y0, y1, t0, t1, d10, d11, d20, d21)
+    tol = TOL * max(1.0, abs(tm))
+    # the nodes carry a rounding error of eps*|y|, which maps to eps*|y|*|dt/dy| in t;
+    # near a finite end point far from 0 that exceeds the tolerance (the exact solver,
+    # which works with the offset from the end point, takes those points)
+    cond = 2.220446049250313e-16 * max(abs(y0), abs(y1)) * max(abs(d10), abs(d11))
+    return abs(th - tm) <= tol, cond <= tol
 
-    With ``use_offset`` (and a finite, exactly representable lower end point) the table is
-    in the offset ``y - Q(0)``, which resolves the neighbourhood of the end point.
+
+@njit(cache=True)
+def build_table(fam, a, b, use_offset):
+    """Search keys y, node rows (t, dt/dy, d2t/dy2, valid) and the end-point offset.
+
+    Nodes start uniform in t; an interval whose midpoint check fails on interpolation
+    error (not on rounding) is halved, up to ``MAX_SPLIT`` times. With ``use_offset`` (and a
+    finite, exactly representable lower end point) the table is in the offset ``y - Q(0)``,
+    which resolves the neighbourhood of the end point.
     """
-    n = N_NODES
-    ys = np.empty(n)
-    ts = np.empty(n)
-    d1 = np.empty(n)
-    d2 = np.empty(n)
-    ok = np.zeros(n - 1, dtype=np.bool_)
-    step = (-LN2 - T_MIN) / (n - 1)
     y0, case = _offset(fam, a, b)
     if not use_offset:
         y0 = 0.0
         case = 0
-    for k in range(n):
-        t = T_MIN + k * step if k < n - 1 else -LN2
-        ts[k] = t
-        ys[k], d1[k], d2[k] = _node(fam, a, b, t, case)
+    n = N_NODES
+    cap = (n - 1) * (1 << MAX_SPLIT) + 1
+    ys = np.empty(cap)
+    pl = np.zeros((cap, 4))
+    step = (-LN2 - T_MIN) / (n - 1)
+    stack_t = np.empty(2 * MAX_SPLIT + 2)
+    stack_d = np.empty(2 * MAX_SPLIT + 2, dtype=np.int64)
+    m = 0
     for k in range(n - 1):
-        if not (ys[k + 1] > ys[k]) or not (math.isfinite(d1[k]) and math.isfinite(d1[k + 1])):
-            continue
-        if not (math.isfinite(d2[k]) and math.isfinite(d2[k + 1])):
-            continue
-        tm = 0.5 * (ts[k] + ts[k + 1])
-        pm = math.exp(tm)
-        ym = _value(fam, a, b, tm, math.log1p(-pm), case)
-        if not (ym > ys[k] and ym < ys[k + 1]):
-            continue
-        th = _hermite5(ym, ys[k], ys[k + 1], ts[k], ts[k + 1], d1[k], d1[k + 1], d2[k], d2[k + 1])
-        tol = TOL * max(1.0, abs(tm))
-        # the nodes carry a rounding error of eps*|y|, which maps to eps*|y|*|dt/dy| in t;
-        # near a finite end point far from 0 that exceeds the tolerance (the exact solver,
-        # which works with the offset from the end point, takes those points)
-        cond = 2.220446049250313e-16 * max(abs(ys[k]), abs(ys[k + 1])) * max(abs(d1[k]), abs(d1[k + 1]))
-        ok[k] = abs(th - tm) <= tol and cond <= tol
-    return ys, ts, d1, d2, ok, y0
+        tl = T_MIN + k * step
+        tr = T_MIN + (k + 1) * step if k < n - 2 else -LN2
+        # depth-first over [tl, tr]: the stack holds right ends, left end is the cursor
+        top = 0
+        stack_t[0] = tr
+        stack_d[0] = 0
+        cur = tl
+        yc, d1c, d2c = _node(fam, a, b, cur, case)
+        while top >= 0:
+            right = stack_t[top]
+            depth = stack_d[top]
+            yr, d1r, d2r = _node(fam, a, b, right, case)
+            interp_ok, round_ok = _interval_ok(fam, a, b, case, cur, yc, d1c, d2c, right, yr,
+                                               d1r, d2r)
+            if not interp_ok and round_ok and depth < MAX_SPLIT:
+                top += 1
+                stack_t[top] = 0.5 * (cur + right)
+                stack_d[top - 1] = depth + 1
+                stack_d[top] = depth + 1
+                continue
+            ys[m] = yc
+            pl[m, 0] = cur
+            pl[m, 1] = d1c
+            pl[m, 2] = d2c
+            pl[m, 3] = 1.0 if (interp_ok and round_ok) else 0.0
+            m += 1
+            cur = right
+            yc, d1c, d2c = yr, d1r, d2r
+            top -= 1
+    ys[m], pl[m, 1], pl[m, 2] = _node(fam, a, b, -LN2, case)
+    pl[m, 0] = -LN2
+    m += 1
+    return ys[:m].copy(), pl[:m].copy(), y0
 
 
 @njit(cache=True, inline="always")
-def _lookup(y, ys, ts, d1, d2, ok):
-    """Interpolated t for y, or NaN when y is outside the verified table."""
+def _lookup(y, ys, payload):
+    """Interpolated t for y, or NaN when y is outside the verified table.
+
+    The search keys ``ys`` are contiguous; the data of node k (t, dt/dy, d2t/dy2, valid)
+    are one row of ``payload``, so an interpolation touches one or two cache lines.
+    """
     n = ys.shape[0]
     if not (y >= ys[0] and y <= ys[n - 1]):
         return math.nan
@@ -148,31 +189,30 @@ def _lookup(y, ys, ts, d1, d2, ok):
             lo = mid
         else:
             hi = mid
-    if not ok[lo]:
+    if payload[lo, 3] == 0.0:
         return math.nan
-    return _hermite5(y, ys[lo], ys[hi], ts[lo], ts[hi], d1[lo], d1[hi], d2[lo], d2[hi])
+    return _hermite5(y, ys[lo], ys[hi], payload[lo, 0], payload[hi, 0], payload[lo, 1],
+                     payload[hi, 1], payload[lo, 2], payload[hi, 2])
 
 
 @njit(cache=True, inline="always")
-def _lookup2(y, direct, offset):
+def _lookup2(y, d_ys, d_pl, o_ys, o_pl, y0):
     """t from the offset table near the end point, else from the direct one."""
-    ys, ts, d1, d2, ok, y0 = offset
     if y0 != 0.0 and abs(y - y0) < abs(y):
-        t = _lookup(y - y0, ys, ts, d1, d2, ok)
+        t = _lookup(y - y0, o_ys, o_pl)
         if t == t:
             return t
-    ys, ts, d1, d2, ok, _ = direct
-    return _lookup(y, ys, ts, d1, d2, ok)
+    return _lookup(y, d_ys, d_pl)
 
 
 @njit(cache=True)
 def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
     """Same contract as ``_gld.invert_kernel`` for scalar shapes a, b and many points."""
     log_scale = math.log(inv_scale)
-    lower_direct = build_table(fam, a, b, False)
-    upper_direct = build_table(fam, b, a, False)
-    lower_offset = build_table(fam, a, b, True) if _offset(fam, a, b)[1] else lower_direct
-    upper_offset = build_table(fam, b, a, True) if _offset(fam, b, a)[1] else upper_direct
+    l_ys, l_pl, _ = build_table(fam, a, b, False)
+    u_ys, u_pl, _ = build_table(fam, b, a, False)
+    lo_ys, lo_pl, l_y0 = build_table(fam, a, b, True)
+    uo_ys, uo_pl, u_y0 = build_table(fam, b, a, True)
     med = q_lower(fam, a, b, -LN2, -LN2)
     for i in range(y.shape[0]):
         yi = (y[i] - loc) * inv_scale if (loc != 0.0 or inv_scale != 1.0) else y[i]
@@ -181,11 +221,11 @@ def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0)
             continue
         upper = yi > med
         if upper:
-            t = _lookup2(-yi, upper_direct, upper_offset)
+            t = _lookup2(-yi, u_ys, u_pl, uo_ys, uo_pl, u_y0)
             ae = b
             be = a
         else:
-            t = _lookup2(yi, lower_direct, lower_offset)
+            t = _lookup2(yi, l_ys, l_pl, lo_ys, lo_pl, l_y0)
             ae = a
             be = b
         if t == t:
@@ -207,5 +247,8 @@ def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0)
             if p == 0.0:
                 out[i] = 0.0 if what == 4 else -math.inf
                 continue
-            lq = log_qprime_lower(fam, ae, be, t, math.log1p(-p))
-            out[i] = math.exp(-lq) * inv_scale if what == 4 else log_scale - lq
+            if what == 4 and t > -600.0:
+                out[i] = inv_scale / qprime_lower(fam, ae, be, t, math.log1p(-p))
+            else:
+                lq = log_qprime_lower(fam, ae, be, t, math.log1p(-p))
+                out[i] = math.exp(-lq) * inv_scale if what == 4 else log_scale - lq
