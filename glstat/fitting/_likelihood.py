@@ -1,30 +1,43 @@
-"""Data-based GLD fits: maximum likelihood, maximum product of spacings, starship.
+"""Compiled core of the data-based GLD fits: maximum likelihood, maximum product of spacings,
+starship (numba kernels, no Python objects).
 
-All three need the probability integral transform u_i = F(x_i) of the sample for every trial
-parameter. The compiled kernel inverts Q for the sorted sample in logit coordinates
-w = log(u / (1 - u)) by a bracketed Newton iteration warm-started from the previous trial's
-w (an optimiser moves the parameters a little at a time, so two or three steps suffice).
-Parameters whose support does not cover the data are rejected (objective +inf): the fits stay
-feasible.
+All three objectives need the probability integral transform u_i = F(x_i) of the sorted
+sample for every trial parameter. `pit_logit` inverts Q in logit coordinates
+w = log(u / (1 - u)) by a bracketed Newton iteration from a warm start.
+
+The parameters are theta = (lambda1, log scale, lambda3, lambda4) of the GLD of the sample
+standardized by its median and interquartile range (scale = 1/|lambda2|). The gradient of each
+objective follows from implicit differentiation of Q(u_i; lambda3, lambda4) = y_i with
+y_i = (z_i - lambda1) / scale:
+
+    dw_i/dtheta = -(dR/dtheta) / (dQ/dw),   dR/dtheta = (1/scale, y_i, dQ/dlambda3, dQ/dlambda4),
+
+and, for ML, from the derivatives of log Q'(u) at fixed u. `minimize_bfgs` is a small
+quasi-Newton (BFGS) method with a backtracking line search that rejects every trial step whose
+shapes are invalid or whose support misses a data point, so each iterate stays feasible; the
+linearisation w + (dw/dtheta) step warm-starts the inversion at each trial point.
 """
 
-from __future__ import annotations
-
 import math
-import warnings
 
 import numpy as np
 from numba import njit
-from scipy.optimize import minimize
 
-from .._core._gld import FKML, RS, log_qprime_lower, q_lower, qprime_lower, rs_sign
-from ..errors import ConvergenceWarning, FitError
+from .._core._gld import RS, log_qprime_lower, q_lower, qprime_lower, rs_sign
 from . import _kernels as K
 
 MLE = 0
 MPS = 1
 STARSHIP = 2
-_KIND = {"mle": MLE, "mps": MPS, "starship": STARSHIP}
+
+# termination codes of `minimize_bfgs`
+GTOL = 0  # gradient below tolerance
+FTOL = 1  # relative decrease below tolerance
+LSFAIL = 2  # no decrease along the search direction (noise floor or active support bound)
+MAXITER = 3  # iteration limit
+INFEASIBLE = 4  # the start is infeasible
+
+_W_MAX = 740.0  # |logit u| beyond which u or 1 - u underflows
 
 
 @njit(cache=True)
@@ -36,8 +49,8 @@ def _logsig(w):
 
 
 @njit(cache=True)
-def _q_w(fam, a, b, w):
-    """Standardized Q and dQ/dw at u = 1 / (1 + exp(-w))."""
+def _q_w_ref(fam, a, b, w):
+    """Standardized Q and dQ/dw at u = 1 / (1 + exp(-w)) from the generic lower-tail kernels."""
     t = _logsig(w)
     l1 = _logsig(-w)
     if w <= 0.0:
@@ -47,6 +60,49 @@ def _q_w(fam, a, b, w):
         q = -q_lower(fam, b, a, l1, t)
         qp = qprime_lower(fam, b, a, l1, t)
     return q, qp * math.exp(t + l1)
+
+
+@njit(cache=True)
+def _q_w(fam, a, b, w):
+    """Standardized Q and dQ/dw at u = 1 / (1 + exp(-w)) with four elementary functions.
+
+    Works on the smaller tail probability p = e / (1 + e), e = exp(-|w|) (upper half by the
+    reflection Q_{a,b}(u) = -Q_{b,a}(1 - u)); dQ/dw = Q'(u) u (1 - u) is formed without
+    dividing by p. The mixed-sign RS regions (2, 6), where the two terms of Q' cancel, use
+    the cancellation-free kernel.
+    """
+    e = math.exp(-abs(w))
+    lg = math.log1p(e)
+    t = -abs(w) - lg  # log p
+    l1 = -lg  # log(1 - p)
+    p = e / (1.0 + e)
+    q1p = 1.0 / (1.0 + e)
+    if w <= 0.0:
+        aa = a
+        bb = b
+    else:
+        aa = b
+        bb = a
+    ema = math.expm1(aa * t) if aa != 0.0 else 0.0
+    emb = math.expm1(bb * l1) if bb != 0.0 else 0.0
+    # p**aa and (1-p)**bb: 1 + expm1 cancels where the power is small
+    ea = 1.0 + ema if ema > -0.5 else math.exp(aa * t)
+    eb = 1.0 + emb if emb > -0.5 else math.exp(bb * l1)
+    if fam == RS:
+        s = rs_sign(a, b)
+        q = s * (ema - emb)
+        if s > 0.0 or aa <= 0.0:
+            dq = s * (aa * ea * q1p + bb * eb * p)
+        else:
+            dq = qprime_lower(fam, aa, bb, t, l1) * p * q1p
+    else:
+        ga = ema / aa if aa != 0.0 else t
+        gb = emb / bb if bb != 0.0 else l1
+        q = ga - gb
+        dq = ea * q1p + eb * p
+    if w > 0.0:
+        q = -q
+    return q, dq
 
 
 @njit(cache=True)
@@ -71,10 +127,12 @@ def pit_logit(fam, a, b, y, w):
         return False
     for i in range(n):
         wi = w[i]
-        lo = -740.0
-        hi = 740.0
+        lo = -_W_MAX
+        hi = _W_MAX
         if i > 0 and w[i - 1] > lo:
             lo = w[i - 1] - 1e-9 * (1.0 + abs(w[i - 1]))
+        if not (wi > lo and wi < hi):
+            wi = lo + 1e-9 * (1.0 + abs(lo)) if lo > -_W_MAX else 0.0
         ok = False
         for _ in range(200):
             q, dq = _q_w(fam, a, b, wi)
@@ -92,7 +150,8 @@ def pit_logit(fam, a, b, y, w):
             wn = wi - r / dq if dq > 0.0 else math.nan
             if not (wn > lo and wn < hi):
                 wn = 0.5 * (lo + hi)
-            if abs(wn - wi) <= 1e-11 * (1.0 + abs(wi)):
+            # quadratic convergence: after a step below 1e-8 the error is ~1e-16
+            if abs(wn - wi) <= 1e-8 * (1.0 + abs(wi)):
                 wi = wn
                 ok = True
                 break
@@ -104,11 +163,22 @@ def pit_logit(fam, a, b, y, w):
 
 
 @njit(cache=True)
+def feasible(fam, a, b, l1, scale, zmin, zmax):
+    """True when the shapes are valid and the support of the GLD (lambda1 = ``l1``, scale
+    ``scale``) strictly contains [zmin, zmax]."""
+    if not (K.shape_valid(fam, a, b) and scale > 0.0 and math.isfinite(scale) and math.isfinite(l1)):
+        return False
+    lo_end = q_lower(fam, a, b, -math.inf, 0.0)
+    hi_end = -q_lower(fam, b, a, -math.inf, 0.0)
+    return (zmin - l1) / scale > lo_end and (zmax - l1) / scale < hi_end
+
+
+@njit(cache=True)
 def objective(kind, fam, a, b, l1, scale, x, w):
     """Objective of ``kind`` (to minimise) for the sorted sample ``x``; +inf when infeasible.
 
-    MLE: negative log-likelihood. MPS: minus the sum of the log spacings F(x_(i)) -
-    F(x_(i-1)) (ties use the log density, Cheng & Amin 1983). STARSHIP: the
+    MLE: negative log-likelihood. MPS: minus the mean log spacing F(x_(i)) - F(x_(i-1)),
+    i = 1..n+1 (a tie uses the log density, Cheng & Amin 1983). STARSHIP: the
     Anderson–Darling statistic of u_i = F(x_i) against the uniform.
     """
     if not K.shape_valid(fam, a, b) or not (scale > 0.0):
@@ -146,106 +216,472 @@ def objective(kind, fam, a, b, l1, scale, x, w):
     return -n - total / n
 
 
-def _std_params(lams, param, med, iqr):
-    """(lambda1, log scale, a, b) of the GLD for the standardized data (x - med) / iqr."""
-    l1, l2, a, b = lams
-    return np.array([(l1 - med) / iqr, math.log(1.0 / (abs(l2) * iqr)), a, b])
+@njit(cache=True)
+def _point_terms(fam, a, b, wi):
+    """Derivatives at one sample point with logit probability ``wi`` (standardized GLD).
 
-
-def _to_lambdas(theta, param, med, iqr):
-    l1s, lsc, a, b = (float(v) for v in theta)
-    scale = math.exp(lsc) * iqr
-    s = float(rs_sign(a, b)) if param == "rs" else 1.0
-    return (med + iqr * l1s, s / scale, a, b)
-
-
-def _cover(lams, param, x):
-    """``lams`` with the scale widened about the median until the support covers ``x``."""
-    from ..gld import GLD
-    from .core import covers
-
-    l1, l2, a, b = lams
-    med = float(GLD(*lams, param=param).median())
-    for _ in range(200):
-        if covers(GLD(l1, l2, a, b, param=param), x):
-            return (l1, l2, a, b)
-        l2 *= 1.0 / 1.1
-        l1 = med - (med - l1) * 1.1
-    return None
-
-
-def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int = 2000, starts: int = 1):
-    """ML, MPS or starship fit of sorted, checked data ``x`` (see :func:`glstat.fit`).
-
-    Starts: every valid root of the percentile and L-moment equations (scale widened about
-    the median where the support misses data points); the ``starts`` best by objective are
-    refined by Nelder–Mead in (lambda1, log scale, lambda3, lambda4) on the data scaled by
-    median and interquartile range; infeasible parameters have objective +inf.
+    Returns (dQ/dw, dQ/da, dQ/db, dlogQ'/dw, dlogQ'/da, dlogQ'/db, log Q'): the first three
+    give the implicit derivatives of w through Q(u(w); a, b) = y, the others the log
+    quantile density and its derivatives (ML). Derivatives in a and b are taken at fixed u
+    and, for RS, at the fixed sign of lambda2 of the region.
     """
-    from ._stats import check_lmoment_stats, rho_from_quantiles, sample_lmoments, sample_quantiles
-    from .core import _candidate, _make_fit, _roots, _select
+    e = math.exp(-abs(wi))
+    lg = math.log1p(e)
+    if wi <= 0.0:
+        lu = wi - lg
+        lv = -lg
+        u = e / (1.0 + e)
+        v = 1.0 / (1.0 + e)
+    else:
+        lu = -lg
+        lv = -wi - lg
+        u = 1.0 / (1.0 + e)
+        v = e / (1.0 + e)
+    ea = math.exp(a * lu)
+    eb = math.exp(b * lv)
+    if fam == RS:
+        s = rs_sign(a, b)
+        if s > 0.0 or (a <= 0.0 and b <= 0.0):
+            dqdw = s * (a * ea * v + b * eb * u)
+        else:
+            dqdw = _q_w(fam, a, b, wi)[1]
+        qa = s * ea * lu
+        qb = -s * eb * lv
+        # Q'' u^2 v^2 and (dQ'/da) u v, (dQ'/db) u v
+        huv = s * (a * (a - 1.0) * ea * v * v - b * (b - 1.0) * eb * u * u)
+        gau = s * ea * v * (1.0 + a * lu)
+        gbu = s * eb * u * (1.0 + b * lv)
+    else:
+        dqdw = ea * v + eb * u
+        qa = lu * lu * _dem_e(a * lu, ea)
+        qb = -lv * lv * _dem_e(b * lv, eb)
+        huv = (a - 1.0) * ea * v * v - (b - 1.0) * eb * u * u
+        gau = ea * v * lu
+        gbu = eb * u * lv
+    if dqdw > 1e-300 and dqdw < 1e300:
+        lq = math.log(dqdw) - lu - lv
+    else:
+        lq = _logqp_w(fam, a, b, wi)
+    return dqdw, qa, qb, huv / dqdw, gau / dqdw, gbu / dqdw, lq
 
-    if int(starts) < 1 or int(maxiter) < 1:
-        raise ValueError(f"starts and maxiter must be positive integers, got {starts!r}, {maxiter!r}")
-    kind = _KIND[method]
-    fam = RS if param == "rs" else FKML
-    med = float(np.median(x))
-    q25, q75 = np.quantile(x, [0.25, 0.75])
-    iqr = float(q75 - q25) or float(x[-1] - x[0])
-    z = (x - med) / iqr
-    n = x.size
-    w0 = np.log((np.arange(n) + 0.5) / (n - np.arange(n) - 0.5))
 
-    start_lams = []
-    stats_list = [("percentiles", rho_from_quantiles(sample_quantiles(x, 0.1)))]
-    lm = sample_lmoments(x)
-    try:
-        check_lmoment_stats(*lm)
-        stats_list.append(("lmoments", lm))
-    except FitError:
-        pass
-    for meth, st in stats_list:
-        try:
-            for lams, conv, _ in _roots(meth, param, st, 0.1):
-                if conv:
-                    c = _cover(lams, param, x)
-                    if c is not None:
-                        start_lams.append(c)
-        except (FitError, ValueError, ZeroDivisionError):
-            continue
-    if not start_lams:
-        raise FitError(f"no {param.upper()} starting point for {method!r}: neither the percentile nor "
-                       "the L-moment equations have a valid root for these data; try param='fkml'")
+@njit(cache=True)
+def _dem_e(t, et):
+    """d/dt of expm1(t)/t given et = exp(t), with its series near 0."""
+    if abs(t) < 1e-3:
+        return 0.5 + t * (1.0 / 3 + t * (1.0 / 8 + t / 30))
+    return (t * et - (et - 1.0)) / (t * t)
 
-    def f(theta, w):
-        l1s, lsc, a, b = theta
-        return objective(kind, fam, a, b, l1s, math.exp(lsc), z, w)
 
-    scored = []
-    for lams in start_lams:
-        th = _std_params(lams, param, med, iqr)
-        w = w0.copy()
-        scored.append((f(th, w), th, w))
-    scored.sort(key=lambda t: t[0])
-    # objective differences that matter: 1e-6 in log-likelihood units (per point for MPS, AD)
-    ftol = 1e-6 if kind == MLE else 1e-6 / n
-    rows = []
-    success = []
-    for val0, th0, w in scored[: int(starts)]:
-        if not math.isfinite(val0):
-            continue
-        res = minimize(f, th0, args=(w,), method="Nelder-Mead",
-                       options={"maxiter": int(maxiter), "xatol": 1e-6, "fatol": ftol})
-        lams = _to_lambdas(res.x, param, med, iqr)
-        obj = float(res.fun) + (n * math.log(iqr) if kind == MLE else 0.0)
-        rows.append(_candidate(lams, param, math.isfinite(obj), obj, x))
-        success.append(bool(res.success))
-    sel = _select(rows, True, by_objective=True)
-    if sel < 0:
-        raise FitError(f"the {method} optimisation found no valid {param.upper()} GLD covering the data")
-    if not success[sel]:
-        warnings.warn(f"{method} fit: Nelder-Mead reached maxiter={maxiter}; the result is the best "
-                      "point found", ConvergenceWarning, stacklevel=3)
-    name = {"mle": "neg_loglik", "mps": "neg_mean_log_spacing", "starship": "anderson_darling"}[method]
-    return _make_fit(rows, sel, param, method, n, {name: rows[sel]["objective"]},
-                     {"maxiter": int(maxiter), "starts": int(starts)})
+@njit(cache=True)
+def objective_grad(kind, fam, theta, z, w, dw, grad, y):
+    """Objective of ``kind`` at theta = (lambda1, log scale, lambda3, lambda4) and its gradient.
+
+    Parameters
+    ----------
+    kind, fam : int
+        Objective (MLE, MPS, STARSHIP) and family (RS, FKML).
+    theta : ndarray, shape (4,)
+        Parameters of the GLD of the standardized sample.
+    z : ndarray, shape (n,)
+        Sorted standardized sample.
+    w : ndarray, shape (n,)
+        Warm start of the logit probabilities; receives logit F(z_i).
+    dw : ndarray, shape (n, 4)
+        Receives dw_i/dtheta.
+    grad : ndarray, shape (4,)
+        Receives the gradient.
+    y : ndarray, shape (n,)
+        Work space.
+
+    Returns
+    -------
+    float
+        The value of `objective`; +inf when the parameters are infeasible (``grad`` undefined).
+    """
+    l1 = theta[0]
+    lsc = theta[1]
+    a = theta[2]
+    b = theta[3]
+    scale = math.exp(lsc)
+    n = z.shape[0]
+    if not feasible(fam, a, b, l1, scale, z[0], z[n - 1]):
+        return math.inf
+    for i in range(n):
+        y[i] = (z[i] - l1) / scale
+    if not pit_logit(fam, a, b, y, w):
+        return math.inf
+    for j in range(4):
+        grad[j] = 0.0
+    total = 0.0
+    for i in range(n):
+        dqdw, qa, qb, cw, ca, cb, lq = _point_terms(fam, a, b, w[i])
+        if not (dqdw > 0.0 and math.isfinite(dqdw + qa + qb + cw + ca + cb)):
+            return math.inf
+        dw[i, 0] = -1.0 / (scale * dqdw)
+        dw[i, 1] = -y[i] / dqdw
+        dw[i, 2] = -qa / dqdw
+        dw[i, 3] = -qb / dqdw
+        if kind == MLE:
+            total += lq
+            for j in range(4):
+                grad[j] += cw * dw[i, j]
+            grad[2] += ca
+            grad[3] += cb
+    if kind == MLE:
+        grad[1] += n
+        return total + n * lsc
+    if kind == MPS:
+        prev_u = 0.0
+        for i in range(n + 1):
+            if i < n:
+                wi = w[i]
+                ui = math.exp(_logsig(wi))
+                if i > 0 and wi > 0.0 and w[i - 1] > 0.0:
+                    d = math.exp(_logsig(-w[i - 1])) - math.exp(_logsig(-wi))
+                else:
+                    d = ui - prev_u
+                prev_u = ui
+            else:
+                d = math.exp(_logsig(-w[n - 1]))
+            if d > 0.0:
+                total -= math.log(d)
+                # d(spacing)/dw = u (1 - u) at its upper point minus the same at its lower point
+                if i < n:
+                    c = math.exp(_logsig(w[i]) + _logsig(-w[i])) / d
+                    for j in range(4):
+                        grad[j] -= c * dw[i, j]
+                if i > 0:
+                    c = math.exp(_logsig(w[i - 1]) + _logsig(-w[i - 1])) / d
+                    for j in range(4):
+                        grad[j] += c * dw[i - 1, j]
+            else:
+                total += _logqp_w(fam, a, b, w[i - 1]) + lsc
+                _, _, _, cw, ca, cb, _ = _point_terms(fam, a, b, w[i - 1])
+                for j in range(4):
+                    grad[j] += cw * dw[i - 1, j]
+                grad[1] += 1.0
+                grad[2] += ca
+                grad[3] += cb
+        for j in range(4):
+            grad[j] /= n + 1
+        return total / (n + 1)
+    for i in range(n):
+        total += (2.0 * i + 1.0) * (_logsig(w[i]) + _logsig(-w[n - 1 - i]))
+        # d log u_i / dw_i = 1 - u_i (weight 2i + 1), d log(1 - u_i) / dw_i = -u_i (weight 2(n-i) - 1)
+        c = ((2.0 * (n - i) - 1.0) * math.exp(_logsig(w[i])) - (2.0 * i + 1.0) * math.exp(_logsig(-w[i]))) / n
+        for j in range(4):
+            grad[j] += c * dw[i, j]
+    return -n - total / n
+
+
+# parameterisations of `minimize_bfgs`: FREE optimises theta; the others pin the lower, the upper
+# or both end points of the support at a distance ``gap`` outside the data and optimise the rest
+FREE = 0
+PIN_LOWER = 1
+PIN_UPPER = 2
+PIN_BOTH = 3
+
+
+@njit(cache=True)
+def _ends(fam, a, b):
+    """Standardized support end points and d(lower)/da, d(upper)/db (other derivatives are 0).
+
+    RS end points are constant within a region; FKML has -1/a (a > 0) and 1/b (b > 0).
+    """
+    lo = q_lower(fam, a, b, -math.inf, 0.0)
+    hi = -q_lower(fam, b, a, -math.inf, 0.0)
+    dlo = 1.0 / (a * a) if (fam != RS and a > 0.0) else 0.0
+    dhi = -1.0 / (b * b) if (fam != RS and b > 0.0) else 0.0
+    return lo, hi, dlo, dhi
+
+
+@njit(cache=True)
+def n_free(mode):
+    """Number of optimised parameters in ``mode``."""
+    if mode == FREE:
+        return 4
+    if mode == PIN_BOTH:
+        return 2
+    return 3
+
+
+@njit(cache=True)
+def theta_from_phi(mode, fam, phi, zmin, zmax, gap, theta, jac):
+    """theta (lambda1, log scale, lambda3, lambda4) and d theta / d phi for ``mode``.
+
+    FREE: phi = theta. PIN_LOWER / PIN_UPPER: phi = (log scale, lambda3, lambda4) and lambda1
+    puts the lower (upper) end point at zmin - gap (zmax + gap). PIN_BOTH: phi = (lambda3,
+    lambda4), both end points pinned. Returns False where a pinned end point is infinite.
+    """
+    for j in range(4):
+        for k in range(4):
+            jac[j, k] = 0.0
+    if mode == FREE:
+        for j in range(4):
+            theta[j] = phi[j]
+            jac[j, j] = 1.0
+        return True
+    if mode == PIN_BOTH:
+        a = phi[0]
+        b = phi[1]
+    else:
+        a = phi[1]
+        b = phi[2]
+    lo, hi, dlo, dhi = _ends(fam, a, b)
+    theta[2] = a
+    theta[3] = b
+    if mode == PIN_BOTH:
+        if not (math.isfinite(lo) and math.isfinite(hi) and hi > lo):
+            return False
+        scale = (zmax - zmin + 2.0 * gap) / (hi - lo)
+        theta[1] = math.log(scale)
+        theta[0] = zmin - gap - scale * lo
+        dla = dlo / (hi - lo)
+        dlb = -dhi / (hi - lo)
+        jac[1, 0] = dla
+        jac[1, 1] = dlb
+        jac[0, 0] = -scale * (dla * lo + dlo)
+        jac[0, 1] = -scale * dlb * lo
+        jac[2, 0] = 1.0
+        jac[3, 1] = 1.0
+        return True
+    scale = math.exp(phi[0])
+    theta[1] = phi[0]
+    jac[1, 0] = 1.0
+    jac[2, 1] = 1.0
+    jac[3, 2] = 1.0
+    if mode == PIN_LOWER:
+        if not math.isfinite(lo):
+            return False
+        theta[0] = zmin - gap - scale * lo
+        jac[0, 0] = -scale * lo
+        jac[0, 1] = -scale * dlo
+    else:
+        if not math.isfinite(hi):
+            return False
+        theta[0] = zmax + gap - scale * hi
+        jac[0, 0] = -scale * hi
+        jac[0, 2] = -scale * dhi
+    return True
+
+
+@njit(cache=True)
+def phi_from_theta(mode, theta, phi):
+    """The optimised parameters of ``mode`` taken from theta (see `theta_from_phi`)."""
+    if mode == FREE:
+        for j in range(4):
+            phi[j] = theta[j]
+    elif mode == PIN_BOTH:
+        phi[0] = theta[2]
+        phi[1] = theta[3]
+    else:
+        phi[0] = theta[1]
+        phi[1] = theta[2]
+        phi[2] = theta[3]
+
+
+@njit(cache=True)
+def _violated(fam, theta, zmin, zmax):
+    """Bit mask of the support end points that miss the data (1 lower, 2 upper); 0 when the
+    shapes are invalid or the scale is not finite."""
+    a = theta[2]
+    b = theta[3]
+    scale = math.exp(theta[1])
+    if not (K.shape_valid(fam, a, b) and scale > 0.0 and math.isfinite(scale)):
+        return 0
+    lo, hi, _, _ = _ends(fam, a, b)
+    bits = 0
+    if not ((zmin - theta[0]) / scale > lo):
+        bits |= 1
+    if not ((zmax - theta[0]) / scale < hi):
+        bits |= 2
+    return bits
+
+
+@njit(cache=True)
+def minimize_bfgs(kind, fam, z, theta, w, maxiter, unit, gtol, ftol, mode, gap):
+    """Minimise `objective_grad` by BFGS with a feasible backtracking line search.
+
+    Parameters
+    ----------
+    kind, fam : int
+        Objective and family.
+    z : ndarray, shape (n,)
+        Sorted standardized sample.
+    theta : ndarray, shape (4,)
+        Feasible start (lambda1, log scale, lambda3, lambda4); receives the minimiser.
+    w : ndarray, shape (n,)
+        Warm start of the logit probabilities; receives those at the minimiser.
+    maxiter : int
+        Iteration limit.
+    unit : float
+        Objective unit for the tolerances (the objective divided by ``unit`` is a mean per
+        data point).
+    gtol : float
+        Stop when max |gradient| / unit <= gtol.
+    ftol : float
+        Stop when the decrease of an iteration is <= ftol * max(unit, |f|).
+    mode : int
+        FREE, or PIN_LOWER, PIN_UPPER, PIN_BOTH: the support end point(s) held at ``gap``
+        outside the data (see `theta_from_phi`).
+    gap : float
+        Distance of pinned end points from the data (units of z).
+
+    Returns
+    -------
+    f : float
+        Objective at the minimiser (+inf when the start is infeasible).
+    nit, nfev : int
+        Iterations and objective evaluations.
+    status : int
+        GTOL, FTOL, LSFAIL, MAXITER or INFEASIBLE.
+    hit : int
+        Bit mask of the support end points (1 lower, 2 upper) that cut the last line search
+        short: a constraint that is active at the minimiser.
+    """
+    n = z.shape[0]
+    m = n_free(mode)
+    zmin = z[0]
+    zmax = z[n - 1]
+    y = np.empty(n)
+    dw = np.empty((n, 4))
+    dwt = np.empty((n, 4))
+    wt = np.empty(n)
+    gth = np.empty(4)
+    g = np.zeros(4)
+    gt = np.zeros(4)
+    phi = np.zeros(4)
+    pt = np.zeros(4)
+    tt = np.empty(4)
+    jac = np.empty((4, 4))
+    jact = np.empty((4, 4))
+    p = np.zeros(4)
+    s = np.zeros(4)
+    yv = np.zeros(4)
+    hy = np.zeros(4)
+    h = np.eye(m)
+    phi_from_theta(mode, theta, phi)
+    hit = 0
+    if not theta_from_phi(mode, fam, phi, zmin, zmax, gap, tt, jac):
+        return math.inf, 0, 0, INFEASIBLE, hit
+    f = objective_grad(kind, fam, tt, z, w, dw, gth, y)
+    nfev = 1
+    if not math.isfinite(f):
+        return f, 0, nfev, INFEASIBLE, hit
+    for j in range(4):
+        theta[j] = tt[j]
+    for k in range(m):
+        g[k] = 0.0
+        for j in range(4):
+            g[k] += jac[j, k] * gth[j]
+    scaled = False
+    status = MAXITER
+    nit = 0
+    for it in range(maxiter):
+        nit = it + 1
+        gmax = 0.0
+        for j in range(m):
+            gmax = max(gmax, abs(g[j]))
+        if gmax <= gtol * unit:
+            status = GTOL
+            nit = it
+            break
+        gp = 0.0
+        for j in range(m):
+            p[j] = 0.0
+            for k in range(m):
+                p[j] -= h[j, k] * g[k]
+            gp += p[j] * g[j]
+        if not (gp < 0.0):
+            h[:, :] = np.eye(m)
+            scaled = False
+            gp = 0.0
+            for j in range(m):
+                p[j] = -g[j]
+                gp -= g[j] * g[j]
+        pmax = 0.0
+        for j in range(m):
+            pmax = max(pmax, abs(p[j]))
+        # trust the first (unscaled) direction to 0.1 in each coordinate, later ones to 1
+        alpha = min(1.0, (1.0 if scaled else 0.1) / pmax)
+        accepted = False
+        ft = math.inf
+        hit = 0
+        for _ in range(60):
+            for j in range(m):
+                pt[j] = phi[j] + alpha * p[j]
+            ok = theta_from_phi(mode, fam, pt, zmin, zmax, gap, tt, jact)
+            if ok and feasible(fam, tt[2], tt[3], tt[0], math.exp(tt[1]), zmin, zmax):
+                for i in range(n):
+                    pred = w[i]
+                    for j in range(4):
+                        pred += dw[i, j] * (tt[j] - theta[j])
+                    wt[i] = min(max(pred, -_W_MAX), _W_MAX)
+                ft = objective_grad(kind, fam, tt, z, wt, dwt, gth, y)
+                nfev += 1
+                if ft <= f + 1e-4 * alpha * gp:
+                    accepted = True
+                    break
+                if math.isfinite(ft):
+                    # minimiser of the quadratic through f, the slope and ft, kept in [0.1, 0.5]
+                    den = 2.0 * (ft - f - alpha * gp)
+                    anew = -gp * alpha * alpha / den if den > 0.0 else 0.5 * alpha
+                    alpha = min(0.5 * alpha, max(0.1 * alpha, anew))
+                else:
+                    alpha *= 0.5
+            else:
+                if ok:
+                    hit |= _violated(fam, tt, zmin, zmax)
+                alpha *= 0.5
+            size = 1.0
+            for j in range(m):
+                size += abs(phi[j])
+            if alpha * pmax <= 1e-15 * size:
+                break
+        if not accepted:
+            status = LSFAIL
+            break
+        for k in range(m):
+            gt[k] = 0.0
+            for j in range(4):
+                gt[k] += jact[j, k] * gth[j]
+        sy = 0.0
+        yy = 0.0
+        ss = 0.0
+        for j in range(m):
+            s[j] = pt[j] - phi[j]
+            yv[j] = gt[j] - g[j]
+            sy += s[j] * yv[j]
+            yy += yv[j] * yv[j]
+            ss += s[j] * s[j]
+        if sy > 1e-12 * math.sqrt(ss * yy):
+            if not scaled:
+                h[:, :] = np.eye(m) * (sy / yy)
+                scaled = True
+            # H <- (I - rho s y') H (I - rho y s') + rho s s'
+            rho = 1.0 / sy
+            for j in range(m):
+                hy[j] = 0.0
+                for k in range(m):
+                    hy[j] += h[j, k] * yv[k]
+            yhy = 0.0
+            for j in range(m):
+                yhy += yv[j] * hy[j]
+            for j in range(m):
+                for k in range(m):
+                    h[j, k] += (rho * rho * yhy + rho) * s[j] * s[k] - rho * (hy[j] * s[k] + s[j] * hy[k])
+        decrease = f - ft
+        for j in range(4):
+            phi[j] = pt[j]
+            g[j] = gt[j]
+            theta[j] = tt[j]
+        for i in range(n):
+            w[i] = wt[i]
+            for j in range(4):
+                dw[i, j] = dwt[i, j]
+        f = ft
+        if decrease <= ftol * max(unit, abs(f)):
+            status = FTOL
+            break
+    return f, nit, nfev, status, hit

@@ -479,7 +479,7 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
     allowed = {"u"} if method == "percentiles" else set()
     if method in ("mle", "mps", "starship"):
-        allowed = {"maxiter", "starts"}
+        allowed = {"maxiter", "starts", "optimizer"}
     unknown = set(options) - allowed
     if unknown:
         raise ValueError(f"unknown option(s) {sorted(unknown)} for method {method!r}; "
@@ -503,6 +503,6 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
         S.check_lmoment_stats(*stats)
         return _fit_from_stats(method, param, stats, 0.1, x, n,
                                dict(zip(_STAT_NAMES[method], stats, strict=True)), {})
-    from ._likelihood import fit_data_objective
+    from ._data import fit_data_objective
 
     return fit_data_objective(x, param, method, **options)

@@ -1,0 +1,197 @@
+"""Driver of the data-based fits (ML, MPS, starship): starting points, refinement, candidates.
+
+The numerical work (probability integral transform, objectives, gradients, BFGS) is in the
+compiled kernels of :mod:`glstat.fitting._likelihood`.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from .._core._gld import FKML, RS, median_std, q_lower, rs_sign
+from ..errors import ConvergenceWarning, FitError
+from . import _likelihood as L
+
+_KIND = {"mle": L.MLE, "mps": L.MPS, "starship": L.STARSHIP}
+OPTIMIZERS = ("bfgs", "nelder-mead")
+_OBJECTIVE_NAME = {"mle": "neg_loglik", "mps": "neg_mean_log_spacing", "starship": "anderson_darling"}
+# margin by which a start's scale is widened beyond the smallest one whose support covers the data
+_COVER_MARGIN = 1.05
+# BFGS tolerances: gradient per data point, relative decrease of an iteration
+_GTOL = 1e-9
+_FTOL = 1e-14
+# distance of a pinned support end point from the data, relative to the data range
+_PIN_GAP = 1e-9
+
+
+def _std_theta(lams, med: float, iqr: float) -> np.ndarray:
+    """theta = (lambda1, log scale, lambda3, lambda4) of the GLD of (x - med) / iqr."""
+    l1, l2, a, b = lams
+    return np.array([(l1 - med) / iqr, math.log(1.0 / (abs(l2) * iqr)), a, b])
+
+
+def _to_lambdas(theta, param: str, med: float, iqr: float) -> tuple[float, float, float, float]:
+    l1s, lsc, a, b = (float(v) for v in theta)
+    scale = math.exp(lsc) * iqr
+    s = float(rs_sign(a, b)) if param == "rs" else 1.0
+    return (med + iqr * l1s, s / scale, a, b)
+
+
+def cover_theta(theta: np.ndarray, fam: int, zmin: float, zmax: float) -> np.ndarray | None:
+    """``theta`` with the scale widened about the median until the support covers [zmin, zmax].
+
+    The scale becomes ``_COVER_MARGIN`` times the smallest covering scale when it is below
+    it; None when no scale covers the data (cannot happen for valid shapes: the support
+    grows with the scale).
+    """
+    l1, lsc, a, b = (float(v) for v in theta)
+    sc = math.exp(lsc)
+    m0 = float(median_std(fam, a, b))
+    lo = float(q_lower(fam, a, b, -math.inf, 0.0))
+    hi = float(-q_lower(fam, b, a, -math.inf, 0.0))
+    med = l1 + sc * m0
+    need = 0.0
+    if math.isfinite(lo):
+        need = max(need, (med - zmin) / (m0 - lo))
+    if math.isfinite(hi):
+        need = max(need, (zmax - med) / (hi - m0))
+    if need >= sc:
+        sc = _COVER_MARGIN * need
+    out = np.array([med - sc * m0, math.log(sc), a, b])
+    if not L.feasible(fam, a, b, out[0], sc, zmin, zmax):
+        return None
+    return out
+
+
+def _starting_points(x: np.ndarray, param: str, fam: int, med: float, iqr: float, z: np.ndarray):
+    """Feasible standardized starts from every valid root of the percentile and L-moment fits."""
+    from ._stats import check_lmoment_stats, rho_from_quantiles, sample_lmoments, sample_quantiles
+    from .core import _roots
+
+    stats_list = [("percentiles", rho_from_quantiles(sample_quantiles(x, 0.1)))]
+    lm = sample_lmoments(x)
+    try:
+        check_lmoment_stats(*lm)
+        stats_list.append(("lmoments", lm))
+    except FitError:
+        pass
+    starts = []
+    for meth, st in stats_list:
+        try:
+            roots = _roots(meth, param, st, 0.1)
+        except (FitError, ValueError, ZeroDivisionError):
+            continue
+        for lams, conv, _ in roots:
+            if not (conv and all(math.isfinite(v) for v in lams) and lams[1] != 0.0):
+                continue
+            th = cover_theta(_std_theta(lams, med, iqr), fam, float(z[0]), float(z[-1]))
+            if th is not None:
+                starts.append(th)
+    return starts
+
+
+def _refine_nelder_mead(kind, fam, z, th0, w, maxiter, n):
+    from scipy.optimize import minimize
+
+    def f(theta):
+        l1s, lsc, a, b = theta
+        return L.objective(kind, fam, a, b, l1s, math.exp(lsc), z, w)
+
+    # objective differences that matter: 1e-6 in log-likelihood units (per point for MPS, AD)
+    ftol = 1e-6 if kind == L.MLE else 1e-6 / n
+    res = minimize(f, th0, method="Nelder-Mead",
+                   options={"maxiter": int(maxiter), "xatol": 1e-6, "fatol": ftol})
+    return np.asarray(res.x, dtype=float), float(res.fun), bool(res.success)
+
+
+def _refine_bfgs(kind, fam, z, th0, w, maxiter, unit):
+    """BFGS from ``th0``; when support end points cut the last line search short (the optimum
+    lies on the boundary of the feasible set, e.g. ML for a density that is positive at a
+    finite end point), BFGS again with those end points pinned just outside the data, keeping
+    the better result."""
+    th = th0.copy()
+    val, _, _, status, hit = L.minimize_bfgs(kind, fam, z, th, w, maxiter, unit, _GTOL, _FTOL, L.FREE, 0.0)
+    ok = status != L.MAXITER
+    mode = L.FREE
+    gap = _PIN_GAP * float(z[-1] - z[0])
+    for _ in range(2):
+        if not hit or (mode | hit) == mode:
+            break
+        mode |= hit
+        th2 = th.copy()
+        w2 = w.copy()
+        val2, _, _, status2, hit = L.minimize_bfgs(kind, fam, z, th2, w2, maxiter, unit, _GTOL, _FTOL,
+                                                   mode, gap)
+        if not val2 < val:
+            break
+        th, val, ok = th2, val2, status2 != L.MAXITER
+        w[:] = w2
+    return th, val, ok
+
+
+def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | None = None,
+                       starts: int = 2, optimizer: str = "bfgs"):
+    """ML, MPS or starship fit of sorted, checked data ``x`` (see :func:`glstat.fit`).
+
+    Starts: every valid root of the percentile and L-moment equations, the scale widened
+    about the median where the support misses data points; the ``starts`` best by objective
+    are refined in theta = (lambda1, log scale, lambda3, lambda4) on the data scaled by
+    median and interquartile range, by the compiled BFGS with the analytic gradient
+    (``optimizer="bfgs"``) or by scipy's Nelder–Mead (``"nelder-mead"``). Infeasible
+    parameters (support missing a data point) are rejected, so every iterate covers the data.
+    """
+    from .core import _candidate, _make_fit, _select
+
+    if optimizer not in OPTIMIZERS:
+        raise ValueError(f"optimizer must be one of {OPTIMIZERS}, got {optimizer!r}")
+    if maxiter is None:
+        maxiter = 500 if optimizer == "bfgs" else 2000
+    if int(starts) != starts or int(starts) < 1 or int(maxiter) != maxiter or int(maxiter) < 1:
+        raise ValueError(f"starts and maxiter must be positive integers, got {starts!r}, {maxiter!r}")
+    starts = int(starts)
+    maxiter = int(maxiter)
+    kind = _KIND[method]
+    fam = RS if param == "rs" else FKML
+    n = x.size
+    med = float(np.median(x))
+    q25, q75 = np.quantile(x, [0.25, 0.75])
+    iqr = float(q75 - q25) or float(x[-1] - x[0])
+    z = (x - med) / iqr
+    w0 = np.log((np.arange(n) + 0.5) / (n - np.arange(n) - 0.5))
+
+    start_thetas = _starting_points(x, param, fam, med, iqr, z)
+    if not start_thetas:
+        raise FitError(f"no {param.upper()} starting point for {method!r}: neither the percentile nor "
+                       "the L-moment equations have a valid root for these data; try param='fkml'")
+    scored = []
+    for th in start_thetas:
+        w = w0.copy()
+        val = L.objective(kind, fam, th[2], th[3], th[0], math.exp(th[1]), z, w)
+        if math.isfinite(val):
+            scored.append((val, th, w))
+    scored.sort(key=lambda t: t[0])
+    # objective unit: one data point's share (tolerances are per point)
+    unit = float(n) if kind == L.MLE else 1.0 / (n + 1) if kind == L.MPS else 1.0 / n
+    shift = n * math.log(iqr) if kind == L.MLE else 0.0
+    rows = []
+    flags = []
+    for _, th0, w in scored[:starts]:
+        if optimizer == "bfgs":
+            th, val, ok = _refine_bfgs(kind, fam, z, th0, w, maxiter, unit)
+        else:
+            th, val, ok = _refine_nelder_mead(kind, fam, z, th0, w, maxiter, n)
+        lams = _to_lambdas(th, param, med, iqr)
+        obj = float(val) + shift
+        rows.append(_candidate(lams, param, math.isfinite(obj), obj, x))
+        flags.append(ok)
+    sel = _select(rows, True, by_objective=True)
+    if sel < 0:
+        raise FitError(f"the {method} optimisation found no valid {param.upper()} GLD covering the data")
+    if not flags[sel]:
+        warnings.warn(f"{method} fit: the {optimizer} optimiser reached maxiter={maxiter}; the result "
+                      "is the best point found", ConvergenceWarning, stacklevel=3)
+    return _make_fit(rows, sel, param, method, n, {_OBJECTIVE_NAME[method]: rows[sel]["objective"]},
+                     {"maxiter": maxiter, "starts": starts, "optimizer": optimizer})
