@@ -173,6 +173,20 @@ class _GLDGen(rv_continuous):
         u = random_state.uniform(size=size)
         return self._ppf(u, lam3, lam4)
 
+    def _fitstart(self, data, args=None):
+        """Start of scipy's generic fit: (lam3, lam4, loc, scale) of the percentile fit (the
+        L-moment fit where the percentiles are out of reach), widened so that the support
+        covers the data; scipy's default start when given shapes or when neither fit exists."""
+        if args is None:
+            from .fitting._data import scipy_fitstart
+
+            x = data._uncensor() if hasattr(data, "_uncensor") else data
+            start = scipy_fitstart(x, "rs" if self._family == _gld.RS else "fkml")
+            if start is not None:
+                return start
+            args = (0.1349, 0.1349)
+        return super()._fitstart(data, args)
+
     def fit(self, data, *args, **kwds):
         """Fit by :func:`glstat.fit`; returns ``(lam3, lam4, loc, scale)`` as scipy does.
 
