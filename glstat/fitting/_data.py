@@ -195,3 +195,32 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
                       "is the best point found", ConvergenceWarning, stacklevel=3)
     return _make_fit(rows, sel, param, method, n, {_OBJECTIVE_NAME[method]: rows[sel]["objective"]},
                      {"maxiter": maxiter, "starts": starts, "optimizer": optimizer})
+
+
+def scipy_fitstart(data, param: str) -> tuple[float, float, float, float] | None:
+    """Starting point (lam3, lam4, loc, scale) for scipy's generic fit of ``gld_rs``/``gld_fkml``.
+
+    The percentile fit of the finite data (the L-moment fit when the percentile statistics
+    are out of reach), its scale widened about the median so that the support covers every
+    data point. None when neither fit exists (fewer than 5 finite points, constant data, or
+    statistics no GLD of this type matches).
+    """
+    from .core import fit as _fit
+
+    x = np.asarray(data, dtype=float).ravel()
+    x = np.sort(x[np.isfinite(x)])
+    fam = RS if param == "rs" else FKML
+    for method in ("percentiles", "lmoments"):
+        try:
+            res = _fit(x, param=param, method=method)
+        except FitError:
+            continue
+        med = float(np.median(x))
+        iqr = float(np.subtract(*np.quantile(x, [0.75, 0.25]))) or float(x[-1] - x[0])
+        z = (x - med) / iqr
+        th = cover_theta(_std_theta(res.lambdas, med, iqr), fam, float(z[0]), float(z[-1]))
+        if th is None:
+            continue
+        l1, l2, a, b = _to_lambdas(th, param, med, iqr)
+        return float(a), float(b), float(l1), 1.0 / abs(l2)
+    return None
