@@ -1,5 +1,14 @@
 """glstat: Generalized Lambda Distributions and the statistics of contact pressures."""
 
+from .bootstrap import (
+    BootstrapFit,
+    BootstrapInterval,
+    BootstrapMaximum,
+    BootstrapProbability,
+    BootstrapWarning,
+    MaximumMixture,
+    bootstrap,
+)
 from .damage import damage_probability, guaranteed_threshold, integrity_probability
 from .distributions import gld_fkml, gld_rs
 from .errors import ConvergenceWarning, FitError, InvalidParameterError
@@ -13,12 +22,19 @@ __version__ = "0.1.0"
 
 __all__ = [
     "GLD",
+    "BootstrapFit",
+    "BootstrapInterval",
+    "BootstrapMaximum",
+    "BootstrapProbability",
+    "BootstrapWarning",
     "ConvergenceWarning",
     "FitError",
     "GLDFit",
     "InvalidParameterError",
     "MaximumDistribution",
+    "MaximumMixture",
     "OrderStatisticDistribution",
+    "bootstrap",
     "compare_families",
     "damage_probability",
     "edf_statistics",

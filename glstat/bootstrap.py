@@ -1,0 +1,1145 @@
+"""Bootstrap of GLD fits: parameter uncertainty, confidence intervals, maximum and damage.
+
+:func:`bootstrap` resamples the data (or draws from the fitted GLD), fits a GLD to every
+resample and returns a :class:`BootstrapFit` (DESIGN §1 step 5). On it:
+
+* :meth:`BootstrapFit.confidence_interval` — percentile, basic and BCa intervals for the
+  lambdas or for any quantity derived from a GLD (quantiles, moments, probabilities);
+* :meth:`BootstrapFit.maximum` — the maximum of n draws for every bootstrap GLD and their
+  pooled mixture (step 6);
+* :meth:`BootstrapFit.integrity_probability` and :meth:`BootstrapFit.damage_probability` —
+  probabilities with their bootstrap interval, vectorised over the area factor (steps 7–8).
+
+Resamples
+---------
+Every resample r has its own generator, ``numpy.random.default_rng(child_r)`` with
+``child_r`` the r-th child of one ``numpy.random.SeedSequence`` whose entropy is drawn from
+``rng``; a nonparametric resample is ``x[g.integers(0, n, n)]`` of the sorted finite data
+``x``, a parametric one is n draws ``Q(U)`` from the full-sample fit, generated directly in
+increasing order (normalised partial sums of n + 1 exponential variables are distributed as
+the order statistics of n uniforms) and with ``Q(1 - U)`` taken through the upper-tail
+quantile wherever ``U > 1/2``. The resamples therefore do not depend on the fitting method,
+the batching or the executor.
+
+Fitting
+-------
+For ``"moments"``, ``"percentiles"`` and ``"lmoments"`` the statistics of all resamples are
+computed in one compiled pass (:mod:`glstat._core.resample`) and turned into lambdas by one
+call to :func:`glstat.fit_batch`, which keeps, of several roots, the one closest to the
+full-sample fit's shapes (lambda3, lambda4). ``"mle"``, ``"mps"`` and ``"starship"`` call
+:func:`glstat.fit` per resample, optionally through a ``concurrent.futures.Executor``.
+A resample without a fit is kept, with NaN lambdas and its reason in
+:attr:`BootstrapFit.failed`, and a warning states the count.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import warnings
+from collections.abc import Callable
+from concurrent.futures import Executor
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from scipy import optimize, special
+from scipy.stats import rv_continuous
+
+from ._core import _gld
+from ._core import resample as _R
+from .damage import damage_probability as _damage
+from .damage import integrity_probability as _integrity
+from .distributions import evaluate, gld_fkml, gld_rs, quantile
+from .errors import ConvergenceWarning, FitError, InvalidParameterError
+from .extremes import MaximumDistribution
+from .extremes import maximum as _maximum
+from .fitting import GLDFit, fit, fit_batch
+from .fitting import _stats as _S
+from .gld import GLD
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+
+__all__ = [
+    "BootstrapFit",
+    "BootstrapInterval",
+    "BootstrapMaximum",
+    "BootstrapProbability",
+    "BootstrapWarning",
+    "MaximumMixture",
+    "bootstrap",
+]
+
+KINDS = ("nonparametric", "parametric")
+METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
+COMPILED = ("moments", "percentiles", "lmoments")
+CI_METHODS = ("percentile", "basic", "bca")
+_FAM = {"rs": _gld.RS, "fkml": _gld.FKML}
+_LAMBDA_NAMES = ("lambda1", "lambda2", "lambda3", "lambda4")
+_STAT_NAMES = {
+    "moments": ("mean", "std", "skew", "kurt"),
+    "percentiles": ("rho1", "rho2", "rho3", "rho4"),
+    "lmoments": ("l1", "l2", "t3", "t4"),
+}
+# values per chunk of the compiled path (index rows of int32: 8 MB)
+_CHUNK_VALUES = 2_000_000
+# resamples per task of the per-resample path
+_TASK_SIZE = 8
+# largest number of delete-a-group jackknife samples (BCa acceleration)
+_JACKKNIFE_GROUPS = {"compiled": 1000, "data": 100}
+# the progress bar appears by default above this much work (values resampled x fits)
+_PROGRESS_WORK = {"compiled": 3e8, "data": 2e5}
+
+
+class BootstrapWarning(RuntimeWarning):
+    """Some bootstrap resamples had no fit, or an interval could not be formed."""
+
+
+# ---------------------------------------------------------------------------------------------
+# input checks
+# ---------------------------------------------------------------------------------------------
+def _check_n_resamples(n_resamples) -> int:
+    if isinstance(n_resamples, (bool, np.bool_)) or not isinstance(n_resamples, numbers.Integral):
+        raise TypeError(f"n_resamples must be an integer, got {n_resamples!r}")
+    if n_resamples < 2:
+        raise ValueError(f"n_resamples must be >= 2, got {n_resamples}")
+    return int(n_resamples)
+
+
+def _check_level(confidence_level) -> float:
+    if isinstance(confidence_level, (bool, np.bool_)) or not isinstance(confidence_level, numbers.Real):
+        raise TypeError(f"confidence_level must be a real number, got {confidence_level!r}")
+    c = float(confidence_level)
+    if not 0.0 < c < 1.0:
+        raise ValueError(f"confidence_level must be strictly between 0 and 1, got {c}")
+    return c
+
+
+# ---------------------------------------------------------------------------------------------
+# vectorised GLD helpers over many lambda rows
+# ---------------------------------------------------------------------------------------------
+def _col(a):
+    return np.asarray(a, dtype=float)[:, None]
+
+
+def _quantiles(lam: np.ndarray, fam: int, v, q) -> np.ndarray:
+    """Q_b at probability v (complement q, both accurate) for every row b of ``lam``.
+
+    ``lam`` has shape (k, 4); v and q broadcast against (k, m). Returns shape (k, m).
+    """
+    l1, l2, l3, l4 = (_col(lam[:, i]) for i in range(4))
+    v, q = np.broadcast_arrays(np.asarray(v, dtype=float), np.asarray(q, dtype=float))
+    shape = np.broadcast_shapes(v.shape, (lam.shape[0], 1))
+    v = np.broadcast_to(v, shape)
+    q = np.broadcast_to(q, shape)
+    a3 = np.broadcast_to(l3, shape)
+    a4 = np.broadcast_to(l4, shape)
+    out = np.empty(shape)
+    low = v <= 0.5
+    if low.any():
+        out[low] = quantile(fam, v[low], a3[low], a4[low])
+    if (~low).any():
+        out[~low] = quantile(fam, q[~low], a3[~low], a4[~low], upper=True)
+    return np.broadcast_to(l1, shape) + out / np.broadcast_to(np.abs(l2), shape)
+
+
+def _max_quantiles(lam: np.ndarray, fam: int, n: float, logv) -> np.ndarray:
+    """Quantiles of the maximum of n draws at probabilities exp(logv), Q(v^(1/n)) per row."""
+    t = np.asarray(logv, dtype=float) / n
+    return _quantiles(lam, fam, np.exp(t), -np.expm1(t))
+
+
+def _log_tails(lam: np.ndarray, fam: int, x) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(log F, log S, log f) of every row of ``lam`` at the points x: arrays (k, len(x))."""
+    l1, l2, l3, l4 = (_col(lam[:, i]) for i in range(4))
+    y = (np.asarray(x, dtype=float)[None, :] - l1) * np.abs(l2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        s = evaluate(fam, "sf", y, l3, l4)
+        logc = evaluate(fam, "logcdf", y, l3, l4)
+        logs = evaluate(fam, "logsf", y, l3, l4)
+        logp = evaluate(fam, "logpdf", y, l3, l4) + np.log(np.abs(l2))
+    with np.errstate(divide="ignore"):
+        logf = np.where(s < 0.5, np.log1p(-s), logc)
+    return logf, logs, logp
+
+
+def _log1mexp(y):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(y > -math.log(2.0), np.log(-np.expm1(y)), np.log1p(-np.exp(y)))
+
+
+def _support(lam: np.ndarray, fam: int) -> tuple[np.ndarray, np.ndarray]:
+    a = np.ascontiguousarray(lam[:, 2], dtype=float)
+    b = np.ascontiguousarray(lam[:, 3], dtype=float)
+    lo = np.empty(a.size)
+    hi = np.empty(a.size)
+    _gld.support_kernel(a, b, fam, lo, hi)
+    s = 1.0 / np.abs(lam[:, 1])
+    return lam[:, 0] + lo * s, lam[:, 0] + hi * s
+
+
+# moment quadrature over z = logit(v) (see glstat.extremes)
+_QZ = np.arange(-2800, 2801) * 0.25
+_QLOGV = -np.logaddexp(0.0, -_QZ)
+_QW = np.exp(_QLOGV - np.logaddexp(0.0, _QZ)) * 0.25
+
+
+def _max_raw_moments(lam: np.ndarray, fam: int, n: float, k: int) -> np.ndarray:
+    """E[M^k] of the maximum M of n draws for every row; NaN where it does not exist."""
+    out = np.full(lam.shape[0], np.nan)
+    ok = np.minimum(lam[:, 2], lam[:, 3]) > -1.0 / k
+    idx = np.flatnonzero(ok)
+    for s in range(0, idx.size, 64):
+        rows = idx[s:s + 64]
+        with np.errstate(all="ignore"):
+            qv = _max_quantiles(lam[rows], fam, n, _QLOGV[None, :])
+            out[rows] = np.sum(qv**k * _QW, axis=1)
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# resample generation
+# ---------------------------------------------------------------------------------------------
+def _draw(x: np.ndarray, g: np.random.Generator, kind: str, lam, fam: int) -> np.ndarray:
+    """One resample (length n) with generator ``g``; sorted for the parametric kind."""
+    n = x.size
+    if kind == "nonparametric":
+        return x[g.integers(0, n, size=n, dtype=np.int64)]
+    e = g.standard_exponential(n + 1)
+    total = math.fsum(e)
+    v = np.cumsum(e[:-1]) / total
+    q = np.cumsum(e[:0:-1])[::-1] / total
+    return _quantiles(np.asarray(lam, dtype=float)[None, :], fam, v[None, :], q[None, :])[0]
+
+
+def _fit_task(x, seeds, kind, lam, param, method, options):
+    """Fits of the resamples with the given seeds (runs in the executor's workers)."""
+    fam = _FAM[param]
+    out = []
+    for s in seeds:
+        sample = _draw(x, np.random.default_rng(s), kind, lam, fam)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                f = fit(sample, param, method, **options)
+            out.append((f.lambdas, int(f.solutions["valid"].sum()), ""))
+        except (FitError, InvalidParameterError, FloatingPointError, ValueError,
+                ZeroDivisionError) as exc:
+            out.append(((math.nan,) * 4, 0, f"fit error ({type(exc).__name__}): {exc}"))
+    return out
+
+
+def _progress_bar(total, enabled, desc):
+    if not enabled:
+        return None
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, desc=desc, unit="resample")
+
+
+def _stat_failures(method: str, st: np.ndarray) -> list[str]:
+    """Reason per row why statistics cannot be fitted ("" when they can)."""
+    reasons = []
+    for row in st:
+        if not np.all(np.isfinite(row)):
+            reasons.append("statistics undefined: constant resample or tied quantiles")
+            continue
+        try:
+            if method == "moments":
+                _S.check_moment_stats(*row)
+            elif method == "percentiles":
+                _S.check_rho(*row)
+            else:
+                _S.check_lmoment_stats(*row)
+        except FitError as exc:
+            reasons.append(f"statistics out of range: {exc}")
+            continue
+        reasons.append("")
+    return reasons
+
+
+def _compiled_statistics(x, seeds, kind, lam, fam, method, u, loc, scale, bar) -> np.ndarray:
+    code = _R.CODES[method]
+    n = x.size
+    B = len(seeds)
+    st = np.empty((B, 4))
+    rows = max(1, min(B, _CHUNK_VALUES // n))
+    dtype = np.int32 if n < 2**31 else np.int64
+    for s in range(0, B, rows):
+        chunk = seeds[s:s + rows]
+        if kind == "nonparametric":
+            idx = np.empty((len(chunk), n), dtype=dtype)
+            for j, seed in enumerate(chunk):
+                idx[j] = np.random.default_rng(seed).integers(0, n, size=n, dtype=np.int64)
+            _R.stats_from_indices(code, x, idx, u, loc, scale, st[s:s + len(chunk)])
+        else:
+            samples = np.empty((len(chunk), n))
+            for j, seed in enumerate(chunk):
+                samples[j] = _draw(x, np.random.default_rng(seed), kind, lam, fam)
+            _R.stats_from_sorted(code, samples, u, loc, scale, st[s:s + len(chunk)])
+        if bar is not None:
+            bar.update(len(chunk))
+    return st
+
+
+# ---------------------------------------------------------------------------------------------
+# results
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class BootstrapInterval:
+    """Bootstrap confidence interval of one or several quantities.
+
+    Attributes
+    ----------
+    estimate : ndarray
+        Value on the full-sample fit.
+    low, high : ndarray
+        Interval bounds (units of the quantity), same shape as ``estimate``.
+    standard_error : ndarray
+        Standard deviation of the bootstrap values (divisor B - 1).
+    names : tuple of str
+        Name of each entry.
+    method : str
+        ``"percentile"``, ``"basic"`` or ``"BCa"``.
+    confidence_level : float
+        Nominal coverage.
+    n_used : int
+        Number of bootstrap values the interval rests on.
+    """
+
+    estimate: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    standard_error: np.ndarray
+    names: tuple[str, ...]
+    method: str
+    confidence_level: float
+    n_used: int
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per quantity: estimate, low, high, standard_error."""
+        import pandas as pd
+
+        return pd.DataFrame(
+            {"estimate": np.ravel(self.estimate), "low": np.ravel(self.low),
+             "high": np.ravel(self.high), "standard_error": np.ravel(self.standard_error)},
+            index=pd.Index(self.names, name="quantity"),
+        )
+
+
+@dataclass(frozen=True)
+class BootstrapFit:
+    """GLD fits of bootstrap resamples (result of :func:`bootstrap`).
+
+    Attributes
+    ----------
+    fit : GLDFit
+        Fit of the full sample (the point estimate).
+    lambdas : pandas.DataFrame
+        One row per resample (index ``resample``): ``lambda1..lambda4`` (NaN for a failed
+        resample) and ``n_roots``, the number of valid roots or candidates found.
+    statistics : pandas.DataFrame or None
+        The matched statistics of every resample (moments, rho or L-moments; None for the
+        data-based methods).
+    failed : pandas.DataFrame
+        The resamples without a fit: ``resample``, ``reason`` (``"statistics undefined"``,
+        ``"statistics out of range"``, ``"no root"``, ``"fit error (...)"``) and ``detail``
+        (the full message).
+    n_resamples : int
+        Number of resamples B.
+    confidence_level : float
+        Default nominal coverage of the intervals.
+    kind : str
+        ``"nonparametric"`` or ``"parametric"``.
+    method, param : str
+        Fitting method and parameterisation.
+    options : dict
+        Fitting options (e.g. ``u``).
+    """
+
+    fit: GLDFit
+    lambdas: pd.DataFrame
+    statistics: pd.DataFrame | None
+    failed: pd.DataFrame
+    n_resamples: int
+    confidence_level: float
+    kind: str
+    method: str
+    param: str
+    options: dict[str, Any] = field(default_factory=dict)
+    _data: np.ndarray | None = field(default=None, repr=False, compare=False)
+    _entropy: tuple[int, ...] = field(default=(), repr=False, compare=False)
+    _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    # -- basic views ----------------------------------------------------------------------
+    @property
+    def n_failed(self) -> int:
+        """Number of resamples without a fit."""
+        return len(self.failed)
+
+    @property
+    def n_successful(self) -> int:
+        """Number of resamples with a fit."""
+        return self.n_resamples - self.n_failed
+
+    @property
+    def _fam(self) -> int:
+        return _FAM[self.param]
+
+    def _lam(self) -> np.ndarray:
+        """Lambdas of the successful resamples, shape (n_successful, 4)."""
+        if "lam" not in self._cache:
+            lam = self.lambdas[list(_LAMBDA_NAMES)].to_numpy(dtype=float)
+            self._cache["lam"] = np.ascontiguousarray(lam[np.all(np.isfinite(lam), axis=1)])
+        return self._cache["lam"]
+
+    def _seed(self, key: int) -> np.random.SeedSequence:
+        return np.random.SeedSequence(list(self._entropy), spawn_key=(self.n_resamples + key,))
+
+    def dists(self) -> list[GLD]:
+        """The GLD of every successful resample, in resample order."""
+        if "dists" not in self._cache:
+            self._cache["dists"] = [GLD(*row, param=self.param) for row in self._lam()]
+        return list(self._cache["dists"])
+
+    def __glstat_distributions__(self) -> list[GLD]:
+        """The bootstrap distributions, for :mod:`glstat.damage` and :mod:`glstat.extremes`."""
+        return self.dists()
+
+    def batch(self):
+        """All successful bootstrap GLDs as one frozen scipy distribution with array parameters.
+
+        Returns
+        -------
+        frozen ``gld_rs`` or ``gld_fkml``
+            Parameters of shape (n_successful, 1): ``batch().ppf([0.5, 0.9])`` has shape
+            (n_successful, 2).
+        """
+        return _batch(self._lam(), self.param)
+
+    def standard_error(self) -> pd.Series:
+        """Bootstrap standard errors of lambda1..lambda4 (divisor B - 1, successful resamples)."""
+        import pandas as pd
+
+        return pd.Series(np.std(self._lam(), axis=0, ddof=1), index=list(_LAMBDA_NAMES),
+                         name="standard_error")
+
+    # -- statistics of the resamples --------------------------------------------------------
+    def _values(self, statistic, vectorized, lam) -> np.ndarray:
+        """statistic on every row of ``lam``: array (k, p)."""
+        if statistic is None:
+            return np.array(lam, dtype=float)
+        if vectorized:
+            res = np.asarray(statistic(_batch(lam, self.param)), dtype=float)
+            return res.reshape(lam.shape[0], -1)
+        rows = []
+        for row in lam:
+            try:
+                d = GLD(*row, param=self.param)
+            except InvalidParameterError:
+                rows.append(None)
+                continue
+            rows.append(np.atleast_1d(np.asarray(statistic(d), dtype=float)).ravel())
+        width = max((r.size for r in rows if r is not None), default=1)
+        return np.array([np.full(width, np.nan) if r is None else r for r in rows]).reshape(-1, width)
+
+    def _estimate(self, statistic, vectorized) -> np.ndarray:
+        lam = np.array([self.fit.lambdas], dtype=float)
+        return self._values(statistic, vectorized, lam)[0]
+
+    def _jackknife_lambdas(self) -> np.ndarray:
+        """Lambdas of the delete-a-group jackknife samples of the data (cached)."""
+        if "jack" in self._cache:
+            return self._cache["jack"]
+        x = self._data
+        if x is None:
+            raise ValueError("BCa needs the data, which this BootstrapFit does not hold")
+        n = x.size
+        compiled = self.method in COMPILED
+        groups = min(n, _JACKKNIFE_GROUPS["compiled" if compiled else "data"])
+        group = np.empty(n, dtype=np.int64)
+        perm = np.random.default_rng(self._seed(0)).permutation(n)
+        group[perm] = np.arange(n) % groups
+        if compiled:
+            st = np.empty((groups, 4))
+            mean, std = float(np.mean(x)), float(np.std(x))
+            _R.stats_delete_groups(_R.CODES[self.method], x, group, groups,
+                                   float(self.options.get("u", 0.1)), mean, std, st)
+            ok = np.array([r == "" for r in _stat_failures(self.method, st)])
+            lam = np.full((groups, 4), np.nan)
+            if ok.any():
+                lam[ok], _ = fit_batch(st[ok], self.method, self.param,
+                                       u=float(self.options.get("u", 0.1)),
+                                       ref=self.fit.lambdas[2:])
+        else:
+            lam = np.full((groups, 4), np.nan)
+            for g in range(groups):
+                try:
+                    with warnings.catch_warnings():
+                        warnings.simplefilter("ignore")
+                        lam[g] = fit(x[group != g], self.param, self.method, **self.options).lambdas
+                except (FitError, InvalidParameterError, FloatingPointError, ValueError):
+                    pass
+        lam = lam[np.all(np.isfinite(lam), axis=1)]
+        self._cache["jack"] = lam
+        return lam
+
+    def confidence_interval(
+        self,
+        method: str = "percentile",
+        confidence_level: float | None = None,
+        statistic: Callable[[Any], Any] | None = None,
+        *,
+        vectorized: bool = False,
+        names: tuple[str, ...] | None = None,
+    ) -> BootstrapInterval:
+        """Bootstrap confidence interval of the lambdas or of a quantity derived from a GLD.
+
+        Parameters
+        ----------
+        method : {"percentile", "basic", "BCa"}
+            ``"percentile"``: quantiles alpha/2 and 1 - alpha/2 of the bootstrap values.
+            ``"basic"``: those quantiles reflected about the full-sample estimate.
+            ``"BCa"``: bias-corrected and accelerated (Efron 1987): the bias correction
+            z0 = Phi^-1(fraction of bootstrap values below the estimate, ties counted half),
+            the acceleration a = sum(d^3) / (6 (sum d^2)^(3/2)) from the jackknife
+            differences d (delete-one for n <= 1000 (compiled methods) or 100 (ML, MPS,
+            starship), otherwise delete-a-group over a random partition into that many
+            groups), and the quantiles Phi(z0 + (z0 + z) / (1 - a (z0 + z))) at
+            z = Phi^-1(alpha/2), Phi^-1(1 - alpha/2).
+        confidence_level : float, optional
+            Nominal coverage in (0, 1); default :attr:`confidence_level`.
+        statistic : callable, optional
+            Function of a :class:`glstat.GLD` returning a number or a 1-D array (e.g.
+            ``lambda d: d.ppf(0.9)``, ``lambda d: d.mean()``, ``lambda d: d.sf(2050.0)``).
+            Default: the lambdas themselves.
+        vectorized : bool
+            When True, ``statistic`` is called once with all distributions as one frozen
+            scipy distribution whose parameters have shape (k, 1) (see :meth:`batch`) and
+            must return shape (k,) or (k, p). Much faster than one call per GLD.
+        names : tuple of str, optional
+            Names of the entries of the statistic (default ``"statistic"`` or
+            ``"statistic[i]"``).
+
+        Returns
+        -------
+        BootstrapInterval
+            ``estimate``, ``low``, ``high``, ``standard_error`` (arrays; a float-like 0-d
+            array for a scalar statistic) over the successful resamples.
+
+        Raises
+        ------
+        ValueError
+            Unknown method or confidence_level outside (0, 1).
+        """
+        m = str(method).lower()
+        if m not in CI_METHODS:
+            raise ValueError(f"method must be 'percentile', 'basic' or 'BCa', got {method!r}")
+        level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
+        lam = self._lam()
+        if lam.shape[0] < 2:
+            raise FitError(f"only {lam.shape[0]} of {self.n_resamples} resamples have a fit: no "
+                           "bootstrap interval")
+        theta = self._values(statistic, vectorized, lam)
+        est = self._estimate(statistic, vectorized)
+        finite = np.all(np.isfinite(theta), axis=1)
+        if not finite.all():
+            warnings.warn(f"the statistic is not finite on {int((~finite).sum())} of {theta.shape[0]} "
+                          "bootstrap fits; the interval uses the others", BootstrapWarning, stacklevel=2)
+            theta = theta[finite]
+        alpha = 1.0 - level
+        probs = np.array([alpha / 2, 1.0 - alpha / 2])
+        if m == "bca":
+            jack = self._values(statistic, vectorized, self._jackknife_lambdas())
+            jack = jack[np.all(np.isfinite(jack), axis=1)]
+            lo, hi = _bca(theta, est, jack, probs)
+        else:
+            q = np.quantile(theta, probs, axis=0)
+            lo, hi = q[0], q[1]
+            if m == "basic":
+                lo, hi = 2.0 * est - hi, 2.0 * est - lo
+        se = np.std(theta, axis=0, ddof=1)
+        if statistic is None:
+            nm = _LAMBDA_NAMES
+        elif names is not None:
+            nm = tuple(names)
+        else:
+            nm = ("statistic",) if est.size == 1 else tuple(f"statistic[{i}]" for i in range(est.size))
+        scalar = statistic is not None and est.size == 1
+        shape = () if scalar else est.shape
+        return BootstrapInterval(
+            estimate=est.reshape(shape), low=np.asarray(lo).reshape(shape),
+            high=np.asarray(hi).reshape(shape), standard_error=se.reshape(shape), names=nm,
+            method={"bca": "BCa"}.get(m, m), confidence_level=level, n_used=theta.shape[0],
+        )
+
+    # -- maximum and damage -----------------------------------------------------------------
+    def maximum(self, n: float, confidence_level: float | None = None, *, rng=None) -> BootstrapMaximum:
+        """The maximum of n draws for every bootstrap GLD (DESIGN §1 step 6).
+
+        Parameters
+        ----------
+        n : float
+            Number of draws (grid points), >= 1.
+        confidence_level : float, optional
+            Coverage of the intervals; default :attr:`confidence_level`.
+        rng : int, numpy.random.Generator or None
+            Source of the one random maximum drawn per bootstrap GLD. Default: a stream
+            derived from the bootstrap's own seed, so the draws are reproducible.
+
+        Returns
+        -------
+        BootstrapMaximum
+        """
+        full = _maximum(self.fit.dist, n)
+        level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
+        lam = self._lam()
+        if lam.shape[0] < 2:
+            raise FitError(f"only {lam.shape[0]} resamples have a fit")
+        n = full.n
+        g = np.random.default_rng(self._seed(1) if rng is None else rng)
+        v = g.random(lam.shape[0])
+        draws = _max_quantiles(lam, self._fam, n, np.log(v)[:, None])[:, 0]
+        medians = _max_quantiles(lam, self._fam, n, np.array([[math.log(0.5)]]))[:, 0]
+        means = _max_raw_moments(lam, self._fam, n, 1)
+        return BootstrapMaximum(n=n, draws=draws, medians=medians, means=means,
+                                confidence_level=level,
+                                mixture=MaximumMixture(lam, self.param, n), full=full,
+                                _lam=lam, _param=self.param)
+
+    def integrity_probability(self, threshold, n, area_factor=1.0,
+                              confidence_level: float | None = None) -> BootstrapProbability:
+        """Integrity probability F(threshold)^(k n) with its bootstrap percentile interval.
+
+        Parameters
+        ----------
+        threshold : float
+            Pressure level (units of the data), inside the support of every fit.
+        n : float
+            Number of points of the analysed area (>= 1).
+        area_factor : array_like
+            k, ratio of the area of interest to the analysed one (> 0); vectorised.
+        confidence_level : float, optional
+            Default :attr:`confidence_level`.
+
+        Returns
+        -------
+        BootstrapProbability
+            ``estimate`` from the full-sample fit, ``low``/``high`` the percentile interval,
+            ``values`` the per-resample probabilities (shape (n_successful, *area_factor.shape)).
+        """
+        return self._probability(_integrity, "integrity", threshold, n, area_factor, confidence_level)
+
+    def damage_probability(self, threshold, n, area_factor=1.0,
+                           confidence_level: float | None = None) -> BootstrapProbability:
+        """Damage probability 1 - F(threshold)^(k n) with its bootstrap percentile interval.
+
+        Parameters and returns as for :meth:`integrity_probability`.
+        """
+        return self._probability(_damage, "damage", threshold, n, area_factor, confidence_level)
+
+    def _probability(self, func, what, threshold, n, area_factor, confidence_level):
+        level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
+        k = np.asarray(area_factor, dtype=float)
+        est = np.asarray(func(self.fit.dist, threshold, n, k, outside_support="limit"), dtype=float)
+        vals = np.asarray(func(self.dists(), threshold, n, k, outside_support="limit"), dtype=float)
+        alpha = 1.0 - level
+        q = np.quantile(vals, [alpha / 2, 1 - alpha / 2], axis=0)
+        return BootstrapProbability(what=what, threshold=float(threshold), n=float(n), area_factor=k,
+                                    estimate=est, low=q[0], high=q[1], values=vals,
+                                    confidence_level=level)
+
+    # -- tables -------------------------------------------------------------------------------
+    def to_frame(self) -> pd.DataFrame:
+        """The lambdas of every resample with their statistics (one row per resample)."""
+        df = self.lambdas.copy()
+        if self.statistics is not None:
+            df = df.join(self.statistics)
+        return df
+
+    def summary(self) -> pd.DataFrame:
+        """One row per lambda: full-sample estimate, bootstrap mean, standard error, interval."""
+        ci = self.confidence_interval("percentile").to_frame()
+        ci.insert(1, "bootstrap_mean", np.mean(self._lam(), axis=0))
+        ci["method"] = self.method
+        ci["kind"] = self.kind
+        ci["n_resamples"] = self.n_resamples
+        ci["n_failed"] = self.n_failed
+        return ci
+
+    def __repr__(self) -> str:
+        return (f"BootstrapFit(method={self.method!r}, param={self.param!r}, kind={self.kind!r}, "
+                f"n_resamples={self.n_resamples}, n_failed={self.n_failed}, fit={self.fit!r})")
+
+
+def _batch(lam: np.ndarray, param: str):
+    gen = gld_rs if param == "rs" else gld_fkml
+    return gen(_col(lam[:, 2]), _col(lam[:, 3]), loc=_col(lam[:, 0]), scale=1.0 / np.abs(_col(lam[:, 1])))
+
+
+def _bca(theta, est, jack, probs):
+    """BCa bounds for every column of theta (k, p), estimate est (p,), jackknife jack (g, p)."""
+    p = theta.shape[1]
+    lo = np.full(p, np.nan)
+    hi = np.full(p, np.nan)
+    for j in range(p):
+        t = theta[:, j]
+        frac = (np.sum(t < est[j]) + 0.5 * np.sum(t == est[j])) / t.size
+        z0 = special.ndtri(frac)
+        d = np.mean(jack[:, j]) - jack[:, j]
+        den = 6.0 * np.sum(d * d) ** 1.5
+        a = np.sum(d**3) / den if den > 0 else 0.0
+        if not np.isfinite(z0):
+            warnings.warn("BCa: the full-sample estimate lies outside all bootstrap values; the "
+                          "interval is NaN", BootstrapWarning, stacklevel=3)
+            continue
+        z = special.ndtri(probs)
+        adj = special.ndtr(z0 + (z0 + z) / (1.0 - a * (z0 + z)))
+        lo[j], hi[j] = np.quantile(t, adj)
+    return lo, hi
+
+
+# ---------------------------------------------------------------------------------------------
+# maximum: per-resample values and the pooled mixture
+# ---------------------------------------------------------------------------------------------
+class MaximumMixture(rv_continuous):
+    """Pooled distribution of the maximum of n draws over the bootstrap GLDs.
+
+    An equal-weight mixture of the B distributions of the maximum,
+    ``F_mix(x) = (1/B) sum_b F_b(x)^n``, as a shape-free ``scipy.stats.rv_continuous``:
+    ``cdf``, ``sf``, ``logcdf``, ``logsf`` and ``pdf`` average the components (in log space,
+    with ``F_b^n = exp(n log F_b)`` and ``log F_b = log1p(-S_b)`` in the upper tail);
+    ``ppf``/``isf`` solve ``log F_mix = log p`` (or ``log S_mix = log q``) by Brent's method
+    inside the bracket [min_b, max_b] of the component quantiles, so the tails keep their
+    relative accuracy; ``rvs`` picks a component uniformly, then draws from it; the mean and
+    variance average the components' moments (quadrature, see :mod:`glstat.extremes`).
+
+    Parameters
+    ----------
+    lambdas : array_like, shape (B, 4)
+        lambda1..lambda4 of the component GLDs.
+    param : {"rs", "fkml"}
+        Parameterisation.
+    n : float
+        Number of draws (>= 1).
+    """
+
+    def __init__(self, lambdas=None, param="rs", n=1.0, **kwargs):
+        lam = np.array(lambdas, dtype=float, ndmin=2)
+        if lam.ndim != 2 or lam.shape[1] != 4 or lam.shape[0] < 1:
+            raise ValueError(f"lambdas must have shape (B, 4), got {np.shape(lambdas)}")
+        self._lam = lam
+        self._param = param
+        self._n = float(n)
+        self._family = _FAM[param]
+        lo, hi = _support(lam, self._family)
+        kwargs.setdefault("a", float(np.min(lo)))
+        kwargs.setdefault("b", float(np.max(hi)))
+        kwargs.setdefault("name", "maximum_mixture")
+        super().__init__(**kwargs)
+
+    def _updated_ctor_param(self):
+        dct = super()._updated_ctor_param()
+        dct.update(lambdas=self._lam, param=self._param, n=self._n)
+        return dct
+
+    @property
+    def n_components(self) -> int:
+        """Number of mixed distributions B."""
+        return self._lam.shape[0]
+
+    def _component_logs(self, x):
+        x = np.asarray(x, dtype=float).ravel()
+        logf, logs, logp = _log_tails(self._lam, self._family, x)
+        n = self._n
+        y = n * logf  # log of the component cdf of the maximum
+        ls = _log1mexp(y)
+        deep = logs < math.log(1e-290)
+        ls = np.where(deep, math.log(n) + logs, ls)
+        lp = math.log(n) + (n - 1.0) * logf + logp if n != 1 else logp
+        return y, ls, lp
+
+    def _mix(self, comp, shape):
+        with np.errstate(divide="ignore"):
+            out = special.logsumexp(comp, axis=0) - math.log(comp.shape[0])
+        return out.reshape(shape)
+
+    def _logcdf(self, x):
+        return self._mix(self._component_logs(x)[0], np.shape(x))
+
+    def _logsf(self, x):
+        return self._mix(self._component_logs(x)[1], np.shape(x))
+
+    def _logpdf(self, x):
+        return self._mix(self._component_logs(x)[2], np.shape(x))
+
+    def _cdf(self, x):
+        return np.exp(self._logcdf(x))
+
+    def _sf(self, x):
+        return np.exp(self._logsf(x))
+
+    def _pdf(self, x):
+        return np.exp(self._logpdf(x))
+
+    def _solve(self, logp, upper):
+        """x with log F_mix(x) = logp (log S_mix(x) = logp when ``upper``)."""
+        if upper:
+            logv = _log1mexp(np.array([logp]))
+        else:
+            logv = np.array([logp])
+        t = logv / self._n
+        comp = _quantiles(self._lam, self._family, np.exp(t)[None, :], (-np.expm1(t))[None, :])[:, 0]
+        lo, hi = float(np.min(comp)), float(np.max(comp))
+        if not lo < hi:
+            return lo
+
+        def h(x):
+            y, ls, _ = self._component_logs(np.array([x]))
+            val = self._mix(ls if upper else y, (1,))[0]
+            return (logp - val) if upper else (val - logp)
+
+        hlo, hhi = h(lo), h(hi)
+        if hlo >= 0:
+            return lo
+        if hhi <= 0:
+            return hi
+        return optimize.brentq(h, lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=400)
+
+    def _ppf(self, q):
+        q = np.asarray(q, dtype=float)
+        out = np.empty(q.shape)
+        for i, v in np.ndenumerate(q):
+            if v <= 0.5:
+                out[i] = self._solve(math.log(v), False) if v > 0 else self.a
+            else:
+                out[i] = self._solve(math.log1p(-v), True) if v < 1 else self.b
+        return out
+
+    def _isf(self, q):
+        q = np.asarray(q, dtype=float)
+        out = np.empty(q.shape)
+        for i, s in np.ndenumerate(q):
+            if s <= 0.5:
+                out[i] = self._solve(math.log(s), True) if s > 0 else self.b
+            else:
+                out[i] = self._solve(math.log1p(-s), False) if s < 1 else self.a
+        return out
+
+    def _rvs(self, size=None, random_state=None):
+        size = () if size is None else size
+        comp = random_state.integers(0, self.n_components, size=size)
+        v = random_state.random(size=size)
+        flat_c = np.ravel(comp)
+        t = np.log(np.ravel(v)) / self._n
+        out = _quantiles(self._lam[flat_c], self._family, np.exp(t)[:, None], (-np.expm1(t))[:, None])
+        return out[:, 0].reshape(np.shape(comp))
+
+    def _munp(self, k):
+        if k > 2 or int(k) != k:
+            return super()._munp(k)
+        return float(np.mean(_max_raw_moments(self._lam, self._family, self._n, int(k))))
+
+    def _stats(self):
+        m1 = self._munp(1)
+        m2 = self._munp(2)
+        return m1, m2 - m1 * m1, None, None
+
+
+@dataclass(frozen=True)
+class BootstrapMaximum:
+    """The maximum of n draws across the bootstrap GLDs (result of :meth:`BootstrapFit.maximum`).
+
+    Attributes
+    ----------
+    n : float
+        Number of draws.
+    draws : ndarray, shape (B_ok,)
+        One random maximum of n draws per bootstrap GLD (the paper's "one value per
+        bootstrap GLD"), units of the data.
+    medians : ndarray, shape (B_ok,)
+        Median of each bootstrap GLD's maximum, ``Q_b(0.5^(1/n))``.
+    means : ndarray, shape (B_ok,)
+        Mean of each bootstrap GLD's maximum (NaN where it does not exist).
+    confidence_level : float
+        Coverage of :attr:`interval`, :attr:`median_interval` and :meth:`mixture_interval`.
+    mixture : MaximumMixture
+        The pooled distribution (1/B) sum_b F_b(x)^n: the density of the maximal value
+        combining parameter uncertainty and the randomness of the maximum itself.
+    full : MaximumDistribution
+        Maximum of n draws from the full-sample fit.
+    """
+
+    n: float
+    draws: np.ndarray
+    medians: np.ndarray
+    means: np.ndarray
+    confidence_level: float
+    mixture: MaximumMixture
+    full: MaximumDistribution
+    _lam: np.ndarray = field(repr=False, compare=False, default=None)
+    _param: str = field(repr=False, compare=False, default="rs")
+
+    @property
+    def mean(self) -> float:
+        """Mean of the per-GLD draws (units of the data)."""
+        return float(np.mean(self.draws))
+
+    @property
+    def interval(self) -> tuple[float, float]:
+        """Equal-tailed interval of the per-GLD draws at :attr:`confidence_level`."""
+        a = 1.0 - self.confidence_level
+        lo, hi = np.quantile(self.draws, [a / 2, 1 - a / 2])
+        return float(lo), float(hi)
+
+    @property
+    def median_interval(self) -> tuple[float, float]:
+        """Percentile interval of the per-GLD medians: the parameter uncertainty of the median."""
+        a = 1.0 - self.confidence_level
+        lo, hi = np.quantile(self.medians, [a / 2, 1 - a / 2])
+        return float(lo), float(hi)
+
+    def mixture_interval(self) -> tuple[float, float]:
+        """Equal-tailed interval of :attr:`mixture` (the limit of :attr:`interval` for many draws)."""
+        a = 1.0 - self.confidence_level
+        return float(self.mixture.ppf(a / 2)), float(self.mixture.isf(a / 2))
+
+    def components(self) -> list[MaximumDistribution]:
+        """``glstat.maximum(dist, n)`` of every bootstrap GLD."""
+        return [_maximum(GLD(*row, param=self._param), self.n) for row in self._lam]
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per bootstrap GLD: draw, median and mean of its maximum."""
+        import pandas as pd
+
+        return pd.DataFrame({"draw": self.draws, "median": self.medians, "mean": self.means})
+
+    def summary(self) -> pd.DataFrame:
+        """Mean and interval of the draws, the mixture and the medians (one row each)."""
+        import pandas as pd
+
+        lo, hi = self.interval
+        mlo, mhi = self.mixture_interval()
+        dlo, dhi = self.median_interval
+        return pd.DataFrame(
+            [{"quantity": "draws", "center": self.mean, "low": lo, "high": hi},
+             {"quantity": "mixture", "center": float(self.mixture.median()), "low": mlo, "high": mhi},
+             {"quantity": "medians", "center": float(np.median(self.medians)), "low": dlo, "high": dhi},
+             {"quantity": "full_fit", "center": float(self.full.median()),
+              "low": float(self.full.ppf((1 - self.confidence_level) / 2)),
+              "high": float(self.full.isf((1 - self.confidence_level) / 2))}]
+        ).assign(n=self.n, confidence_level=self.confidence_level)
+
+
+@dataclass(frozen=True)
+class BootstrapProbability:
+    """Integrity or damage probability with its bootstrap interval.
+
+    Attributes
+    ----------
+    what : str
+        ``"integrity"`` or ``"damage"``.
+    threshold, n : float
+        Pressure level (units of the data) and number of points.
+    area_factor : ndarray
+        Area factors k (dimensionless).
+    estimate : ndarray
+        Probability from the full-sample fit, shape of ``area_factor``.
+    low, high : ndarray
+        Percentile interval over the bootstrap fits.
+    values : ndarray
+        Per-resample probabilities, shape (B_ok, *area_factor.shape).
+    confidence_level : float
+    """
+
+    what: str
+    threshold: float
+    n: float
+    area_factor: np.ndarray
+    estimate: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    values: np.ndarray
+    confidence_level: float
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per area factor: estimate, low, high."""
+        import pandas as pd
+
+        k = np.broadcast_to(self.area_factor, np.shape(self.estimate))
+        return pd.DataFrame({"area_factor": np.ravel(k), "estimate": np.ravel(self.estimate),
+                             "low": np.ravel(self.low), "high": np.ravel(self.high)})
+
+
+# ---------------------------------------------------------------------------------------------
+# public entry point
+# ---------------------------------------------------------------------------------------------
+def bootstrap(
+    data,
+    param: str = "rs",
+    method: str = "moments",
+    n_resamples: int = 1000,
+    confidence_level: float = 0.9,
+    kind: str = "nonparametric",
+    rng: int | np.random.Generator | None = None,
+    executor: Executor | None = None,
+    nan_policy: str = "raise",
+    progress: bool | None = None,
+    **options,
+) -> BootstrapFit:
+    """Fit a GLD to bootstrap resamples of the data (DESIGN §1 step 5).
+
+    Parameters
+    ----------
+    data : array_like
+        Sample (flattened; units of the data, e.g. MPa).
+    param : {"rs", "fkml"}
+        Parameterisation.
+    method : {"moments", "percentiles", "lmoments", "mle", "mps", "starship"}
+        Fitting method, as for :func:`glstat.fit`. The first three run through the compiled
+        statistics pass and :func:`glstat.fit_batch`; the others fit every resample.
+    n_resamples : int
+        Number of resamples B (>= 2).
+    confidence_level : float
+        Default coverage of the intervals, in (0, 1).
+    kind : {"nonparametric", "parametric"}
+        Resample the data with replacement, or draw n values from the full-sample fit.
+    rng : int, numpy.random.Generator or None
+        Seed or generator; the same seed gives identical results.
+    executor : concurrent.futures.Executor, optional
+        Runs the per-resample fits of ``"mle"``, ``"mps"`` and ``"starship"`` (e.g. a
+        ``ProcessPoolExecutor`` or ``distributed.Client(...).get_executor()``); results are
+        identical whatever the executor. Not used by the compiled methods.
+    nan_policy : {"raise", "omit", "propagate"}
+        Non-finite data: raise, drop them, or return a bootstrap whose resamples all failed.
+    progress : bool, optional
+        Show a tqdm progress bar; default: only for long runs.
+    **options
+        Fitting options (``u`` for percentiles; ``maxiter``, ``starts`` for data methods).
+
+    Returns
+    -------
+    BootstrapFit
+
+    Raises
+    ------
+    ValueError
+        n_resamples < 2, confidence_level outside (0, 1), unknown kind, method, param,
+        nan_policy or option, or non-finite data with ``nan_policy="raise"``.
+    FitError
+        Too few or constant data, no fit of the full sample, or no resample with a fit.
+
+    Warns
+    -----
+    BootstrapWarning
+        When some resamples have no fit (the count and the commonest reasons).
+
+    Examples
+    --------
+    >>> import numpy as np, glstat
+    >>> x = np.random.default_rng(0).gamma(5.0, 3.0, 2000)
+    >>> bf = glstat.bootstrap(x, n_resamples=200, rng=1)
+    >>> ci = bf.confidence_interval(statistic=lambda d: d.ppf(0.9))
+    >>> bool(ci.low < np.quantile(x, 0.9) < ci.high)
+    True
+    """
+    import pandas as pd
+
+    B = _check_n_resamples(n_resamples)
+    level = _check_level(confidence_level)
+    if kind not in KINDS:
+        raise ValueError(f"kind must be 'nonparametric' or 'parametric', got {kind!r}")
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    param = str(param).lower()
+    if param not in _FAM:
+        raise ValueError(f"param must be 'rs' or 'fkml', got {param!r}")
+    x, _ = _S.prepare_data(data, nan_policy)
+    seq = np.random.SeedSequence([int(v) for v in np.random.default_rng(rng).integers(0, 2**63, size=4)])
+    entropy = tuple(int(v) for v in seq.entropy)
+    if x is None:  # nan_policy="propagate" met a non-finite value
+        full = fit(data, param, method, nan_policy="propagate", **options)
+        lam = np.full((B, 4), np.nan)
+        nroots = np.zeros(B, dtype=np.int64)
+        reasons = ["data contain non-finite values (nan_policy='propagate')"] * B
+        return _result(full, lam, nroots, None, reasons, B, level, kind, method, param, options,
+                       None, entropy, warn=False)
+    full = fit(x, param, method, **options)
+    seeds = [np.random.SeedSequence(list(entropy), spawn_key=(r,)) for r in range(B)]
+    fam = _FAM[param]
+    n = x.size
+    compiled = method in COMPILED
+    if progress is None:
+        progress = B * n > _PROGRESS_WORK["compiled" if compiled else "data"]
+    bar = _progress_bar(B, bool(progress), f"bootstrap {method}")
+    try:
+        if compiled:
+            u = float(full.options.get("u", 0.1))
+            mean, std = float(np.mean(x)), float(np.std(x))
+            st = _compiled_statistics(x, seeds, kind, full.lambdas, fam, method, u, mean, std, bar)
+            reasons = _stat_failures(method, st)
+            ok = np.array([r == "" for r in reasons])
+            lam = np.full((B, 4), np.nan)
+            nroots = np.zeros(B, dtype=np.int64)
+            if ok.any():
+                lam[ok], nroots[ok] = fit_batch(st[ok], method, param, u=u, ref=full.lambdas[2:])
+            for r in np.flatnonzero(ok & (nroots == 0)):
+                reasons[r] = (f"no root: no {param.upper()} GLD matches the {method} statistics "
+                              + ", ".join(f"{a}={b:.6g}" for a, b in zip(_STAT_NAMES[method], st[r],
+                                                                          strict=True)))
+            stats_df = pd.DataFrame(st, columns=list(_STAT_NAMES[method]))
+            stats_df.index.name = "resample"
+        else:
+            tasks = [seeds[s:s + _TASK_SIZE] for s in range(0, B, _TASK_SIZE)]
+            args = (kind, full.lambdas, param, method, dict(options))
+            results = []
+            if executor is None:
+                for t in tasks:
+                    results.extend(_fit_task(x, t, *args))
+                    if bar is not None:
+                        bar.update(len(t))
+            else:
+                futures = [executor.submit(_fit_task, x, t, *args) for t in tasks]
+                for fut, t in zip(futures, tasks, strict=True):
+                    results.extend(fut.result())
+                    if bar is not None:
+                        bar.update(len(t))
+            lam = np.array([r[0] for r in results], dtype=float)
+            nroots = np.array([r[1] for r in results], dtype=np.int64)
+            reasons = [r[2] for r in results]
+            stats_df = None
+    finally:
+        if bar is not None:
+            bar.close()
+    return _result(full, lam, nroots, stats_df, reasons, B, level, kind, method, param, options, x,
+                   entropy, warn=True)
+
+
+def _result(full, lam, nroots, stats_df, reasons, B, level, kind, method, param, options, x, entropy,
+            *, warn):
+    import pandas as pd
+
+    frame = pd.DataFrame(lam, columns=list(_LAMBDA_NAMES))
+    frame["n_roots"] = nroots
+    frame.index.name = "resample"
+    bad = [r for r in range(B) if not np.all(np.isfinite(lam[r]))]
+    detail = [reasons[r] or "no fit: invalid lambdas" for r in bad]
+    failed = pd.DataFrame({"resample": np.array(bad, dtype=np.int64),
+                           "reason": [d.split(":", 1)[0] for d in detail], "detail": detail})
+    if warn and bad:
+        common = failed.groupby("reason", sort=False)["detail"].agg(["size", "first"])
+        common = common.sort_values("size", ascending=False).head(3)
+        why = "; ".join(f"{row['size']} x {reason} (e.g. {row['first'][:200]})"
+                        for reason, row in common.iterrows())
+        if len(bad) == B:
+            raise FitError(f"all {B} bootstrap resamples failed to fit ({method}, {param}): {why}")
+        loud = "MOST " if 2 * len(bad) > B else ""
+        warnings.warn(f"{loud}bootstrap fits failed: {len(bad)} of {B} resamples have no {method} fit "
+                      f"(listed in .failed; intervals use the other {B - len(bad)}). Reasons: {why}",
+                      BootstrapWarning, stacklevel=3)
+    return BootstrapFit(fit=full, lambdas=frame, statistics=stats_df, failed=failed, n_resamples=B,
+                        confidence_level=level, kind=kind, method=method, param=param,
+                        options=dict(full.options) if full.options else dict(options), _data=x,
+                        _entropy=entropy)
