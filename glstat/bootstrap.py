@@ -241,22 +241,27 @@ def _progress_bar(total, enabled, desc):
 
 def _stat_failures(method: str, st: np.ndarray) -> list[str]:
     """Reason per row why statistics cannot be fitted ("" when they can)."""
-    reasons = []
-    for row in st:
+    _, b, c, d = st.T
+    with np.errstate(invalid="ignore"):
+        if method == "moments":
+            ok = (b > 0) & (d > 1.0 + c * c)
+        elif method == "percentiles":
+            ok = (b > 0) & (c > 0) & (d > 0) & (d < 1)
+        else:
+            ok = (b > 0) & (np.abs(c) < 1) & (d >= (5 * c * c - 1) / 4) & (d < 1)
+    ok &= np.all(np.isfinite(st), axis=1)
+    reasons = [""] * st.shape[0]
+    check = {"moments": _S.check_moment_stats, "percentiles": _S.check_rho,
+             "lmoments": _S.check_lmoment_stats}[method]
+    for r in np.flatnonzero(~ok):
+        row = st[r]
         if not np.all(np.isfinite(row)):
-            reasons.append("statistics undefined: constant resample or tied quantiles")
+            reasons[r] = "statistics undefined: constant resample or tied quantiles"
             continue
         try:
-            if method == "moments":
-                _S.check_moment_stats(*row)
-            elif method == "percentiles":
-                _S.check_rho(*row)
-            else:
-                _S.check_lmoment_stats(*row)
+            check(*row)
         except FitError as exc:
-            reasons.append(f"statistics out of range: {exc}")
-            continue
-        reasons.append("")
+            reasons[r] = f"statistics out of range: {exc}"
     return reasons
 
 
@@ -643,11 +648,16 @@ class BootstrapFit:
     def _probability(self, func, what, threshold, n, area_factor, confidence_level):
         level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
         k = np.asarray(area_factor, dtype=float)
-        est = np.asarray(func(self.fit.dist, threshold, n, k, outside_support="limit"), dtype=float)
-        vals = np.asarray(func(self.dists(), threshold, n, k, outside_support="limit"), dtype=float)
+        t = float(threshold)
+        # the full-sample value and the argument checks come from glstat.damage itself
+        est = np.asarray(func(self.fit.dist, t, n, k, outside_support="limit"), dtype=float)
+        lam = self._lam()
+        logf = _log_tails(lam, self._fam, np.array([t]))[0][:, 0]
+        y = (logf.reshape((-1,) + (1,) * k.ndim) * k) * float(n)  # k n log F, one row per resample
+        vals = np.exp(y) if what == "integrity" else -np.expm1(y)
         alpha = 1.0 - level
         q = np.quantile(vals, [alpha / 2, 1 - alpha / 2], axis=0)
-        return BootstrapProbability(what=what, threshold=float(threshold), n=float(n), area_factor=k,
+        return BootstrapProbability(what=what, threshold=t, n=float(n), area_factor=k,
                                     estimate=est, low=q[0], high=q[1], values=vals,
                                     confidence_level=level)
 
@@ -830,8 +840,10 @@ class MaximumMixture(rv_continuous):
 
     def _rvs(self, size=None, random_state=None):
         size = () if size is None else size
-        comp = random_state.integers(0, self.n_components, size=size)
-        v = random_state.random(size=size)
+        # uniform() exists on both numpy.random.Generator and RandomState
+        pick = np.asarray(random_state.uniform(size=size)) * self.n_components
+        comp = np.minimum(pick.astype(np.int64), self.n_components - 1)
+        v = random_state.uniform(size=size)
         flat_c = np.ravel(comp)
         t = np.log(np.ravel(v)) / self._n
         out = _quantiles(self._lam[flat_c], self._family, np.exp(t)[:, None], (-np.expm1(t))[:, None])
