@@ -584,6 +584,80 @@ def gof_report(data, *fits_or_dists, names: Sequence[str] | None = None, n_resam
 _POSITIVE_FAMILIES = ("lognorm", "weibull_min", "gamma")
 
 
+def _gev_lmoment_start(x: np.ndarray) -> tuple[float, float, float] | None:
+    """GEV (c, loc, scale) from the sample L-moments, scipy's sign of c.
+
+    Hosking, Wallis & Wood (1985) approximation of the shape,
+    c = 7.8590 z + 2.9554 z², z = 2 / (3 + t3) − ln 2 / ln 3, then the scale and location
+    from l2 and l1 in closed form.
+    """
+    n = x.size
+    if n < 3:
+        return None
+    i = np.arange(n, dtype=float)
+    b0 = float(np.mean(x))
+    b1 = float(np.sum(i * x) / (n * (n - 1)))
+    b2 = float(np.sum(i * (i - 1) * x) / (n * (n - 1) * (n - 2)))
+    l2 = 2 * b1 - b0
+    if not l2 > 0:
+        return None
+    t3 = (6 * b2 - 6 * b1 + b0) / l2
+    z = 2.0 / (3.0 + t3) - math.log(2.0) / math.log(3.0)
+    c = 7.8590 * z + 2.9554 * z * z
+    if abs(c) < 1e-6:
+        scale = l2 / math.log(2.0)
+        return 0.0, b0 - 0.5772156649015329 * scale, scale
+    g = math.gamma(1.0 + c)
+    scale = l2 * c / (g * (1.0 - 2.0 ** (-c)))
+    return c, b0 - scale * (1.0 - g) / c, scale
+
+
+def _starts(name: str, x: np.ndarray, loc_fixed: bool) -> list[tuple | None]:
+    """Starting values for scipy's maximum likelihood (None: scipy's own start)."""
+    starts: list[tuple | None] = [None]
+    if name == "genextreme":
+        st = _gev_lmoment_start(x)
+        if st is not None:
+            starts.append(st)
+        loc, scale = stats.gumbel_r.fit(x)
+        starts.append((0.0, loc, scale))
+    elif name == "weibull_min" and loc_fixed:
+        # the log of a Weibull variable is Gumbel-distributed: shape ~ pi / (sqrt 6 sd(log x))
+        sd = float(np.std(np.log(x)))
+        if sd > 0:
+            starts.append((math.pi / math.sqrt(6.0) / sd,))
+    return starts
+
+
+def _mle(gen, x: np.ndarray, starts: list[tuple | None], fixed: dict[str, float]):
+    """scipy maximum likelihood from each start; the fit with the largest log-likelihood."""
+    best, best_ll, errors = None, -math.inf, []
+    for start in starts:
+        try:
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore", RuntimeWarning)
+                if start is None:
+                    par = gen.fit(x, **fixed)
+                elif len(start) == gen.numargs:
+                    par = gen.fit(x, *start, **fixed)
+                else:
+                    shapes, (loc, scale) = start[: gen.numargs], start[gen.numargs:]
+                    kw = {"loc": loc, "scale": scale} if not fixed else {"scale": scale}
+                    par = gen.fit(x, *shapes, **kw, **fixed)
+                if not np.all(np.isfinite(par)):
+                    raise ValueError(f"non-finite parameters {par}")
+                d = gen(*par)
+                ll = float(np.sum(d.logpdf(x)))
+        except Exception as exc:
+            errors.append(f"{type(exc).__name__}: {exc}")
+            continue
+        if best is None or ll > best_ll:
+            best, best_ll = d, ll
+    if best is None:
+        raise ValueError(f"{gen.name} maximum likelihood failed from every start: {'; '.join(errors)}")
+    return best
+
+
 def _fit_family(name: str, x: np.ndarray, gld_method: str) -> _Model:
     """Fit one family to sorted ``x``; raises on failure."""
     if name in ("gld_rs", "gld_fkml"):
@@ -601,29 +675,13 @@ def _fit_family(name: str, x: np.ndarray, gld_method: str) -> _Model:
     k = gen.numargs + 2 - len(fixed)
 
     def refit(sample: np.ndarray):
-        kw = dict(fixed)
-        if name == "lognorm" and "floc" in kw:
+        if name == "lognorm" and fixed:
             # closed-form maximum likelihood of the two-parameter lognormal
             if np.any(sample <= 0):
                 raise ValueError("lognormal with loc=0 needs positive data")
             ls = np.log(sample)
             return gen(float(np.std(ls)), 0.0, float(np.exp(np.mean(ls))))
-        if name == "weibull_min" and "floc" in kw:
-            # shape start from the spread of log x (the log of a Weibull variable is Gumbel)
-            ls = np.log(sample)
-            sd = float(np.std(ls))
-            kw_start = (math.pi / math.sqrt(6.0) / sd,) if sd > 0 else ()
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", RuntimeWarning)
-                par = gen.fit(sample, *kw_start, **kw)
-        else:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", RuntimeWarning)
-                par = gen.fit(sample, **kw)
-        d = gen(*par)
-        if not np.all(np.isfinite(par)):
-            raise ValueError(f"{name} fit returned non-finite parameters {par}")
-        return d
+        return _mle(gen, sample, _starts(name, sample, bool(fixed)), fixed)
 
     dist = refit(x)
     method = "mle (loc = 0 fixed)" if fixed else "mle"
