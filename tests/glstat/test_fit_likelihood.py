@@ -1,5 +1,7 @@
 """ML, MPS and starship fits: recovery, feasibility, selection, scipy integration."""
 
+import warnings
+
 import numpy as np
 import pytest
 from scipy import optimize, stats
@@ -67,3 +69,115 @@ def test_scipy_fit_method_and_scipy_stats_fit():
                     optimizer=_seeded_de)
     assert res.success
     assert abs(res.params.lam3 - 0.2) < 0.3
+
+
+# --- compiled BFGS: analytic gradient, quality against Nelder-Mead, support boundary ------------
+_GRAD_CASES = [
+    # (family, theta = (lambda1, log scale, lambda3, lambda4)) of the standardized sample
+    (1, (0.0, 0.0, 0.3, -0.05)),
+    (1, (0.0, 0.0, -0.2, 0.1)),
+    (1, (0.0, 0.0, 0.0, 0.0)),
+    (0, (-0.3, np.log(0.5), -0.1, -0.15)),  # RS region 4
+    (0, (0.0, np.log(6.0), 0.1, 0.2)),  # RS region 3
+]
+
+
+@pytest.mark.parametrize("kind", [0, 1, 2], ids=["mle", "mps", "starship"])
+@pytest.mark.parametrize(("fam", "theta"), _GRAD_CASES)
+def test_objective_gradient_matches_differences(kind, fam, theta):
+    from glstat.fitting import _likelihood as L
+
+    x = np.sort(stats.gamma(3).rvs(size=200, random_state=np.random.default_rng(0)))
+    q25, q50, q75 = np.quantile(x, [0.25, 0.5, 0.75])
+    z = (x - q50) / (q75 - q25)
+    th = np.array(theta, dtype=float)
+    n = z.size
+    w = np.zeros(n)
+    dw = np.empty((n, 4))
+    g = np.empty(4)
+    y = np.empty(n)
+    f = L.objective_grad(kind, fam, th, z, w, dw, g, y)
+    assert np.isfinite(f)
+    # the value is that of the objective without gradient
+    assert f == pytest.approx(L.objective(kind, fam, th[2], th[3], th[0], np.exp(th[1]), z, np.zeros(n)),
+                              rel=1e-12, abs=1e-12)
+    h = 1e-6
+    num = np.empty(4)
+    for j in range(4):
+        tp, tm = th.copy(), th.copy()
+        tp[j] += h
+        tm[j] -= h
+        fp = L.objective_grad(kind, fam, tp, z, w.copy(), dw.copy(), np.empty(4), y)
+        fm = L.objective_grad(kind, fam, tm, z, w.copy(), dw.copy(), np.empty(4), y)
+        num[j] = (fp - fm) / (2 * h)
+    np.testing.assert_allclose(g, num, rtol=0, atol=2e-6 * max(1.0, np.max(np.abs(g))))
+
+
+_QUALITY_DATA = {
+    "fkml": lambda rng: GLD(2.0, 0.5, 0.15, 0.05, param="fkml").rvs(size=400, random_state=rng),
+    "gamma": lambda rng: stats.gamma(3).rvs(size=400, random_state=rng),
+    "t5": lambda rng: stats.t(5).rvs(size=400, random_state=rng),
+    "uniform": lambda rng: stats.uniform().rvs(size=400, random_state=rng),
+}
+
+
+@pytest.mark.parametrize("data", sorted(_QUALITY_DATA))
+@pytest.mark.parametrize(("param", "method"), [("rs", "mle"), ("fkml", "mle"), ("fkml", "mps"),
+                                               ("rs", "starship")])
+def test_bfgs_at_least_as_good_as_nelder_mead(data, param, method):
+    x = _QUALITY_DATA[data](np.random.default_rng(11))
+    f = fit(x, param, method)
+    with warnings.catch_warnings():
+        # Nelder-Mead may stop at its iteration limit (uniform data); its best point counts
+        warnings.simplefilter("ignore", glstat.ConvergenceWarning)
+        f_nm = fit(x, param, method, optimizer="nelder-mead")
+    name = next(iter(f.statistics))
+    # objective units: total log-likelihood (mle); per point otherwise
+    tol = 1e-6 if method == "mle" else 1e-6 / x.size
+    assert f.statistics[name] <= f_nm.statistics[name] + tol
+    assert f.options["optimizer"] == "bfgs"
+    lo, hi = f.dist.support()
+    assert lo < x.min() and hi > x.max()
+
+
+def test_ml_on_the_support_boundary():
+    # uniform data: the likelihood grows as the finite support shrinks onto the data, so the
+    # optimum lies on the boundary; the end points are pinned just outside the sample
+    x = stats.uniform(2.0, 3.0).rvs(size=500, random_state=np.random.default_rng(8))
+    # RS: the two best starts lead to an interior local optimum (lambda3, lambda4 < 1, density
+    # 0 at both ends); four starts reach the boundary optimum (lambda3, lambda4 ~ 2.4)
+    for param, starts in (("rs", 4), ("fkml", 2)):
+        f = fit(x, param, "mle", starts=starts)
+        lo, hi = f.dist.support()
+        assert 0 < x.min() - lo < 1e-6 and 0 < hi - x.max() < 1e-6
+        ll = np.sum(f.dist.logpdf(x))
+        assert -f.statistics["neg_loglik"] == pytest.approx(ll, rel=1e-9, abs=1e-9)
+        # at least the likelihood of the true uniform on the sample range
+        assert ll >= -x.size * np.log(x.max() - x.min()) - 0.5 * x.size * 0.05
+
+
+def test_optimizer_option_checked():
+    with pytest.raises(ValueError, match="optimizer"):
+        fit(np.arange(20.0), method="mle", optimizer="newton")
+    with pytest.raises(ValueError, match="positive integers"):
+        fit(np.arange(20.0), method="mps", starts=0)
+
+
+# --- scipy's generic fit paths start from the covering percentile fit ----------------------------
+def test_fitstart_covers_data_and_feeds_generic_fit():
+    x = stats.gamma(3, loc=1.0).rvs(size=300, random_state=np.random.default_rng(21))
+    for dist in (glstat.gld_rs, glstat.gld_fkml):
+        lam3, lam4, loc, scale = dist._fitstart(x)
+        lo, hi = dist.support(lam3, lam4, loc=loc, scale=scale)
+        assert lo < x.min() and hi > x.max()
+        # the start is the percentile fit up to the widening: same median
+        assert dist.median(lam3, lam4, loc=loc, scale=scale) == pytest.approx(
+            fit(x, "rs" if dist is glstat.gld_rs else "fkml", "percentiles").dist.median(), rel=1e-9)
+    # a fixed parameter sends gld_fkml.fit to scipy's generic MLE, which starts from _fitstart
+    lam3, lam4, loc, scale = glstat.gld_fkml.fit(x, fscale=1.0)
+    assert scale == 1.0
+    g = glstat.gld_fkml(lam3, lam4, loc=loc, scale=scale)
+    assert np.all(np.isfinite(g.logpdf(x)))
+    # constant data: no percentile fit, scipy's default start with normal-like shapes
+    start = glstat.gld_rs._fitstart(np.ones(10))
+    assert start[:2] == (0.1349, 0.1349)
