@@ -183,3 +183,81 @@ def test_out_of_reach_names_alternatives():
 def test_exported():
     for name in ("fit", "fit_moments", "fit_percentiles", "fit_lmoments", "fit_batch", "GLDFit"):
         assert hasattr(glstat, name)
+
+
+def test_rs_moment_root_with_large_lambda3():
+    # skewness 2.8, kurtosis 16.34: the RS root has lambda3 ~ 97.5, lambda4 ~ 0.240 (located
+    # independently by minimising the moment residual over region 3 from random starts); the
+    # seed grid must reach such shapes
+    f = fit_moments(0.0, 1.0, 2.8, 16.34)
+    sol = f.solutions[f.solutions.valid & f.solutions.converged]
+    assert ((sol.lambda3 > 90) & (sol.lambda3 < 105) & (abs(sol.lambda4 - 0.2403) < 0.01)).any()
+    np.testing.assert_allclose(f.dist.stats("mvsk"), [0.0, 1.0, 2.8, 13.34], rtol=1e-8, atol=1e-10)
+
+
+def _hint_cases():
+    """(method, stats) on a grid of shape statistics, including pairs out of every reach."""
+    cases = []
+    for sk in (0.0, 0.8, 1.6, 2.4, 3.2):
+        for excess in (0.02, 0.3, 1.0, 4.0, 12.0):
+            cases.append(("moments", (0.0, 1.0, sk, 1.0 + sk * sk + excess)))
+    for r3 in (0.1, 0.4, 1.0):
+        for r4 in (0.05, 0.3, 0.5, 0.7, 0.95):
+            cases.append(("percentiles", (0.0, 1.0, r3, r4)))
+    for t3 in (0.0, 0.5, 0.9):
+        lower = (5 * t3 * t3 - 1) / 4  # Hosking's bound
+        for t4 in (lower + 0.001, 0.2, 0.77214407, 0.95):
+            if t4 > lower:
+                cases.append(("lmoments", (0.0, 1.0, t3, t4)))
+    return cases
+
+
+_FIT_FROM = {"moments": lambda st, p: fit_moments(*st, param=p),
+             "percentiles": lambda st, p: fit_percentiles(st, param=p),
+             "lmoments": lambda st, p: fit_lmoments(*st, param=p)}
+
+
+def test_reach_hint_is_correct():
+    # a scan of (skewness, kurtosis) found no pair that FKML moments reach and RS moments do not
+    # (up to skewness 6), so the hint is checked on the messages that occur: whenever a FitError
+    # says the other parameterisation reaches the statistics, that fit succeeds, and whenever it
+    # does not say so, that fit fails too
+    seen = {"hint": 0, "no hint": 0}
+    for method, st in _hint_cases():
+        for param, other in (("rs", "fkml"), ("fkml", "rs")):
+            try:
+                _FIT_FROM[method](st, param)
+            except FitError as e:
+                msg = str(e)
+                assert method in msg and "other options" in msg
+                if f"param='{other}' with method='{method}' reaches them" in msg:
+                    seen["hint"] += 1
+                    alt = _FIT_FROM[method](st, other)
+                    assert alt.dist is not None
+                else:
+                    seen["no hint"] += 1
+                    with pytest.raises(FitError):
+                        _FIT_FROM[method](st, other)
+    # both kinds of message occur in the scan (the hint: L-moments t3 = 0.9, t4 = 0.772, whose
+    # FKML root has lambda4 ~ 1300, beyond the seed grid, while the RS root is found)
+    assert seen["hint"] >= 1 and seen["no hint"] >= 1
+
+
+def test_published_gld_quartile_and_density():
+    # Karian & Dudewicz (2000), Fitting Statistical Distributions, p. 10, as quoted in the
+    # documentation of the R package lmomco (pdfgld): the RS GLD (0.0305, 1.3673, 0.004581,
+    # 0.01020) has first quartile 0.028013 and density 43.04 there. Its percentile statistics
+    # are fitted back (all roots) and the published values hold for the fitted distribution.
+    g = GLD(0.0305, 1.3673, 0.004581, 0.01020)
+    q = g.ppf([0.1, 0.25, 0.5, 0.75, 0.9])
+    f = fit_percentiles(quantiles=q)
+    assert _has_root(f, g.lambdas, rtol=1e-6)
+    checked = 0
+    for _, r in f.solutions[f.solutions.valid].iterrows():
+        h = GLD(r.lambda1, r.lambda2, r.lambda3, r.lambda4)
+        if np.allclose(h.ppf(P), g.ppf(P), rtol=0, atol=1e-9):
+            # printed to 5 significant digits (quartile) and 4 (density)
+            assert float(h.ppf(0.25)) == pytest.approx(0.028013, abs=5e-7)
+            assert float(h.pdf(0.028013)) == pytest.approx(43.04, abs=0.005)
+            checked += 1
+    assert checked >= 1
