@@ -21,7 +21,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._ef import EPS, dd_root, expm1mx, log1mp_m, reciprocal_dd, two_prod, two_sum
+from ._ef import EPS, dd_root, expm1mx, fast_two_sum, log1mp_m, reciprocal_dd, two_prod, two_sum
 
 RS = 0
 FKML = 1
@@ -155,11 +155,12 @@ def _lower_end_offset(case, a, y):
 
 
 @njit(cache=True)
-def _residual(case, a, b, y, z_hi, z_lo, t):
+def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     """Residual R(t) = Q(e^t) - y (offset form), dR/dt, rounding noise of R, contraction.
 
     The contraction is |dS/dt| / |dT/dt| for the split Q = T + S into the dominant term T
-    (inverted in closed form by `_fixed_point`) and the rest S.
+    (inverted in closed form by `_fixed_point`) and the rest S. ``y_lo`` is the low part
+    of y as a double-double (the offset forms carry it in z already).
     """
     p = math.exp(t)
     l1 = math.log1p(-p)
@@ -183,14 +184,14 @@ def _residual(case, a, b, y, z_hi, z_lo, t):
     if case == _RINF:
         emb = math.expm1(b * l1)
         ema = math.expm1(a * t)
-        r = (emb - ema) - y
+        r = ((emb - ema) - y) - y_lo
         da = -a * math.exp(a * t)
         db = -b * p * math.exp((b - 1.0) * l1)
         return r, da + db, EPS * (abs(emb) + abs(ema) + abs(y)), abs(db) / da
     if case == _R3D:
         ema = math.expm1(a * t)
         h = -math.expm1(b * l1) if b != 0.0 else 0.0
-        r = (ema + h) - y
+        r = ((ema + h) - y) - y_lo
         pa = ema + 1.0
         dh = b * p * math.exp((b - 1.0) * l1)
         da = a * pa
@@ -199,7 +200,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t):
     if case == _FPD:
         g = math.expm1(a * t) / a
         h = -math.expm1(b * l1) / b if b != 0.0 else -l1
-        r = (g + h) - y
+        r = ((g + h) - y) - y_lo
         pa = math.exp(a * t)
         dh = p * math.exp((b - 1.0) * l1)
         k = dh / pa if pa / a >= h else pa / dh
@@ -215,7 +216,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t):
     # _FINF
     g = _em(a, t)
     h = -math.expm1(b * l1) / b if b != 0.0 else -l1
-    r = (g + h) - y
+    r = ((g + h) - y) - y_lo
     dg = math.exp(a * t)
     dh = p * math.exp((b - 1.0) * l1)
     return r, dg + dh, EPS * (abs(g) + h + abs(y)), dh / dg
@@ -227,7 +228,7 @@ def _from_p(p):
 
 
 @njit(cache=True)
-def _fixed_point(case, a, b, y, z_hi, z_lo, t):
+def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     """One step p <- T^{-1}(target - S(p)) through the dominant term; returns log p.
 
     With ``t = -inf`` (S = 0) it gives the initial guess. Intermediate sums are carried
@@ -255,6 +256,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t):
     if case == _RINF:
         emb = math.expm1(b * l1)
         w_hi, w_lo = two_sum(-y, emb)
+        w_lo -= y_lo
         b_hi, b_e = two_sum(1.0, w_hi)
         if b_hi <= 0.0:
             return math.nan, math.nan
@@ -277,6 +279,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t):
     # _FINF
     h = -math.expm1(b * l1) / b if b != 0.0 else -l1
     w_hi, w_lo = two_sum(y, -h)
+    w_lo += y_lo
     if a == 0.0:
         return math.exp(w_hi) * (1.0 + w_lo), w_hi + w_lo
     m_hi, m_lo = two_prod(a, w_hi)
@@ -308,15 +311,17 @@ def _initial_guess(case, a, b, y, z_hi, z_lo):
 
 
 @njit(cache=True)
-def solve_lower(fam, a, b, y):
+def solve_lower(fam, a, b, y, y_lo=0.0):
     """Lower-tail inversion: p in (0, 1/2] with Q(p) = y, for y <= median.
 
-    Returns (p, log p, status): status 0 when converged, 1 when the iteration limit was
-    reached (the best estimate is returned). y at or below the lower end point gives
-    (0, -inf, 0).
+    ``y_lo`` is an optional low part of y (y + y_lo as a double-double), which matters next
+    to a finite end point. Returns (p, log p, status): status 0 when converged, 1 when the
+    iteration limit was reached (the best estimate is returned). y at or below the lower
+    end point gives (0, -inf, 0).
     """
     case = _case(fam, a, b)
     z_hi, z_lo = _lower_end_offset(case, a, y)
+    z_hi, z_lo = two_sum(z_hi, z_lo + y_lo)
     if case in (_R3A, _R3Z, _R4Z, _RMX, _FPOS) and z_hi <= 0.0:
         return 0.0, -math.inf, OK
     if case == _R3Z:
@@ -339,7 +344,7 @@ def solve_lower(fam, a, b, y):
     status = NOCONV
     k = 1.0
     for _ in range(MAXIT):
-        r, dr, noise, k = _residual(rcase, a, b, y, z_hi, z_lo, t)
+        r, dr, noise, k = _residual(rcase, a, b, y, z_hi, z_lo, t, y_lo)
         if r == 0.0:
             status = OK
             break
@@ -361,9 +366,16 @@ def solve_lower(fam, a, b, y):
             break
         t = t_new
     p = math.exp(t)
+    if status == OK and k >= 0.5 and t > -700.0:
+        # no contracting closed-form step: resolve p below one ulp of t by a last Newton
+        # correction applied to p = e^t itself (the residual used this very p)
+        r, dr, _, _ = _residual(rcase, a, b, y, z_hi, z_lo, t, y_lo)
+        step = r / dr
+        if abs(step) < 1e-8:
+            p = p * (1.0 - step)
     if status == OK and k < 0.5:
         for _ in range(3):
-            p_new, t_new = _fixed_point(case, a, b, y, z_hi, z_lo, t)
+            p_new, t_new = _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo)
             if not (t_new == t_new) or t_new > -LN2 + 1e-12:
                 break
             done = abs(t_new - t) <= 2.0 * EPS * max(1.0, abs(t))
@@ -381,14 +393,27 @@ def median_std(fam, a, b):
 
 
 @njit(cache=True)
-def _invert(fam, a, b, y):
+def _invert(fam, a, b, y, y_lo=0.0):
     """Return (tail prob, log tail prob, upper?, status, a_eff, b_eff) for one point."""
     med = median_std(fam, a, b)
     if y <= med:
-        p, lp, st = solve_lower(fam, a, b, y)
+        p, lp, st = solve_lower(fam, a, b, y, y_lo)
         return p, lp, False, st, a, b
-    q, lq, st = solve_lower(fam, b, a, -y)
+    q, lq, st = solve_lower(fam, b, a, -y, -y_lo)
     return q, lq, True, st, b, a
+
+
+@njit(cache=True, inline="always")
+def standardize(x, loc, inv_scale):
+    """(x - loc) * inv_scale as a double-double (hi, lo): exact up to the last product's
+    rounding, so that points next to a finite end point keep their distance to it."""
+    if loc == 0.0 and inv_scale == 1.0:
+        return x, 0.0
+    if not (x - loc == x - loc) or abs(x) == math.inf:
+        return (x - loc) * inv_scale, 0.0
+    d_hi, d_lo = two_sum(x, -loc)
+    y_hi, e = two_prod(d_hi, inv_scale)
+    return fast_two_sum(y_hi, e + d_lo * inv_scale)
 
 
 # what = 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf
@@ -408,7 +433,7 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
     for i in range(n):
         ai = a[i] if na > 1 else a[0]
         bi = b[i] if nb > 1 else b[0]
-        yi = (y[i] - loc) * inv_scale if (loc != 0.0 or inv_scale != 1.0) else y[i]
+        yi, yi_lo = standardize(y[i], loc, inv_scale)
         if yi != yi or ai != ai or bi != bi:
             out[i] = math.nan
             continue
@@ -427,7 +452,7 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
             else:
                 out[i] = -math.inf
             continue
-        p, lp, upper, st, ae, be = _invert(fam, ai, bi, yi)
+        p, lp, upper, st, ae, be = _invert(fam, ai, bi, yi, yi_lo)
         status[i] = st
         if what <= 3:
             # 0 cdf, 1 sf, 2 logcdf, 3 logsf; p is the smaller tail

@@ -25,6 +25,7 @@ from ._gld import (
     qprime_lower,
     rs_sign,
     solve_lower,
+    standardize,
 )
 
 T_MIN = -36.0
@@ -196,10 +197,10 @@ def _lookup(y, ys, payload):
 
 
 @njit(cache=True, inline="always")
-def _lookup2(y, d_ys, d_pl, o_ys, o_pl, y0):
+def _lookup2(y, y_lo, d_ys, d_pl, o_ys, o_pl, y0):
     """t from the offset table near the end point, else from the direct one."""
     if y0 != 0.0 and abs(y - y0) < abs(y):
-        t = _lookup(y - y0, o_ys, o_pl)
+        t = _lookup((y - y0) + y_lo, o_ys, o_pl)
         if t == t:
             return t
     return _lookup(y, d_ys, d_pl)
@@ -215,17 +216,17 @@ def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0)
     uo_ys, uo_pl, u_y0 = build_table(fam, b, a, True)
     med = q_lower(fam, a, b, -LN2, -LN2)
     for i in range(y.shape[0]):
-        yi = (y[i] - loc) * inv_scale if (loc != 0.0 or inv_scale != 1.0) else y[i]
+        yi, yi_lo = standardize(y[i], loc, inv_scale)
         if yi != yi:
             out[i] = math.nan
             continue
         upper = yi > med
         if upper:
-            t = _lookup2(-yi, u_ys, u_pl, uo_ys, uo_pl, u_y0)
+            t = _lookup2(-yi, -yi_lo, u_ys, u_pl, uo_ys, uo_pl, u_y0)
             ae = b
             be = a
         else:
-            t = _lookup2(yi, l_ys, l_pl, lo_ys, lo_pl, l_y0)
+            t = _lookup2(yi, yi_lo, l_ys, l_pl, lo_ys, lo_pl, l_y0)
             ae = a
             be = b
         if t == t:
@@ -235,7 +236,8 @@ def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0)
                 p = 0.0
                 t = -math.inf
             else:
-                p, t, st = solve_lower(fam, ae, be, -yi if upper else yi)
+                p, t, st = solve_lower(fam, ae, be, -yi if upper else yi,
+                                       -yi_lo if upper else yi_lo)
                 status[i] = st
         if what <= 3:
             want_small = (what == 0 or what == 2) != upper

@@ -207,3 +207,27 @@ def test_entropy_of_logistic_and_uniform():
     assert glstat.gld_fkml.entropy(0.0, 0.0) == pytest.approx(2.0, rel=1e-14)  # logistic: 2
     # RS(1, 1) with lambda2 = 2 is U(0, 1); entropy 0; with scale 1 it is U(-1, 1): log 2
     assert glstat.gld_rs.entropy(1.0, 1.0) == pytest.approx(np.log(2.0), rel=1e-14)
+
+
+@pytest.mark.parametrize("lambdas,param", [
+    ((0.0, 0.197451, 0.134912, 0.134912), "rs"),  # bounded both sides, end points +-1/lambda2
+    ((3.7, 0.31, 0.25, 2.0), "rs"),
+    ((-1.3, 2.9, 0.4, 0.7), "fkml"),  # lower end lambda1 - 1/(lambda2 lambda3)
+])
+def test_gld_tails_next_to_finite_end_points_with_location_and_scale(lambdas, param):
+    """GLD(l1, l2, l3, l4) forms (x - l1)|l2| as a double-double, so tail probabilities
+    within a few ulps of a finite end point keep full relative accuracy. Reference: Q(u) = x
+    solved by mpmath with the exact lambdas (40 digits)."""
+    g = glstat.GLD(*lambdas, param=param)
+    l1, l2, l3, l4 = (mp.mpf(v) for v in lambdas)
+    fam = RS if param == "rs" else FKML
+    lo, hi = g.support()
+    with mp.workdps(40):
+        for x in [np.nextafter(lo, np.inf) + k * abs(lo) * 4e-16 for k in (0, 3, 50, 10**6)] + [
+                np.nextafter(hi, -np.inf) - k * abs(hi) * 4e-16 for k in (0, 3, 50, 10**6)]:
+            y = (mp.mpf(x) - l1) * abs(l2)
+            p, upper = tail_probability(fam, lambdas[2], lambdas[3], y)
+            if p == 0:
+                continue
+            got = g.sf(x) if upper else g.cdf(x)
+            assert abs(got - p) <= 1e-13 * p, (x, got, float(p))
