@@ -621,7 +621,8 @@ class BootstrapFit:
         Parameters
         ----------
         threshold : float
-            Pressure level (units of the data), inside the support of every fit.
+            Pressure level (units of the data); outside the support of a fit, that fit gives
+            the limiting probabilities (integrity 0 below, 1 above).
         n : float
             Number of points of the analysed area (>= 1).
         area_factor : array_like
