@@ -13,7 +13,7 @@ EPS = 2.220446049250313e-16
 _SPLITTER = 134217729.0  # 2**27 + 1
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def two_sum(a, b):
     """Return (s, e) with s = fl(a + b) and a + b = s + e exactly."""
     s = a + b
@@ -22,7 +22,7 @@ def two_sum(a, b):
     return s, e
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def fast_two_sum(a, b):
     """Like two_sum, for |a| >= |b|."""
     s = a + b
@@ -30,14 +30,14 @@ def fast_two_sum(a, b):
     return s, e
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _split(a):
     c = _SPLITTER * a
     hi = c - (c - a)
     return hi, a - hi
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def two_prod(a, b):
     """Return (p, e) with p = fl(a * b) and a * b = p + e exactly (no overflow assumed)."""
     p = a * b
@@ -49,7 +49,7 @@ def two_prod(a, b):
     return p, e
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def reciprocal_dd(a):
     """1/a as a double-double (hi, lo)."""
     hi = 1.0 / a
@@ -58,7 +58,7 @@ def reciprocal_dd(a):
     return hi, lo
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def dd_root(s, t, a):
     """(s + t) ** (1/a) and its logarithm, for s > 0, |t| <= ulp(s), a != 0.
 
@@ -76,7 +76,7 @@ def dd_root(s, t, a):
     return base * math.exp(corr), logv
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def expm1mx(x):
     """expm1(x) - x without cancellation."""
     if abs(x) < 0.5:
@@ -91,7 +91,7 @@ def expm1mx(x):
     return math.expm1(x) - x
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def log1mp_m(p):
     """-log1p(-p) - p = p**2/2 + p**3/3 + ... without cancellation, 0 <= p < 1."""
     if p < 0.125:

@@ -46,13 +46,13 @@ NOCONV = 1
 LN2 = math.log(2.0)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def rs_sign(a, b):
     """Sign of lambda2 for a valid RS GLD with shapes (a, b)."""
     return 1.0 if (a >= 0.0 and b >= 0.0) else -1.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _case(fam, a, b):
     if fam == RS:
         if a >= 0.0 and b >= 0.0:
@@ -65,7 +65,7 @@ def _case(fam, a, b):
     return _FPOS if a > 0.0 else _FINF
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _em(lam, logx):
     """(x**lam - 1)/lam from log(x), with the limit log(x) at lam = 0."""
     if lam == 0.0:
@@ -73,7 +73,7 @@ def _em(lam, logx):
     return math.expm1(lam * logx) / lam
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _xm1(lam, logx):
     """x**lam - 1 from log(x), exact 0 at lam = 0 (also for x = 0)."""
     if lam == 0.0:
@@ -81,7 +81,7 @@ def _xm1(lam, logx):
     return math.expm1(lam * logx)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _pw(e, logx):
     """x**e from log(x), with 0**0 = 1."""
     if e == 0.0:
@@ -89,7 +89,7 @@ def _pw(e, logx):
     return math.exp(e * logx)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def q_lower(fam, a, b, t, l1):
     """Standardized Q(p) from t = log(p) and l1 = log1p(-p)."""
     if fam == RS:
@@ -98,7 +98,7 @@ def q_lower(fam, a, b, t, l1):
     return _em(a, t) - _em(b, l1)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def qprime_lower(fam, a, b, t, l1):
     """Standardized Q'(p) from t = log(p) and l1 = log1p(-p) (> 0 for valid shapes)."""
     if fam == FKML:
@@ -113,7 +113,7 @@ def qprime_lower(fam, a, b, t, l1):
     return c * math.expm1(-(c + 1.0) * l1) + (c - a * _pw(a - 1.0, t))
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def log_qprime_lower(fam, a, b, t, l1):
     """log Q'(p), finite even where Q'(p) overflows."""
     if fam == FKML:
@@ -140,7 +140,7 @@ def log_qprime_lower(fam, a, b, t, l1):
     return hi + math.log1p(math.exp(lo - hi))
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _lower_end_offset(case, a, y):
     """z = y - Q(0) as a double-double; Q(0) is the finite lower end point."""
     if case == _R3A:
@@ -154,7 +154,7 @@ def _lower_end_offset(case, a, y):
     return y, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     """Residual R(t) = Q(e^t) - y (offset form), dR/dt, rounding noise of R, contraction.
 
@@ -222,12 +222,12 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     return r, dg + dh, EPS * (abs(g) + h + abs(y)), dh / dg
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _from_p(p):
     return p, math.log(p)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     """One step p <- T^{-1}(target - S(p)) through the dominant term; returns log p.
 
@@ -290,7 +290,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     return dd_root(b_hi, b_e + m_lo, a)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _initial_guess(case, a, b, y, z_hi, z_lo):
     t = _fixed_point(case, a, b, y, z_hi, z_lo, -math.inf)[1]
     if case == _R3A and b > 0.0:
@@ -310,7 +310,7 @@ def _initial_guess(case, a, b, y, z_hi, z_lo):
     return t
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def solve_lower(fam, a, b, y, y_lo=0.0):
     """Lower-tail inversion: p in (0, 1/2] with Q(p) = y, for y <= median.
 
@@ -386,13 +386,13 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
     return p, t, status
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def median_std(fam, a, b):
     """Standardized median Q(1/2)."""
     return q_lower(fam, a, b, -LN2, -LN2)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _invert(fam, a, b, y, y_lo=0.0):
     """Return (tail prob, log tail prob, upper?, status, a_eff, b_eff) for one point."""
     med = median_std(fam, a, b)
@@ -403,7 +403,7 @@ def _invert(fam, a, b, y, y_lo=0.0):
     return q, lq, True, st, b, a
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def standardize(x, loc, inv_scale):
     """(x - loc) * inv_scale as a double-double (hi, lo): exact up to the last product's
     rounding, so that points next to a finite end point keep their distance to it."""
@@ -417,7 +417,7 @@ def standardize(x, loc, inv_scale):
 
 
 # what = 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
     """Evaluate cdf-type quantities at standardized points y (1-D arrays).
 
@@ -471,7 +471,7 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
 
 
 # what = 0 ppf(u), 1 isf(q)
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def quantile_kernel(u, a, b, fam, what, out, loc=0.0, inv_scale=1.0):
     """Q(u) (what=0) or Q(1-u) (what=1), as ``loc + Q_std / inv_scale``; u outside [0, 1]: NaN."""
     n = u.shape[0]
@@ -503,7 +503,7 @@ def quantile_kernel(u, a, b, fam, what, out, loc=0.0, inv_scale=1.0):
             out[i] = loc - q_lower(fam, bi, ai, t, l1) / inv_scale
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def support_kernel(a, b, fam, lo, hi):
     """Standardized support end points."""
     for i in range(a.shape[0]):

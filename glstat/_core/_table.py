@@ -36,7 +36,7 @@ MAX_SPLIT = 3
 TOL = 2e-15
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _qsecond_lower(fam, a, b, t, l1):
     """Standardized Q''(p) (only used to shape the interpolant; its accuracy is verified)."""
     if fam == FKML:
@@ -47,7 +47,7 @@ def _qsecond_lower(fam, a, b, t, l1):
     return s * (ta - tb)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _offset(fam, a, b):
     """Finite, exactly representable lower end point to tabulate from (0 if none)."""
     case = _case(fam, a, b)
@@ -58,7 +58,7 @@ def _offset(fam, a, b):
     return 0.0, 0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _value(fam, a, b, t, l1, case):
     """Q(e^t) minus the lower end point when ``case`` is an offset case, else Q(e^t)."""
     if case == 0:
@@ -66,7 +66,7 @@ def _value(fam, a, b, t, l1, case):
     return _residual(case, a, b, 0.0, 0.0, 0.0, t)[0]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _node(fam, a, b, t, case):
     """y(t) (offset form when ``case``), dt/dy and d2t/dy2 at t = log p."""
     p = math.exp(t)
@@ -79,7 +79,7 @@ def _node(fam, a, b, t, case):
     return y, 1.0 / g1, -g2 / (g1 * g1 * g1)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _hermite5(y, y0, y1, f0, f1, d0, d1, s0, s1):
     h = y1 - y0
     s = (y - y0) / h
@@ -95,7 +95,7 @@ def _hermite5(y, y0, y1, f0, f1, d0, d1, s0, s1):
     return h0 * f0 + (1.0 - h0) * f1 + h * (h1 * d0 + h4 * d1) + h * h * (h2 * s0 + h3 * s1)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _interval_ok(fam, a, b, case, t0, y0, d10, d20, t1, y1, d11, d21):
     """Check one interval at its midpoint: (interpolation ok, rounding ok)."""
     if not (y1 > y0) or not (math.isfinite(d10) and math.isfinite(d11)):
@@ -115,7 +115,7 @@ def _interval_ok(fam, a, b, case, t0, y0, d10, d20, t1, y1, d11, d21):
     return abs(th - tm) <= tol, cond <= tol
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def build_table(fam, a, b, use_offset):
     """Search keys y, node rows (t, dt/dy, d2t/dy2, valid) and the end-point offset.
 
@@ -172,7 +172,7 @@ def build_table(fam, a, b, use_offset):
     return ys[:m].copy(), pl[:m].copy(), y0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _lookup(y, ys, payload):
     """Interpolated t for y, or NaN when y is outside the verified table.
 
@@ -196,7 +196,7 @@ def _lookup(y, ys, payload):
                      payload[hi, 1], payload[lo, 2], payload[hi, 2])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _lookup2(y, y_lo, d_ys, d_pl, o_ys, o_pl, y0):
     """t from the offset table near the end point, else from the direct one."""
     if y0 != 0.0 and abs(y - y0) < abs(y):
@@ -206,7 +206,7 @@ def _lookup2(y, y_lo, d_ys, d_pl, o_ys, o_pl, y0):
     return _lookup(y, d_ys, d_pl)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
     """Same contract as ``_gld.invert_kernel`` for scalar shapes a, b and many points."""
     log_scale = math.log(inv_scale)

@@ -31,18 +31,18 @@ _LOGW = np.log(_H * np.pi * np.cosh(_TAU)) + _LOGU + _LOG1MU  # log(du/dtau * h)
 _CLOSED_FORM_RTOL = 1e-15
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _lbeta(x, y):
     return math.lgamma(x) + math.lgamma(y) - math.lgamma(x + y)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def moment_exists(a, b, k):
     """True when the k-th moment of the GLD with shapes (a, b) is finite."""
     return min(a, b) * k > -1.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def mean_std(fam, a, b):
     """Mean of the standardized GLD (requires min(a, b) > -1)."""
     if fam == RS:
@@ -50,7 +50,7 @@ def mean_std(fam, a, b):
     return (a - b) / ((1.0 + a) * (1.0 + b))
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _central_closed(fam, a, b, k, m):
     """Closed form E[(Y - m)^k] and the estimated relative error of the sum."""
     # Y - m = c0 + c1 U^a + c2 (1-U)^b
@@ -96,7 +96,7 @@ def _central_closed(fam, a, b, k, m):
     return total, 4.0 * 2.220446049250313e-16 * total_abs / abs(total)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _central_quad(fam, a, b, k, m, logu, log1mu, logw):
     """E[(Y - m)^k] by tanh-sinh quadrature of the quantile function (log space).
 
@@ -124,7 +124,7 @@ def _central_quad(fam, a, b, k, m, logu, log1mu, logw):
     return total, abs(total - coarse)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def central_moment(fam, a, b, k):
     """k-th central moment (k >= 2) of the standardized GLD; inf/NaN when it does not exist."""
     if not moment_exists(a, b, k):
@@ -139,7 +139,7 @@ def central_moment(fam, a, b, k):
     return val
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def mvsk_kernel(fam, a, b, out):
     """Mean, variance, skewness and excess kurtosis of the standardized GLD."""
     for i in range(a.shape[0]):
@@ -179,7 +179,7 @@ def mvsk_kernel(fam, a, b, out):
             out[i, 3] = math.inf if moment_exists(ai, bi, 3) else math.nan
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def raw_moment(fam, a, b, n):
     """E[Y^n] of the standardized GLD, from the mean and the central moments."""
     if n == 0:
@@ -195,7 +195,7 @@ def raw_moment(fam, a, b, n):
     return total
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _lmom_power(a, r):
     """int_0^1 u^a P*_{r-1}(u) du (shifted Legendre), stable for all a > -1."""
     num = 1.0
@@ -207,7 +207,7 @@ def _lmom_power(a, r):
     return num / den
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _lmom_log_power(a, r):
     """int_0^1 (u^a - 1)/a P*_{r-1}(u) du for r >= 2; the log limit at a = 0."""
     num = 1.0
@@ -219,7 +219,7 @@ def _lmom_log_power(a, r):
     return num / den
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def lmoments_kernel(fam, a, b, rmax, out):
     """L-moments lambda_1..lambda_rmax of the standardized GLD (NaN if the mean is infinite)."""
     for i in range(a.shape[0]):
@@ -239,7 +239,7 @@ def lmoments_kernel(fam, a, b, rmax, out):
             out[i, r - 1] = val
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def entropy_kernel(fam, a, b, out):
     """Differential entropy int_0^1 log Q'(u) du of the standardized GLD."""
     for i in range(a.shape[0]):

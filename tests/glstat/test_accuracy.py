@@ -219,7 +219,7 @@ def test_gld_tails_next_to_finite_end_points_with_location_and_scale(lambdas, pa
     within a few ulps of a finite end point keep full relative accuracy. Reference: Q(u) = x
     solved by mpmath with the exact lambdas (40 digits)."""
     g = glstat.GLD(*lambdas, param=param)
-    l1, l2, l3, l4 = (mp.mpf(v) for v in lambdas)
+    l1, l2 = (mp.mpf(v) for v in lambdas[:2])
     fam = RS if param == "rs" else FKML
     lo, hi = g.support()
     with mp.workdps(40):
@@ -231,3 +231,17 @@ def test_gld_tails_next_to_finite_end_points_with_location_and_scale(lambdas, pa
                 continue
             got = g.sf(x) if upper else g.cdf(x)
             assert abs(got - p) <= 1e-13 * p, (x, got, float(p))
+
+
+def test_extreme_shape_with_underflowing_terms():
+    """FKML with lambda4 = 10800 (a root a moment fit once produced): (1-p)^(lambda4-1)
+    underflows to 0 in the body; the kernels follow IEEE arithmetic instead of raising, and
+    stay accurate. Reference: mpmath with the exact standardized point."""
+    l1, l2, a, b = 6.328101835496129, 0.03570280647224855, 3.998868514562684, 10800.0
+    g = glstat.GLD(l1, l2, a, b, param="fkml")
+    for x in (-0.6, 1.125, 4.575, 6.3, -0.67613):
+        with mp.workdps(40):
+            y = (mp.mpf(x) - mp.mpf(l1)) * mp.mpf(l2)
+            p, upper = tail_probability(FKML, a, b, y)
+        got = g.sf(x) if upper else g.cdf(x)
+        assert abs(got - p) <= 1e-13 * p, (x, got, float(p))
