@@ -1,0 +1,903 @@
+"""``glstat fit``: fit a GLD to one's own sample and report fit, goodness of fit and damage.
+
+Reads one column of values from a CSV, Parquet, NPY or whitespace-separated text file, fits a
+Generalized Lambda Distribution (:func:`glstat.fit`), tabulates every root found and the
+goodness of fit (:func:`glstat.gof_report`), bootstraps the fit (:func:`glstat.bootstrap`) and,
+on request, gives the distribution of the maximum of ``--n-max`` values and the damage
+probability at a hardness ``--hardness`` for the analysed area and for areas ``--area-factor``
+times larger (DESIGN §1 steps 4–8). Figures, ``fit.json`` and ``summary.csv`` go to ``--out``.
+
+Run as ``glstat fit FILE ...`` or ``python -m glstat.cli_fit FILE ...``; ``--help`` lists the
+options and ``docs/cli_fit.md`` shows an example session. Exit status: 0 on success, 2 for bad
+input or options (the message names the problem and the fix), 1 when no GLD can be fitted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import tempfile
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .errors import FitError
+from .fitting._stats import MIN_N
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+
+    from .bootstrap import BootstrapFit
+    from .fitting import GLDFit
+
+__all__ = ["InputError", "Sample", "build_parser", "check_output_dir", "main", "read_sample"]
+
+METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
+PARAMS = ("rs", "fkml")
+_METHOD_NAMES = {"moments": "method of moments", "percentiles": "percentiles (Karian–Dudewicz)",
+                 "lmoments": "L-moments", "mle": "maximum likelihood",
+                 "mps": "maximum product of spacings", "starship": "starship (minimum Anderson–Darling)"}
+_COMPRESSION = (".gz", ".bz2", ".xz", ".zip", ".zst")
+_GOF_ROWS = (("loglik", None), ("aic", None), ("bic", None), ("ks", "ks_pvalue"), ("ad", "ad_pvalue"),
+             ("cvm", "cvm_pvalue"), ("chi2", "chi2_pvalue"), ("max_qdev_iqr", None))
+
+
+class InputError(ValueError):
+    """Bad input file, column or option; the message names the problem and the fix."""
+
+
+@dataclass(frozen=True)
+class Sample:
+    """One column of values read from a file.
+
+    Attributes
+    ----------
+    values : ndarray
+        The finite values, in file order (a new array; the file is never modified).
+    path : pathlib.Path
+        The file read.
+    fmt : str
+        ``"csv"``, ``"tsv"``, ``"parquet"``, ``"npy"`` or ``"text"``.
+    column : str
+        Name of the column used (``"1"``, ``"2"``, ... for files without a header and for
+        NumPy arrays: the 1-based column position).
+    n_total : int
+        Number of entries in the column, including missing ones.
+    n_nan : int
+        Missing or NaN entries.
+    n_inf : int
+        Infinite entries.
+    nan_policy : str
+        ``"raise"`` or ``"omit"``: how non-finite entries were treated.
+    """
+
+    values: np.ndarray
+    path: Path
+    fmt: str
+    column: str
+    n_total: int
+    n_nan: int
+    n_inf: int
+    nan_policy: str
+
+    @property
+    def n_dropped(self) -> int:
+        """Number of non-finite entries left out."""
+        return self.n_nan + self.n_inf
+
+
+# ---------------------------------------------------------------------------------------------
+# reading
+# ---------------------------------------------------------------------------------------------
+def _format_of(path: Path) -> str:
+    suffixes = [s.lower() for s in path.suffixes]
+    if suffixes and suffixes[-1] in _COMPRESSION:
+        suffixes = suffixes[:-1]
+    last = suffixes[-1] if suffixes else ""
+    return {".csv": "csv", ".tsv": "tsv", ".parquet": "parquet", ".pq": "parquet",
+            ".npy": "npy"}.get(last, "text")
+
+
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
+def _read_delimited(path: Path, fmt: str) -> pd.DataFrame:
+    import pandas as pd
+
+    sep = {"csv": ",", "tsv": "\t"}.get(fmt, r"\s+")
+    what = {"csv": "CSV", "tsv": "tab-separated text"}.get(fmt, "whitespace-separated text")
+    opts: dict[str, Any] = {"sep": sep, "comment": "#", "float_precision": "round_trip"}
+    if fmt != "text":
+        opts["skipinitialspace"] = True
+    try:
+        first = pd.read_csv(path, header=None, nrows=1, dtype=str, **opts)
+        tokens = [str(t).strip() for t in first.iloc[0].tolist()]
+        headerless = all(_is_number(t) for t in tokens)
+        df = pd.read_csv(path, header=None if headerless else 0, **opts)
+    except pd.errors.EmptyDataError as exc:
+        raise InputError(f"{path} is empty (no values, only blank or comment lines); give a file with "
+                         "one value per line or a column of values") from exc
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path} is not a text file ({exc.reason} at byte {exc.start}); give a CSV, "
+                         "Parquet (.parquet), NumPy (.npy) or plain text file") from exc
+    except (pd.errors.ParserError, ValueError) as exc:
+        raise InputError(f"{path} could not be read as {what}: {str(exc).strip()}; check the separator "
+                         "(.csv: commas, .tsv: tabs, other names: whitespace) and that every row has "
+                         "the same number of fields") from exc
+    if headerless:
+        df.columns = [str(i + 1) for i in range(df.shape[1])]
+    else:
+        df.columns = [str(c).strip() for c in df.columns]
+    return df
+
+
+def _read_parquet(path: Path) -> pd.DataFrame:
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError as exc:
+        raise InputError(f"reading Parquet ({path.name}) needs the package 'pyarrow', which is not "
+                         "installed; install it with: pip install pyarrow   (or: pip install "
+                         "'glstat[all]'), or save the data as CSV or .npy") from exc
+    import pandas as pd
+
+    try:
+        df = pd.read_parquet(path, engine="pyarrow")
+    except (OSError, ValueError) as exc:  # pyarrow's ArrowInvalid derives from ValueError
+        raise InputError(f"{path} could not be read as Parquet: {exc}") from exc
+    df.columns = [str(c) for c in df.columns]
+    return df
+
+
+def _read_npy(path: Path) -> pd.DataFrame:
+    import pandas as pd
+
+    try:
+        arr = np.load(path, allow_pickle=False)
+    except EOFError as exc:
+        raise InputError(f"{path} is empty: it holds no array") from exc
+    except ValueError as exc:
+        if "allow_pickle" in str(exc) or "pickle" in str(exc).lower():
+            raise InputError(f"{path} holds Python objects (a pickled object array); save the values "
+                             "as a numeric array, e.g. np.save(path, np.asarray(values, dtype=float))"
+                             ) from exc
+        raise InputError(f"{path} is not a NumPy .npy file ({exc}); give a file written by numpy.save, "
+                         "or use a .csv or .txt name for text") from exc
+    if isinstance(arr, np.lib.npyio.NpzFile):  # pragma: no cover - np.load of a .npz renamed .npy
+        arr.close()
+        raise InputError(f"{path} is a .npz archive, not a .npy array; save one array with numpy.save")
+    if arr.dtype.names:
+        return pd.DataFrame({str(name): arr[name].ravel() for name in arr.dtype.names})
+    if arr.ndim == 0:
+        arr = arr.reshape(1)
+    if arr.ndim > 2:
+        raise InputError(f"{path} holds an array of shape {arr.shape}; expected a 1-D array of values or "
+                         "a 2-D array with one column per variable")
+    if arr.ndim == 1:
+        arr = arr[:, None]
+    return pd.DataFrame({str(j + 1): arr[:, j] for j in range(arr.shape[1])})
+
+
+def _numeric(series) -> bool:
+    import pandas as pd
+
+    return bool(pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series)
+                and not pd.api.types.is_complex_dtype(series))
+
+
+def _describe_columns(df) -> str:
+    parts = []
+    for c in df.columns:
+        parts.append(f"{c!r}" + ("" if _numeric(df[c]) else " (not numeric)"))
+    return ", ".join(parts)
+
+
+def _select_column(df, column: str | None, path: Path) -> tuple[str, Any]:
+    names = list(df.columns)
+    if column is not None:
+        if column in names:
+            return column, df[column]
+        stripped = column.strip()
+        if stripped in names:
+            return stripped, df[stripped]
+        if stripped.isdigit() and 1 <= int(stripped) <= len(names):
+            name = names[int(stripped) - 1]
+            return name, df[name]
+        raise InputError(f"column {column!r} not found in {path}; available columns: "
+                         f"{_describe_columns(df)} (or a 1-based position 1..{len(names)})")
+    numeric = [c for c in names if _numeric(df[c])]
+    if len(numeric) == 1:
+        return numeric[0], df[numeric[0]]
+    if not numeric:
+        raise InputError(f"{path} has no numeric column (columns: {_describe_columns(df)}); the values "
+                         "to fit must be numbers - check the separator, or choose a column with --column")
+    listed = ", ".join(repr(c) for c in numeric)
+    raise InputError(f"{path} has {len(numeric)} numeric columns ({listed}); choose the one to fit "
+                     f"with --column, e.g. --column {numeric[-1]}")
+
+
+def _to_float(series, name: str, path: Path, df) -> np.ndarray:
+    import pandas as pd
+
+    if _numeric(series):
+        return series.to_numpy(dtype=float, na_value=np.nan)
+    if pd.api.types.is_bool_dtype(series):
+        raise InputError(f"column {name!r} in {path} holds true/false values, not numbers; choose a "
+                         f"numeric column (columns: {_describe_columns(df)})")
+    coerced = pd.to_numeric(series, errors="coerce") if not pd.api.types.is_complex_dtype(series) \
+        else pd.Series(np.nan, index=series.index)
+    bad = coerced.isna().to_numpy() & series.notna().to_numpy()
+    nbad = int(bad.sum())
+    if nbad:
+        row = int(np.flatnonzero(bad)[0])
+        value = series.iloc[row]
+        numeric = [c for c in df.columns if _numeric(df[c])]
+        hint = (f"choose a numeric column ({', '.join(repr(c) for c in numeric)}) with --column"
+                if numeric else "clean the file so that the column holds only numbers")
+        raise InputError(f"column {name!r} in {path} is not numeric: {nbad} of {len(series)} entries are "
+                         f"not numbers (first: {value!r} in data row {row + 1}); {hint}")
+    return coerced.to_numpy(dtype=float, na_value=np.nan)
+
+
+def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "raise") -> Sample:
+    """Read one column of values from a CSV, Parquet, NPY or whitespace-separated text file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file. The format follows the name: ``.csv`` (commas), ``.tsv`` (tabs),
+        ``.parquet``/``.pq`` (needs ``pyarrow``), ``.npy`` (``numpy.save``), anything else is
+        text with values separated by whitespace. A compression suffix (``.gz``, ``.bz2``,
+        ``.xz``, ``.zip``, ``.zst``) is allowed on the text formats. Lines starting with ``#``
+        are comments. A first row made only of numbers is data (no header); the columns are
+        then named ``"1"``, ``"2"``, ...
+    column : str, optional
+        Column name, or its 1-based position. Default: the only numeric column.
+    nan_policy : {"raise", "omit"}, optional
+        Missing, NaN or infinite entries: refuse the file, or leave them out.
+
+    Returns
+    -------
+    Sample
+        The finite values (float64, in file order) and what was read.
+
+    Raises
+    ------
+    InputError
+        File not found, empty or unreadable; unknown column (the message lists the available
+        ones); several numeric columns and no ``column``; a non-numeric column; non-finite
+        entries with ``nan_policy="raise"``; Parquet without ``pyarrow``.
+    """
+    if nan_policy not in ("raise", "omit"):
+        raise InputError(f"--nan-policy must be 'raise' or 'omit', got {nan_policy!r}")
+    path = Path(path)
+    if not path.exists():
+        raise InputError(f"file not found: {path} (looked in {path.resolve().parent}); check the path "
+                         "and the file name")
+    if path.is_dir():
+        raise InputError(f"{path} is a directory; give a data file (.csv, .parquet, .npy or text)")
+    if path.stat().st_size == 0:
+        raise InputError(f"{path} is empty (0 bytes); give a file with the values to fit")
+    fmt = _format_of(path)
+    if fmt == "parquet":
+        df = _read_parquet(path)
+    elif fmt == "npy":
+        df = _read_npy(path)
+    else:
+        df = _read_delimited(path, fmt)
+    if df.shape[1] == 0:
+        raise InputError(f"{path} is empty: it has no columns")
+    if df.shape[0] == 0:
+        raise InputError(f"{path} has no data rows (columns: {_describe_columns(df)}); give a file with "
+                         "the values to fit")
+    name, series = _select_column(df, column, path)
+    values = _to_float(series, name, path, df)
+    nan = np.isnan(values)
+    inf = np.isinf(values)
+    n_nan, n_inf = int(nan.sum()), int(inf.sum())
+    if n_nan + n_inf == values.size:
+        raise InputError(f"column {name!r} in {path} holds no finite value ({values.size} entries, all "
+                         "missing, NaN or infinite); choose another column or fix the file")
+    if n_nan + n_inf:
+        first = int(np.flatnonzero(nan | inf)[0]) + 1
+        kinds = " and ".join(p for p in (f"{n_nan} missing/NaN" if n_nan else "",
+                                         f"{n_inf} infinite" if n_inf else "") if p)
+        if nan_policy == "raise":
+            raise InputError(f"column {name!r} in {path} has {kinds} value(s) out of {values.size} "
+                             f"(first in data row {first}); they are refused (--nan-policy raise). Remove "
+                             "them from the file, or pass --nan-policy omit to drop them")
+        values = values[~(nan | inf)]
+    return Sample(values=np.array(values, dtype=float), path=path, fmt=fmt, column=str(name),
+                  n_total=int(nan.size), n_nan=n_nan, n_inf=n_inf, nan_policy=nan_policy)
+
+
+# ---------------------------------------------------------------------------------------------
+# options and output directory
+# ---------------------------------------------------------------------------------------------
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``glstat fit``.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
+    p = argparse.ArgumentParser(
+        prog="glstat fit",
+        description="Fit a Generalized Lambda Distribution to a sample (one column of a CSV, "
+                    "Parquet, NPY or text file); print the fit, the goodness of fit and, given a "
+                    "hardness, the damage probability with its bootstrap interval; write figures, "
+                    "fit.json and summary.csv.",
+        epilog="example: glstat fit pressures.csv --column pressure --n-max 1048576 "
+               "--hardness 2050 --area-factor 1 10 100 --bootstrap 1000 --out fit_out --seed 1",
+    )
+    p.add_argument("file", metavar="FILE", help="data file: .csv, .tsv, .parquet, .npy, or whitespace text")
+    p.add_argument("--column", "-c", metavar="C", help="column name or 1-based position (default: the "
+                   "only numeric column)")
+    p.add_argument("--param", choices=PARAMS, default="rs", help="GLD parameterisation (default rs)")
+    p.add_argument("--method", choices=METHODS, default="moments", help="fitting method (default moments)")
+    p.add_argument("--bootstrap", type=int, default=1000, metavar="N",
+                   help="bootstrap resamples (default 1000; 0: no bootstrap)")
+    p.add_argument("--confidence-level", type=float, default=0.9, metavar="L",
+                   help="coverage of the intervals (default 0.9)")
+    p.add_argument("--n-max", type=float, default=None, metavar="N",
+                   help="number of points of the analysed area: the maximum of N draws and the damage "
+                        "probability refer to N values (default for the damage: the sample size)")
+    p.add_argument("--area-factor", type=float, nargs="+", default=None, metavar="K",
+                   help="area(s) of interest as multiples of the analysed area (default 1)")
+    p.add_argument("--hardness", type=float, default=None, metavar="P",
+                   help="hardness / yield pressure, in the units of the data: report the damage "
+                        "probability P(max > P)")
+    p.add_argument("--out", default=None, metavar="DIR",
+                   help="output directory for figures, fit.json and summary.csv (default "
+                        "glstat_fit_<file stem> in the current directory)")
+    p.add_argument("--seed", type=int, default=None, metavar="S",
+                   help="random seed of the bootstrap (default: fresh entropy, recorded in fit.json)")
+    p.add_argument("--nan-policy", choices=("raise", "omit"), default="raise",
+                   help="missing/NaN/infinite entries: refuse the file (raise, default) or drop them (omit)")
+    p.add_argument("--gof-resamples", type=int, default=99, metavar="B",
+                   help="parametric-bootstrap replicates for the goodness-of-fit p-values "
+                        "(default 99; 0: no p-values)")
+    return p
+
+
+def _check_options(args: argparse.Namespace) -> None:
+    if args.bootstrap < 0 or args.bootstrap == 1:
+        raise InputError(f"--bootstrap must be 0 (no bootstrap) or at least 2, got {args.bootstrap}")
+    if not 0.0 < args.confidence_level < 1.0:
+        raise InputError(f"--confidence-level must lie strictly between 0 and 1 (e.g. 0.9), got "
+                         f"{args.confidence_level}")
+    if args.n_max is not None and not (math.isfinite(args.n_max) and args.n_max >= 1):
+        raise InputError(f"--n-max is a number of points and must be >= 1, got {args.n_max:g}")
+    if args.area_factor is not None:
+        bad = [k for k in args.area_factor if not (math.isfinite(k) and k > 0)]
+        if bad:
+            raise InputError(f"--area-factor values must be positive, got {bad[0]:g}")
+    if args.hardness is not None and not math.isfinite(args.hardness):
+        raise InputError(f"--hardness must be a finite number, got {args.hardness}")
+    if args.gof_resamples < 0 or args.gof_resamples == 1:
+        raise InputError(f"--gof-resamples must be 0 or at least 2, got {args.gof_resamples}")
+
+
+def check_output_dir(path: str | Path) -> Path:
+    """Create the output directory if needed and check that files can be written into it.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The directory.
+
+    Returns
+    -------
+    pathlib.Path
+        The directory, which now exists.
+
+    Raises
+    ------
+    InputError
+        The path is an existing file, cannot be created, or is not writable.
+    """
+    out = Path(path)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"output directory {out} is an existing file, not a directory; choose another "
+                         "--out")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"output directory {out} cannot be created ({exc.strerror or exc}); choose a "
+                         "writable --out") from exc
+    try:
+        with tempfile.NamedTemporaryFile(dir=out, prefix=".glstat-write-check-"):
+            pass
+    except OSError as exc:
+        raise InputError(f"output directory {out} is not writable ({exc.strerror or exc}); choose a "
+                         "writable --out or fix its permissions") from exc
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# the run
+# ---------------------------------------------------------------------------------------------
+@dataclass
+class _Results:
+    """Everything computed, for printing and for fit.json / summary.csv."""
+
+    sample: Sample
+    fit: GLDFit
+    gof: Any
+    seed: int
+    support: tuple[float, float]
+    boot: BootstrapFit | None = None
+    boot_summary: Any = None
+    maximum: dict[str, Any] | None = None
+    damage: dict[str, Any] | None = None
+    notes: list[str] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
+
+
+def _g(v: float, digits: int = 6) -> str:
+    return "nan" if v is None or not np.isfinite(v) else f"{v:.{digits}g}"
+
+
+def _table(df, digits: int = 6) -> str:
+    return df.to_string(index=False, float_format=lambda v: _g(v, digits))
+
+
+def _indent(text: str, pad: str = "  ") -> str:
+    return "\n".join(pad + line for line in text.splitlines())
+
+
+def _collect_warnings(caught: list, notes: list[str]) -> None:
+    for w in caught:
+        msg = str(w.message)
+        if msg not in notes:
+            notes.append(msg)
+
+
+def _gof_table(gof) -> Any:
+    import pandas as pd
+
+    row = gof.iloc[0]
+    rows = []
+    for stat, pcol in _GOF_ROWS:
+        rows.append({"statistic": stat, "value": float(row[stat]),
+                     "p_value": float(row[pcol]) if pcol is not None else np.nan})
+    return pd.DataFrame(rows)
+
+
+def _maximum(res: _Results, n_max: float, level: float) -> dict[str, Any]:
+    from .extremes import maximum
+
+    full = maximum(res.fit.dist, n_max)
+    a = (1.0 - level) / 2.0
+    out: dict[str, Any] = {"n": float(n_max), "confidence_level": level,
+                           "full_fit_median": float(full.median()),
+                           "full_fit_low": float(full.ppf(a)), "full_fit_high": float(full.isf(a)),
+                           "dist": full}
+    if res.boot is not None:
+        bm = res.boot.maximum(n_max, level)
+        lo, hi = bm.interval
+        mlo, mhi = bm.mixture_interval()
+        out.update(mean=bm.mean, low=lo, high=hi, mixture_low=mlo, mixture_high=mhi,
+                   table=bm.summary(), dist=bm.mixture)
+    else:
+        mean = float(full.mean())
+        out.update(mean=mean, low=out["full_fit_low"], high=out["full_fit_high"])
+    return out
+
+
+def _support_reason(hardness: float, support: tuple[float, float]) -> str | None:
+    lo, hi = support
+    if hardness >= hi:
+        return (f"the hardness {hardness:g} is at or above the upper end of the fitted support ({hi:.6g}): "
+                "the fitted distribution never exceeds it, so the damage probability is 0")
+    if hardness <= lo:
+        return (f"the hardness {hardness:g} is at or below the lower end of the fitted support ({lo:.6g}): "
+                "every value exceeds it, so the damage probability is 1")
+    return None
+
+
+def _damage(res: _Results, hardness: float, n: float, factors: np.ndarray, level: float) -> dict[str, Any]:
+    from .damage import damage_probability
+
+    reason = _support_reason(hardness, res.support)
+    est = np.asarray(damage_probability(res.fit.dist, hardness, n, factors, outside_support="limit"),
+                     dtype=float)
+    out: dict[str, Any] = {"hardness": hardness, "n": float(n), "area_factors": factors,
+                           "points": factors * n, "estimate": est, "low": None, "high": None,
+                           "confidence_level": level, "reason": reason}
+    if res.boot is not None:
+        bp = res.boot.damage_probability(hardness, n, factors, level)
+        out["low"], out["high"] = np.asarray(bp.low, dtype=float), np.asarray(bp.high, dtype=float)
+        out["boot_values"] = bp.values
+        sup = np.array([d.support() for d in res.boot.dists()], dtype=float)
+        out["n_boot_above_support"] = int(np.sum(hardness >= sup[:, 1]))
+        out["n_boot_below_support"] = int(np.sum(hardness <= sup[:, 0]))
+    return out
+
+
+def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> _Results:
+    from .bootstrap import bootstrap
+    from .fitting import fit
+    from .gof import gof_report
+
+    x = sample.values
+    if x.size < MIN_N:
+        raise InputError(f"column {sample.column!r} in {sample.path} has {x.size} finite value(s); a GLD "
+                         f"fit by {_METHOD_NAMES[args.method]} estimates 4 parameters and needs at least "
+                         f"{MIN_N} (a reliable fit, hundreds); give more data")
+    if np.min(x) == np.max(x):
+        raise InputError(f"all {x.size} values in column {sample.column!r} are equal to {x[0]:g}: a "
+                         "constant sample has no GLD fit; check the column")
+    if args.bootstrap and x.size < 2 * MIN_N:
+        raise InputError(f"column {sample.column!r} has only {x.size} values: too few to bootstrap a "
+                         f"4-parameter fit (resamples repeat values); give at least {2 * MIN_N} values "
+                         "or pass --bootstrap 0")
+    seed = int(args.seed) if args.seed is not None else int(np.random.SeedSequence().entropy % 2**63)
+    notes: list[str] = []
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        f = fit(x, args.param, args.method)
+    _collect_warnings(caught, notes)
+    lo, hi = (float(v) for v in f.dist.support())
+    res = _Results(sample=sample, fit=f, gof=None, seed=seed, support=(lo, hi), notes=notes)
+    _print_fit(res, emit)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        res.gof = gof_report(x, f, n_resamples=args.gof_resamples, rng=seed)
+    _collect_warnings(caught, notes)
+    _print_gof(res, emit)
+    if args.bootstrap:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            res.boot = bootstrap(x, args.param, args.method, n_resamples=args.bootstrap,
+                                 confidence_level=args.confidence_level, rng=seed)
+            res.boot_summary = res.boot.summary()
+        _collect_warnings(caught, notes)
+        _print_bootstrap(res, emit)
+    if args.n_max is not None:
+        res.maximum = _maximum(res, args.n_max, args.confidence_level)
+        _print_maximum(res, emit)
+    if args.hardness is not None:
+        n = args.n_max if args.n_max is not None else float(x.size)
+        factors = np.asarray(args.area_factor if args.area_factor is not None else [1.0], dtype=float)
+        res.damage = _damage(res, args.hardness, n, factors, args.confidence_level)
+        _print_damage(res, args, emit)
+    return res
+
+
+# ---------------------------------------------------------------------------------------------
+# printing
+# ---------------------------------------------------------------------------------------------
+def _print_header(sample: Sample, emit: Callable[[str], None]) -> None:
+    emit(f"glstat fit: {sample.path} ({sample.fmt}), column {sample.column!r}: {sample.values.size} "
+         f"values used of {sample.n_total}")
+    if sample.n_dropped:
+        emit(f"  dropped {sample.n_dropped} non-finite value(s) ({sample.n_nan} missing/NaN, "
+             f"{sample.n_inf} infinite) (--nan-policy omit)")
+    x = sample.values
+    emit(f"  min {_g(float(x.min()))}  median {_g(float(np.median(x)))}  max {_g(float(x.max()))}")
+
+
+def _print_fit(res: _Results, emit: Callable[[str], None]) -> None:
+    import pandas as pd
+
+    f = res.fit
+    emit("")
+    emit(f"GLD fit: {f.param.upper()} parameterisation, {_METHOD_NAMES[f.method]}, n = {f.n}")
+    for i, v in enumerate(f.lambdas, start=1):
+        emit(f"  lambda{i} = {v:.12g}")
+    region = f"RS region {f.region}; " if f.region is not None else ""
+    emit(f"  {region}support [{res.support[0]:.6g}, {res.support[1]:.6g}]")
+    if f.statistics:
+        emit("  matched statistics: " + ", ".join(f"{k} {_g(float(v))}" for k, v in f.statistics.items()))
+    sol = pd.DataFrame(f.solutions).copy()
+    if "selected" in sol.columns:
+        sol.insert(0, "sel", np.where(sol["selected"].to_numpy(dtype=bool), "*", ""))
+        sol = sol.drop(columns="selected")
+    emit(f"solutions ({len(sol)} found; * = selected):")
+    emit(_indent(_table(sol)))
+
+
+def _print_gof(res: _Results, emit: Callable[[str], None]) -> None:
+    row = res.gof.iloc[0]
+    emit("")
+    emit(f"goodness of fit (n = {int(row['n'])}; p-values: {row['pvalue_method']}):")
+    tab = _gof_table(res.gof)
+    tab["p_value"] = [("" if not np.isfinite(p) else _g(p, 4)) for p in tab["p_value"]]
+    emit(_indent(_table(tab)))
+
+
+def _print_bootstrap(res: _Results, emit: Callable[[str], None]) -> None:
+    bf = res.boot
+    s = res.boot_summary.reset_index()
+    cols = [c for c in ("quantity", "estimate", "bootstrap_mean", "low", "high", "standard_error")
+            if c in s.columns]
+    emit("")
+    emit(f"bootstrap: {bf.n_resamples} resamples ({bf.kind}), {bf.n_failed} failed; "
+         f"{100 * bf.confidence_level:g} % percentile intervals of the lambdas:")
+    emit(_indent(_table(s[cols])))
+    for note in res.notes:
+        emit(f"  note: {note}")
+
+
+def _print_maximum(res: _Results, emit: Callable[[str], None]) -> None:
+    m = res.maximum
+    level = 100 * m["confidence_level"]
+    emit("")
+    if "table" in m:
+        emit(f"maximum of {m['n']:g} values: mean {_g(m['mean'])}, {level:g} % interval "
+             f"[{_g(m['low'])}, {_g(m['high'])}] (one draw per bootstrap GLD)")
+        emit(_indent(_table(m["table"][["quantity", "center", "low", "high"]])))
+    else:
+        emit(f"maximum of {m['n']:g} values (full-sample fit, no bootstrap): mean {_g(m['mean'])}, "
+             f"{level:g} % interval [{_g(m['low'])}, {_g(m['high'])}]")
+
+
+def _print_damage(res: _Results, args: argparse.Namespace, emit: Callable[[str], None]) -> None:
+    import pandas as pd
+
+    d = res.damage
+    src = "--n-max" if args.n_max is not None else "the sample size; set --n-max for the analysed area"
+    level = 100 * d["confidence_level"]
+    emit("")
+    with_ci = d["low"] is not None
+    emit(f"damage probability P(max > {d['hardness']:g}) for n = {d['n']:g} points ({src})"
+         + (f", {level:g} % bootstrap interval:" if with_ci else " (no bootstrap: no interval):"))
+    tab = pd.DataFrame({"area_factor": d["area_factors"], "points": d["points"], "damage": d["estimate"]})
+    if with_ci:
+        tab["low"], tab["high"] = d["low"], d["high"]
+    emit(_indent(_table(tab)))
+    if d["reason"] is not None:
+        emit(f"  {d['reason']}")
+    above, below = d.get("n_boot_above_support", 0), d.get("n_boot_below_support", 0)
+    if above or below:
+        emit(f"  in the bootstrap, {above} fit(s) have the hardness above their support (damage 0) and "
+             f"{below} below it (damage 1)")
+
+
+# ---------------------------------------------------------------------------------------------
+# files
+# ---------------------------------------------------------------------------------------------
+def _figure(figsize: tuple[float, float] = (6.4, 4.8)):
+    # Figure objects render through the Agg canvas without pyplot: no global backend or state.
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=figsize)
+
+
+def _save(fig, out: Path, name: str, res: _Results) -> None:
+    fig.tight_layout()
+    fig.savefig(out / name, dpi=110)
+    res.files.append(name)
+
+
+def _integrity_figure(res: _Results, ax) -> None:
+    from .damage import integrity_probability
+    from .plot import plot_integrity_vs_area
+
+    d = res.damage
+    k = d["area_factors"]
+    k_lo, k_hi = min(0.01, float(k.min()) / 10), max(100.0, float(k.max()) * 10)
+    grid = np.logspace(math.log10(k_lo), math.log10(k_hi), 61)
+    if d["reason"] is None:
+        plot_integrity_vs_area(res.fit.dist, d["hardness"], d["n"], grid, ax=ax)
+    else:
+        p = integrity_probability(res.fit.dist, d["hardness"], d["n"], grid, outside_support="limit")
+        ax.plot(grid, p, color="C0", label="integrity")
+        ax.set_xscale("log")
+        ax.set_ylim(-0.02, 1.02)
+        ax.set_xlabel("area factor k (area / analysed area)")
+        ax.set_ylabel(f"P(max < {d['hardness']:g})")
+        ax.set_title("hardness outside the fitted support", fontsize=9)
+    if res.boot is not None:
+        bp = res.boot.integrity_probability(d["hardness"], d["n"], grid, d["confidence_level"])
+        ax.fill_between(grid, bp.low, bp.high, color="C1", alpha=0.25,
+                        label=f"{100 * d['confidence_level']:g} % bootstrap interval")
+    ax.plot(k, 1.0 - d["estimate"], linestyle="none", marker="o",
+            color="C3", label="requested area factors")
+    ax.legend()
+
+
+def _write_figures(res: _Results, out: Path) -> None:
+    from .plot import (
+        plot_histogram,
+        plot_lambda_densities,
+        plot_maximum_density,
+        plot_pp,
+        plot_qq,
+    )
+
+    x = res.sample.values
+    for name, func in (("histogram.png", plot_histogram), ("qq.png", plot_qq), ("pp.png", plot_pp)):
+        fig = _figure()
+        ax = fig.add_subplot()
+        func(x, res.fit, ax=ax)
+        ax.set_title(f"{res.sample.path.name}, column {res.sample.column!r}", fontsize=9)
+        _save(fig, out, name, res)
+    if res.boot is not None:
+        fig = _figure((8.0, 6.0))
+        axes = fig.subplots(2, 2)
+        plot_lambda_densities(res.boot, true=res.fit.lambdas, axes=axes)
+        _save(fig, out, "lambda_densities.png", res)
+    if res.maximum is not None:
+        fig = _figure()
+        ax = fig.add_subplot()
+        plot_maximum_density(res.maximum["dist"], interval=res.maximum["confidence_level"], ax=ax)
+        ax.set_xlabel(f"maximum of {res.maximum['n']:g} values")
+        _save(fig, out, "maximum_density.png", res)
+    if res.damage is not None:
+        fig = _figure()
+        ax = fig.add_subplot()
+        _integrity_figure(res, ax)
+        _save(fig, out, "integrity_vs_area.png", res)
+
+
+def _jsonable(v: Any) -> Any:
+    if isinstance(v, dict):
+        return {str(k): _jsonable(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_jsonable(x) for x in v]
+    if isinstance(v, np.ndarray):
+        return [_jsonable(x) for x in v.tolist()]
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if isinstance(v, (int, np.integer)):
+        return int(v)
+    if isinstance(v, (float, np.floating)):
+        return float(v) if math.isfinite(float(v)) else None
+    if v is None or isinstance(v, str):
+        return v
+    if hasattr(v, "item"):
+        return _jsonable(v.item())
+    return str(v)
+
+
+def _records(df) -> list[dict[str, Any]]:
+    return [_jsonable(r) for r in df.to_dict(orient="records")]
+
+
+def _summary_frame(res: _Results) -> Any:
+    import pandas as pd
+
+    level = res.boot.confidence_level if res.boot is not None else None
+    rows: list[dict[str, Any]] = []
+    boot = res.boot_summary
+    for i, v in enumerate(res.fit.lambdas, start=1):
+        name = f"lambda{i}"
+        lo = hi = np.nan
+        if boot is not None:
+            lo, hi = float(boot.loc[name, "low"]), float(boot.loc[name, "high"])
+        rows.append({"quantity": name, "area_factor": np.nan, "estimate": float(v), "low": lo, "high": hi,
+                     "confidence_level": level})
+    for stat, _ in _GOF_ROWS:
+        rows.append({"quantity": f"gof_{stat}", "area_factor": np.nan,
+                     "estimate": float(res.gof.iloc[0][stat]), "low": np.nan, "high": np.nan,
+                     "confidence_level": None})
+    if res.maximum is not None:
+        m = res.maximum
+        rows.append({"quantity": f"maximum_of_{m['n']:g}", "area_factor": np.nan, "estimate": m["mean"],
+                     "low": m["low"], "high": m["high"], "confidence_level": m["confidence_level"]})
+    if res.damage is not None:
+        d = res.damage
+        for j, k in enumerate(d["area_factors"]):
+            rows.append({"quantity": f"damage_at_{d['hardness']:g}", "area_factor": float(k),
+                         "estimate": float(d["estimate"][j]),
+                         "low": float(d["low"][j]) if d["low"] is not None else np.nan,
+                         "high": float(d["high"][j]) if d["high"] is not None else np.nan,
+                         "confidence_level": d["confidence_level"] if d["low"] is not None else None})
+    return pd.DataFrame(rows)
+
+
+def _write_tables(res: _Results, args: argparse.Namespace, out: Path) -> None:
+    from . import __version__
+
+    s, f = res.sample, res.fit
+    doc: dict[str, Any] = {
+        "glstat_version": __version__,
+        "input": {"file": str(s.path), "format": s.fmt, "column": s.column, "n_entries": s.n_total,
+                  "n_used": int(s.values.size), "n_nan": s.n_nan, "n_inf": s.n_inf,
+                  "nan_policy": s.nan_policy},
+        "settings": {"param": args.param, "method": args.method, "bootstrap": args.bootstrap,
+                     "confidence_level": args.confidence_level, "n_max": args.n_max,
+                     "area_factors": args.area_factor, "hardness": args.hardness, "seed": res.seed,
+                     "gof_resamples": args.gof_resamples},
+        "fit": {"lambdas": list(f.lambdas), "param": f.param, "method": f.method, "region": f.region,
+                "n": f.n, "support": list(res.support), "statistics": f.statistics,
+                "options": f.options, "solutions": _records(f.solutions)},
+        "gof": _records(res.gof)[0],
+        "bootstrap": None, "maximum": None, "damage": None, "notes": res.notes,
+    }
+    if res.boot is not None:
+        doc["bootstrap"] = {"n_resamples": res.boot.n_resamples, "n_failed": res.boot.n_failed,
+                            "kind": res.boot.kind, "confidence_level": res.boot.confidence_level,
+                            "lambdas": _records(res.boot_summary.reset_index())}
+    if res.maximum is not None:
+        doc["maximum"] = {k: v for k, v in res.maximum.items() if k not in ("dist", "table")}
+    if res.damage is not None:
+        doc["damage"] = {k: v for k, v in res.damage.items() if k != "boot_values"}
+    names = ["fit.json", "summary.csv"]
+    doc["files"] = sorted(res.files + names)
+    (out / "fit.json").write_text(json.dumps(_jsonable(doc), indent=2) + "\n", encoding="utf-8")
+    _summary_frame(res).to_csv(out / "summary.csv", index=False, float_format="%.17g")
+    res.files.extend(names)
+
+
+# ---------------------------------------------------------------------------------------------
+# entry point
+# ---------------------------------------------------------------------------------------------
+def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> _Results:
+    """Carry out ``glstat fit`` for parsed arguments.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        As returned by :func:`build_parser`.
+    emit : callable, optional
+        Receives each line of the report (default ``print``).
+
+    Returns
+    -------
+    _Results
+        Everything computed (sample, fit, goodness of fit, bootstrap, maximum, damage, files).
+
+    Raises
+    ------
+    InputError
+        Bad options, output directory or input data.
+    FitError
+        No GLD of the requested kind can be fitted.
+    """
+    _check_options(args)
+    out = check_output_dir(args.out if args.out is not None else f"glstat_fit_{Path(args.file).stem}")
+    sample = read_sample(args.file, args.column, args.nan_policy)
+    _print_header(sample, emit)
+    res = _compute(args, sample, emit)
+    _write_figures(res, out)
+    _write_tables(res, args, out)
+    emit("")
+    emit(f"wrote {len(res.files)} files to {out}: {', '.join(sorted(res.files))}")
+    return res
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Command line ``glstat fit FILE [options]``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``fit`` (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status: 0 success; 2 bad options or input (message on stderr); 1 no GLD could be
+        fitted (message on stderr).
+    """
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, or an option argparse rejected (it printed why)
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    try:
+        run(args)
+    except InputError as exc:
+        print(f"glstat fit: error: {exc}", file=sys.stderr)
+        return 2
+    except FitError as exc:
+        print(f"glstat fit: no GLD fit: {exc}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
