@@ -36,7 +36,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from .bootstrap import BootstrapFit
     from .fitting import GLDFit
 
-__all__ = ["InputError", "Sample", "build_parser", "check_output_dir", "main", "read_sample"]
+__all__ = ["FitResults", "InputError", "Sample", "build_parser", "check_output_dir", "main", "read_sample",
+           "run"]
 
 METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
 PARAMS = ("rs", "fkml")
@@ -428,8 +429,37 @@ def check_output_dir(path: str | Path) -> Path:
 # the run
 # ---------------------------------------------------------------------------------------------
 @dataclass
-class _Results:
-    """Everything computed, for printing and for fit.json / summary.csv."""
+class FitResults:
+    """Everything ``glstat fit`` computed (returned by :func:`run`).
+
+    Attributes
+    ----------
+    sample : Sample
+        The values read and where from.
+    fit : GLDFit
+        The full-sample fit.
+    gof : pandas.DataFrame
+        One-row :func:`glstat.gof_report` table of the fit.
+    seed : int
+        Seed of the goodness-of-fit and bootstrap resampling.
+    support : tuple of float
+        Lower and upper end of the fitted distribution's support (data units).
+    boot : BootstrapFit or None
+        The bootstrap (None with ``--bootstrap 0``).
+    boot_summary : pandas.DataFrame or None
+        Percentile intervals of the lambdas (``BootstrapFit.summary()``).
+    maximum : dict or None
+        Maximum of ``--n-max`` values: ``n``, ``mean``, ``low``, ``high``, the full-sample
+        fit's median and interval, and (with a bootstrap) the mixture interval and table.
+    damage : dict or None
+        Damage at ``--hardness``: ``hardness``, ``n``, ``area_factors``, ``points``,
+        ``estimate``, ``low``, ``high`` (None without bootstrap), ``reason`` (why it is exactly
+        0 or 1 when the hardness lies outside the fitted support, else None).
+    notes : list of str
+        Warnings raised while fitting (e.g. failed bootstrap resamples).
+    files : list of str
+        Names of the files written to the output directory.
+    """
 
     sample: Sample
     fit: GLDFit
@@ -474,7 +504,7 @@ def _gof_table(gof) -> Any:
     return pd.DataFrame(rows)
 
 
-def _maximum(res: _Results, n_max: float, level: float) -> dict[str, Any]:
+def _maximum(res: FitResults, n_max: float, level: float) -> dict[str, Any]:
     from .extremes import maximum
 
     full = maximum(res.fit.dist, n_max)
@@ -506,7 +536,7 @@ def _support_reason(hardness: float, support: tuple[float, float]) -> str | None
     return None
 
 
-def _damage(res: _Results, hardness: float, n: float, factors: np.ndarray, level: float) -> dict[str, Any]:
+def _damage(res: FitResults, hardness: float, n: float, factors: np.ndarray, level: float) -> dict[str, Any]:
     from .damage import damage_probability
 
     reason = _support_reason(hardness, res.support)
@@ -525,7 +555,7 @@ def _damage(res: _Results, hardness: float, n: float, factors: np.ndarray, level
     return out
 
 
-def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> _Results:
+def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
     from .bootstrap import bootstrap
     from .fitting import fit
     from .gof import gof_report
@@ -549,7 +579,7 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         f = fit(x, args.param, args.method)
     _collect_warnings(caught, notes)
     lo, hi = (float(v) for v in f.dist.support())
-    res = _Results(sample=sample, fit=f, gof=None, seed=seed, support=(lo, hi), notes=notes)
+    res = FitResults(sample=sample, fit=f, gof=None, seed=seed, support=(lo, hi), notes=notes)
     _print_fit(res, emit)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -588,7 +618,7 @@ def _print_header(sample: Sample, emit: Callable[[str], None]) -> None:
     emit(f"  min {_g(float(x.min()))}  median {_g(float(np.median(x)))}  max {_g(float(x.max()))}")
 
 
-def _print_fit(res: _Results, emit: Callable[[str], None]) -> None:
+def _print_fit(res: FitResults, emit: Callable[[str], None]) -> None:
     import pandas as pd
 
     f = res.fit
@@ -608,7 +638,7 @@ def _print_fit(res: _Results, emit: Callable[[str], None]) -> None:
     emit(_indent(_table(sol)))
 
 
-def _print_gof(res: _Results, emit: Callable[[str], None]) -> None:
+def _print_gof(res: FitResults, emit: Callable[[str], None]) -> None:
     row = res.gof.iloc[0]
     emit("")
     emit(f"goodness of fit (n = {int(row['n'])}; p-values: {row['pvalue_method']}):")
@@ -617,7 +647,7 @@ def _print_gof(res: _Results, emit: Callable[[str], None]) -> None:
     emit(_indent(_table(tab)))
 
 
-def _print_bootstrap(res: _Results, emit: Callable[[str], None]) -> None:
+def _print_bootstrap(res: FitResults, emit: Callable[[str], None]) -> None:
     bf = res.boot
     s = res.boot_summary.reset_index()
     cols = [c for c in ("quantity", "estimate", "bootstrap_mean", "low", "high", "standard_error")
@@ -630,7 +660,7 @@ def _print_bootstrap(res: _Results, emit: Callable[[str], None]) -> None:
         emit(f"  note: {note}")
 
 
-def _print_maximum(res: _Results, emit: Callable[[str], None]) -> None:
+def _print_maximum(res: FitResults, emit: Callable[[str], None]) -> None:
     m = res.maximum
     level = 100 * m["confidence_level"]
     emit("")
@@ -643,7 +673,7 @@ def _print_maximum(res: _Results, emit: Callable[[str], None]) -> None:
              f"{level:g} % interval [{_g(m['low'])}, {_g(m['high'])}]")
 
 
-def _print_damage(res: _Results, args: argparse.Namespace, emit: Callable[[str], None]) -> None:
+def _print_damage(res: FitResults, args: argparse.Namespace, emit: Callable[[str], None]) -> None:
     import pandas as pd
 
     d = res.damage
@@ -675,13 +705,13 @@ def _figure(figsize: tuple[float, float] = (6.4, 4.8)):
     return Figure(figsize=figsize)
 
 
-def _save(fig, out: Path, name: str, res: _Results) -> None:
+def _save(fig, out: Path, name: str, res: FitResults) -> None:
     fig.tight_layout()
     fig.savefig(out / name, dpi=110)
     res.files.append(name)
 
 
-def _integrity_figure(res: _Results, ax) -> None:
+def _integrity_figure(res: FitResults, ax) -> None:
     from .damage import integrity_probability
     from .plot import plot_integrity_vs_area
 
@@ -708,7 +738,7 @@ def _integrity_figure(res: _Results, ax) -> None:
     ax.legend()
 
 
-def _write_figures(res: _Results, out: Path) -> None:
+def _write_figures(res: FitResults, out: Path) -> None:
     from .plot import (
         plot_histogram,
         plot_lambda_densities,
@@ -766,7 +796,7 @@ def _records(df) -> list[dict[str, Any]]:
     return [_jsonable(r) for r in df.to_dict(orient="records")]
 
 
-def _summary_frame(res: _Results) -> Any:
+def _summary_frame(res: FitResults) -> Any:
     import pandas as pd
 
     level = res.boot.confidence_level if res.boot is not None else None
@@ -777,20 +807,20 @@ def _summary_frame(res: _Results) -> Any:
         lo = hi = np.nan
         if boot is not None:
             lo, hi = float(boot.loc[name, "low"]), float(boot.loc[name, "high"])
-        rows.append({"quantity": name, "area_factor": np.nan, "estimate": float(v), "low": lo, "high": hi,
-                     "confidence_level": level})
+        rows.append({"quantity": name, "area_factor": np.nan, "n": np.nan, "estimate": float(v),
+                     "low": lo, "high": hi, "confidence_level": level})
     for stat, _ in _GOF_ROWS:
-        rows.append({"quantity": f"gof_{stat}", "area_factor": np.nan,
+        rows.append({"quantity": f"gof_{stat}", "area_factor": np.nan, "n": float(res.fit.n),
                      "estimate": float(res.gof.iloc[0][stat]), "low": np.nan, "high": np.nan,
                      "confidence_level": None})
     if res.maximum is not None:
         m = res.maximum
-        rows.append({"quantity": f"maximum_of_{m['n']:g}", "area_factor": np.nan, "estimate": m["mean"],
+        rows.append({"quantity": "maximum", "area_factor": np.nan, "n": m["n"], "estimate": m["mean"],
                      "low": m["low"], "high": m["high"], "confidence_level": m["confidence_level"]})
     if res.damage is not None:
         d = res.damage
         for j, k in enumerate(d["area_factors"]):
-            rows.append({"quantity": f"damage_at_{d['hardness']:g}", "area_factor": float(k),
+            rows.append({"quantity": f"damage_at_{d['hardness']:g}", "area_factor": float(k), "n": d["n"],
                          "estimate": float(d["estimate"][j]),
                          "low": float(d["low"][j]) if d["low"] is not None else np.nan,
                          "high": float(d["high"][j]) if d["high"] is not None else np.nan,
@@ -798,7 +828,7 @@ def _summary_frame(res: _Results) -> Any:
     return pd.DataFrame(rows)
 
 
-def _write_tables(res: _Results, args: argparse.Namespace, out: Path) -> None:
+def _write_tables(res: FitResults, args: argparse.Namespace, out: Path) -> None:
     from . import __version__
 
     s, f = res.sample, res.fit
@@ -828,14 +858,14 @@ def _write_tables(res: _Results, args: argparse.Namespace, out: Path) -> None:
     names = ["fit.json", "summary.csv"]
     doc["files"] = sorted(res.files + names)
     (out / "fit.json").write_text(json.dumps(_jsonable(doc), indent=2) + "\n", encoding="utf-8")
-    _summary_frame(res).to_csv(out / "summary.csv", index=False, float_format="%.17g")
+    _summary_frame(res).to_csv(out / "summary.csv", index=False)
     res.files.extend(names)
 
 
 # ---------------------------------------------------------------------------------------------
 # entry point
 # ---------------------------------------------------------------------------------------------
-def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> _Results:
+def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitResults:
     """Carry out ``glstat fit`` for parsed arguments.
 
     Parameters
@@ -847,8 +877,8 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> _Resul
 
     Returns
     -------
-    _Results
-        Everything computed (sample, fit, goodness of fit, bootstrap, maximum, damage, files).
+    FitResults
+        Everything computed; the report went to ``emit`` and the files to the output directory.
 
     Raises
     ------
@@ -858,8 +888,8 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> _Resul
         No GLD of the requested kind can be fitted.
     """
     _check_options(args)
-    out = check_output_dir(args.out if args.out is not None else f"glstat_fit_{Path(args.file).stem}")
     sample = read_sample(args.file, args.column, args.nan_policy)
+    out = check_output_dir(args.out if args.out is not None else f"glstat_fit_{Path(args.file).stem}")
     _print_header(sample, emit)
     res = _compute(args, sample, emit)
     _write_figures(res, out)
