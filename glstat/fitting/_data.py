@@ -20,11 +20,15 @@ OPTIMIZERS = ("bfgs", "nelder-mead")
 _OBJECTIVE_NAME = {"mle": "neg_loglik", "mps": "neg_mean_log_spacing", "starship": "anderson_darling"}
 # margin by which a start's scale is widened beyond the smallest one whose support covers the data
 _COVER_MARGIN = 1.05
+# starts whose shapes differ by less than this in asinh(lambda) count as one
+_SAME_BASIN = 0.1
 # BFGS tolerances: gradient per data point, relative decrease of an iteration
 _GTOL = 1e-9
 _FTOL = 1e-14
 # distance of a pinned support end point from the data, relative to the data range
 _PIN_GAP = 1e-9
+# iteration cap of a pinned run (the pinned optimum can drift to extreme shapes along a ridge)
+_PIN_MAXITER = 100
 
 
 def _std_theta(lams, med: float, iqr: float) -> np.ndarray:
@@ -123,11 +127,12 @@ def _refine_bfgs(kind, fam, z, th0, w, maxiter, unit):
         mode |= hit
         th2 = th.copy()
         w2 = w.copy()
-        val2, _, _, status2, hit = L.minimize_bfgs(kind, fam, z, th2, w2, maxiter, unit, _GTOL, _FTOL,
-                                                   mode, gap)
+        val2, _, _, _, hit = L.minimize_bfgs(kind, fam, z, th2, w2, min(maxiter, _PIN_MAXITER), unit,
+                                             _GTOL, _FTOL, mode, gap)
         if not val2 < val:
             break
-        th, val, ok = th2, val2, status2 != L.MAXITER
+        # a pinned run stopped by its iteration cap still improved on the free optimum
+        th, val, ok = th2, val2, True
         w[:] = w2
     return th, val, ok
 
@@ -137,9 +142,10 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     """ML, MPS or starship fit of sorted, checked data ``x`` (see :func:`glstat.fit`).
 
     Starts: every valid root of the percentile and L-moment equations, the scale widened
-    about the median where the support misses data points; the ``starts`` best by objective
-    are refined in theta = (lambda1, log scale, lambda3, lambda4) on the data scaled by
-    median and interquartile range, by the compiled BFGS with the analytic gradient
+    about the median where the support misses data points; of starts with nearly equal
+    shapes the better one is kept, and the ``starts`` best by objective are refined in
+    theta = (lambda1, log scale, lambda3, lambda4) on the data scaled by median and
+    interquartile range, by the compiled BFGS with the analytic gradient
     (``optimizer="bfgs"``) or by scipy's Nelder–Mead (``"nelder-mead"``). Infeasible
     parameters (support missing a data point) are rejected, so every iterate covers the data.
     """
@@ -173,6 +179,15 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
         if math.isfinite(val):
             scored.append((val, th, w))
     scored.sort(key=lambda t: t[0])
+    # distinct starts: a start whose shapes are close to those of a better one explores the
+    # same basin (the percentile and L-moment roots often pair up)
+    distinct = []
+    for item in scored:
+        a, b = np.arcsinh(item[1][2:])
+        if all(max(abs(a - a2), abs(b - b2)) >= _SAME_BASIN for a2, b2 in
+               (np.arcsinh(d[1][2:]) for d in distinct)):
+            distinct.append(item)
+    scored = distinct
     # objective unit: one data point's share (tolerances are per point)
     unit = float(n) if kind == L.MLE else 1.0 / (n + 1) if kind == L.MPS else 1.0 / n
     shift = n * math.log(iqr) if kind == L.MLE else 0.0

@@ -148,13 +148,18 @@ def pit_logit(fam, a, b, y, w):
                 ok = True
                 break
             wn = wi - r / dq if dq > 0.0 else math.nan
-            if not (wn > lo and wn < hi):
+            if wn > lo and wn < hi:
+                # quadratic convergence: after a Newton step below 1e-8 the error is ~1e-16
+                if abs(wn - wi) <= 1e-8 * (1.0 + abs(wi)):
+                    wi = wn
+                    ok = True
+                    break
+            else:
                 wn = 0.5 * (lo + hi)
-            # quadratic convergence: after a step below 1e-8 the error is ~1e-16
-            if abs(wn - wi) <= 1e-8 * (1.0 + abs(wi)):
-                wi = wn
-                ok = True
-                break
+                if hi - lo <= 4e-16 * (1.0 + abs(wn)):
+                    wi = wn
+                    ok = True
+                    break
             wi = wn
         if not ok:
             return False
@@ -521,7 +526,8 @@ def minimize_bfgs(kind, fam, z, theta, w, maxiter, unit, gtol, ftol, mode, gap):
     gtol : float
         Stop when max |gradient| / unit <= gtol.
     ftol : float
-        Stop when the decrease of an iteration is <= ftol * max(unit, |f|).
+        Stop when the decrease predicted by the quasi-Newton model, or that of a full
+        quasi-Newton step, is <= ftol * max(unit, |f|).
     mode : int
         FREE, or PIN_LOWER, PIN_UPPER, PIN_BOTH: the support end point(s) held at ``gap``
         outside the data (see `theta_from_phi`).
@@ -600,11 +606,17 @@ def minimize_bfgs(kind, fam, z, theta, w, maxiter, unit, gtol, ftol, mode, gap):
             for j in range(m):
                 p[j] = -g[j]
                 gp -= g[j] * g[j]
+        if scaled and -gp <= ftol * max(unit, abs(f)):
+            # the quasi-Newton model predicts no further decrease worth having
+            status = FTOL
+            nit = it
+            break
         pmax = 0.0
         for j in range(m):
             pmax = max(pmax, abs(p[j]))
         # trust the first (unscaled) direction to 0.1 in each coordinate, later ones to 1
-        alpha = min(1.0, (1.0 if scaled else 0.1) / pmax)
+        alpha0 = min(1.0, (1.0 if scaled else 0.1) / pmax)
+        alpha = alpha0
         accepted = False
         ft = math.inf
         hit = 0
@@ -681,7 +693,8 @@ def minimize_bfgs(kind, fam, z, theta, w, maxiter, unit, gtol, ftol, mode, gap):
             for j in range(4):
                 dw[i, j] = dwt[i, j]
         f = ft
-        if decrease <= ftol * max(unit, abs(f)):
+        if decrease <= ftol * max(unit, abs(f)) and alpha == alpha0:
+            # a full quasi-Newton step gains nothing
             status = FTOL
             break
     return f, nit, nfev, status, hit
