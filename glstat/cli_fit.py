@@ -118,14 +118,23 @@ def _read_delimited(path: Path, fmt: str) -> pd.DataFrame:
 
     sep = {"csv": ",", "tsv": "\t"}.get(fmt, r"\s+")
     what = {"csv": "CSV", "tsv": "tab-separated text"}.get(fmt, "whitespace-separated text")
-    opts: dict[str, Any] = {"sep": sep, "comment": "#", "float_precision": "round_trip"}
+    opts: dict[str, Any] = {"sep": sep, "comment": "#", "index_col": False}
+    if int(pd.__version__.split(".")[0]) < 3:  # pandas 3 parses floats exactly by default
+        opts["float_precision"] = "round_trip"
     if fmt != "text":
         opts["skipinitialspace"] = True
     try:
-        first = pd.read_csv(path, header=None, nrows=1, dtype=str, **opts)
-        tokens = [str(t).strip() for t in first.iloc[0].tolist()]
-        headerless = all(_is_number(t) for t in tokens)
-        df = pd.read_csv(path, header=None if headerless else 0, **opts)
+        with warnings.catch_warnings():
+            # rows longer than the header: an error, not a silent loss of fields
+            warnings.simplefilter("error", pd.errors.ParserWarning)
+            first = pd.read_csv(path, header=None, nrows=1, dtype=str, **opts)
+            tokens = [str(t).strip() for t in first.iloc[0].tolist()]
+            headerless = all(_is_number(t) for t in tokens)
+            df = pd.read_csv(path, header=None if headerless else 0, **opts)
+    except pd.errors.ParserWarning as exc:
+        raise InputError(f"{path} could not be read as {what}: some rows have more fields than the "
+                         f"header ({exc}); check the separator (.csv: commas, .tsv: tabs, other names: "
+                         "whitespace) and decimal points (not commas)") from exc
     except pd.errors.EmptyDataError as exc:
         raise InputError(f"{path} is empty (no values, only blank or comment lines); give a file with "
                          "one value per line or a column of values") from exc
@@ -625,7 +634,7 @@ def _print_fit(res: FitResults, emit: Callable[[str], None]) -> None:
     emit("")
     emit(f"GLD fit: {f.param.upper()} parameterisation, {_METHOD_NAMES[f.method]}, n = {f.n}")
     for i, v in enumerate(f.lambdas, start=1):
-        emit(f"  lambda{i} = {v:.12g}")
+        emit(f"  lambda{i} = {v:.15g}")
     region = f"RS region {f.region}; " if f.region is not None else ""
     emit(f"  {region}support [{res.support[0]:.6g}, {res.support[1]:.6g}]")
     if f.statistics:

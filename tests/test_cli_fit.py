@@ -1,0 +1,386 @@
+"""``glstat fit`` (glstat.cli_fit): reading, printed tables, files written and bad input."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import glstat
+from glstat import cli_fit
+
+SEED = 3
+
+
+def _pressures(n: int = 300, seed: int = 0) -> np.ndarray:
+    return np.random.default_rng(seed).gamma(4.0, 350.0, n)
+
+
+def _run(capsys, argv: list[str]) -> tuple[int, str, str]:
+    code = cli_fit.main([str(a) for a in argv])
+    cap = capsys.readouterr()
+    return code, cap.out, cap.err
+
+
+def _printed_lambdas(out: str) -> np.ndarray:
+    vals = {}
+    for line in out.splitlines():
+        s = line.strip()
+        if s.startswith("lambda") and " = " in s:
+            key, val = s.split(" = ")
+            vals[key] = float(val)
+    assert sorted(vals) == ["lambda1", "lambda2", "lambda3", "lambda4"], out
+    return np.array([vals[f"lambda{i}"] for i in range(1, 5)])
+
+
+def _section(out: str, title: str) -> list[str]:
+    """The lines after the line starting with ``title`` up to the next blank line."""
+    lines = out.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith(title))
+    body = []
+    for line in lines[start + 1:]:
+        if not line.strip():
+            break
+        body.append(line.strip())
+    return body
+
+
+def _digest(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+# ---------------------------------------------------------------------------------------------
+# a full run on a CSV
+# ---------------------------------------------------------------------------------------------
+def test_csv_full_run_tables_files_and_damage(tmp_path, capsys):
+    x = _pressures()
+    csv = tmp_path / "pressures.csv"
+    pd.DataFrame({"surface": [f"s{i % 3}" for i in range(x.size)], "pressure": x}).to_csv(csv, index=False)
+    before = _digest(csv)
+    ref = glstat.fit(x, "rs", "moments")
+    n_max = 1e5
+    # the hardness at the median of the fitted maximum: damage 1/2 for the analysed area
+    hardness = float(glstat.maximum(ref.dist, n_max).median())
+    out_dir = tmp_path / "out"
+    code, out, err = _run(capsys, [csv, "--bootstrap", 40, "--gof-resamples", 9, "--n-max", n_max,
+                                   "--hardness", hardness, "--area-factor", 1, 10, "--out", out_dir,
+                                   "--seed", SEED])
+    assert code == 0, err
+    assert _digest(csv) == before  # the user's file is left as it was
+
+    # the fit: the only numeric column, lambdas of glstat.fit on the same values
+    assert "column 'pressure': 300 values used of 300" in out
+    np.testing.assert_allclose(_printed_lambdas(out), ref.lambdas, rtol=1e-13)
+    assert f"RS region {ref.region}" in out
+    sol = _section(out, "solutions (")
+    assert len(sol) == 1 + len(ref.solutions)
+    assert sum(line.startswith("*") for line in sol[1:]) == 1
+
+    # goodness of fit: one row per statistic, values as gof_report's
+    gof = glstat.gof_report(x, ref)
+    rows = _section(out, "goodness of fit")
+    assert [r.split()[0] for r in rows] == ["statistic", "loglik", "aic", "bic", "ks", "ad", "cvm", "chi2",
+                                            "max_qdev_iqr"]
+    printed = {r.split()[0]: float(r.split()[1]) for r in rows[1:]}
+    for stat in ("loglik", "aic", "ks", "ad", "cvm", "chi2", "max_qdev_iqr"):
+        assert printed[stat] == pytest.approx(float(gof[stat].iloc[0]), rel=1e-5), stat
+    assert "parametric bootstrap (B=9)" in out
+    ks_row = next(r for r in rows if r.startswith("ks ")).split()
+    assert len(ks_row) == 3 and 0 < float(ks_row[2]) <= 1  # a p-value
+
+    # damage: estimate 1/2 at k = 1; interval from the same bootstrap
+    bf = glstat.bootstrap(x, "rs", "moments", n_resamples=40, rng=SEED)
+    want = bf.damage_probability(hardness, n_max, np.array([1.0, 10.0]))
+    dmg = _section(out, f"damage probability P(max > {hardness:g})")
+    assert dmg[0].split() == ["area_factor", "points", "damage", "low", "high"]
+    table = np.array([[float(v) for v in r.split()] for r in dmg[1:3]])
+    np.testing.assert_allclose(table[:, 0], [1, 10])
+    np.testing.assert_allclose(table[:, 1], [1e5, 1e6])
+    np.testing.assert_allclose(table[:, 2], want.estimate, rtol=1e-5)
+    assert table[0, 2] == pytest.approx(0.5, rel=1e-5)
+    np.testing.assert_allclose(table[:, 3], want.low, rtol=1e-5, atol=1e-12)
+    np.testing.assert_allclose(table[:, 4], want.high, rtol=1e-5, atol=1e-12)
+    assert "90 % bootstrap interval" in out
+
+    # maximum of n_max values, one draw per bootstrap GLD
+    bm = bf.maximum(n_max)
+    assert f"maximum of 100000 values: mean {bm.mean:.6g}" in out
+
+    # files
+    names = {p.name for p in out_dir.iterdir() if not p.name.startswith(".")}
+    assert names == {"histogram.png", "qq.png", "pp.png", "lambda_densities.png", "maximum_density.png",
+                     "integrity_vs_area.png", "fit.json", "summary.csv"}
+    for name in names - {"fit.json", "summary.csv"}:
+        assert (out_dir / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    doc = json.loads((out_dir / "fit.json").read_text())
+    assert doc["fit"]["lambdas"] == list(ref.lambdas)
+    assert doc["input"]["column"] == "pressure" and doc["input"]["n_used"] == 300
+    assert doc["settings"]["seed"] == SEED and doc["bootstrap"]["n_resamples"] == 40
+    assert doc["damage"]["estimate"] == pytest.approx(list(want.estimate), rel=1e-12)
+    assert doc["damage"]["low"] == pytest.approx(list(want.low), rel=1e-12, abs=1e-300)
+    assert doc["gof"]["ks"] == pytest.approx(float(gof["ks"].iloc[0]), rel=1e-12)
+    assert doc["maximum"]["low"] == pytest.approx(bm.interval[0], rel=1e-12)
+    summary = pd.read_csv(out_dir / "summary.csv")
+    assert list(summary["quantity"][:4]) == ["lambda1", "lambda2", "lambda3", "lambda4"]
+    np.testing.assert_array_equal(summary["estimate"][:4], ref.lambdas)
+    dm = summary[summary["quantity"] == f"damage_at_{hardness:g}"]
+    np.testing.assert_allclose(dm["estimate"], want.estimate, rtol=1e-12)
+    np.testing.assert_allclose(dm["high"], want.high, rtol=1e-12)
+
+
+def test_npy_fkml_percentiles_without_bootstrap(tmp_path, capsys):
+    x = _pressures(200, seed=1)
+    npy = tmp_path / "p.npy"
+    np.save(npy, x)
+    out_dir = tmp_path / "o"
+    code, out, err = _run(capsys, [npy, "--param", "fkml", "--method", "percentiles", "--bootstrap", 0,
+                                   "--gof-resamples", 0, "--n-max", 1000, "--out", out_dir])
+    assert code == 0, err
+    ref = glstat.fit(x, "fkml", "percentiles")
+    np.testing.assert_allclose(_printed_lambdas(out), ref.lambdas, rtol=1e-13)
+    assert "FKML parameterisation, percentiles" in out
+    assert "not available (parameters estimated; set n_resamples)" in out
+    assert "bootstrap:" not in out and "damage probability" not in out
+    m = glstat.maximum(ref.dist, 1000)
+    lo, hi = m.interval(0.9)
+    assert f"interval [{lo:.6g}, {hi:.6g}]" in out
+    names = {p.name for p in out_dir.iterdir()}
+    assert names == {"histogram.png", "qq.png", "pp.png", "maximum_density.png", "fit.json", "summary.csv"}
+    doc = json.loads((out_dir / "fit.json").read_text())
+    assert doc["bootstrap"] is None and doc["damage"] is None
+    assert doc["fit"]["param"] == "fkml" and doc["fit"]["lambdas"] == list(ref.lambdas)
+
+
+def test_whitespace_text_without_header_and_column_position(tmp_path, capsys):
+    x = _pressures(150, seed=2)
+    txt = tmp_path / "p.txt"
+    with txt.open("w") as fh:
+        fh.write("# two columns: index and pressure\n")
+        for i, v in enumerate(x):
+            fh.write(f"{i}   {float(v)!r}\n")
+    code, out, err = _run(capsys, [txt, "--column", "2", "--method", "lmoments", "--bootstrap", 0,
+                                   "--gof-resamples", 0, "--out", tmp_path / "o"])
+    assert code == 0, err
+    assert "(text), column '2': 150 values used of 150" in out
+    np.testing.assert_allclose(_printed_lambdas(out), glstat.fit(x, "rs", "lmoments").lambdas, rtol=1e-13)
+
+
+def test_parquet_read_with_pyarrow(tmp_path, capsys):
+    pytest.importorskip("pyarrow", reason="Parquet input needs pyarrow (the 'all' extra)")
+    x = _pressures(120, seed=4)
+    pq = tmp_path / "p.parquet"
+    pd.DataFrame({"load": np.arange(x.size, dtype=float), "pressure": x}).to_parquet(pq, engine="pyarrow")
+    code, out, err = _run(capsys, [pq, "--column", "pressure", "--bootstrap", 0, "--gof-resamples", 0,
+                                   "--out", tmp_path / "o"])
+    assert code == 0, err
+    assert "(parquet), column 'pressure': 120 values" in out
+    np.testing.assert_allclose(_printed_lambdas(out), glstat.fit(x).lambdas, rtol=1e-12)
+
+
+def test_parquet_without_pyarrow_names_the_package(tmp_path, capsys, monkeypatch):
+    pq = tmp_path / "p.parquet"
+    pq.write_bytes(b"PAR1 not read")
+    monkeypatch.setitem(sys.modules, "pyarrow", None)  # import pyarrow now raises ImportError
+    code, out, err = _run(capsys, [pq, "--out", tmp_path / "o"])
+    assert code == 2 and out == ""
+    assert "needs the package 'pyarrow'" in err and "pip install pyarrow" in err
+
+
+def test_nan_policy_omit_and_raise(tmp_path, capsys):
+    x = _pressures(100, seed=5)
+    csv = tmp_path / "p.csv"
+    lines = ["pressure"] + [repr(float(v)) for v in x]
+    lines[11], lines[21], lines[31] = "NaN", "NA", "inf"  # data rows 11, 21, 31
+    csv.write_text("\n".join(lines) + "\n")
+    finite = np.delete(x, [10, 20, 30])
+    code, out, err = _run(capsys, [csv, "--bootstrap", 0, "--gof-resamples", 0, "--out", tmp_path / "o"])
+    assert code == 2 and out == ""
+    assert "2 missing/NaN and 1 infinite value(s) out of 100 (first in data row 11)" in err
+    assert "refused (--nan-policy raise)" in err and "--nan-policy omit" in err
+    code, out, err = _run(capsys, [csv, "--nan-policy", "omit", "--bootstrap", 0, "--gof-resamples", 0,
+                                   "--out", tmp_path / "o"])
+    assert code == 0, err
+    assert "97 values used of 100" in out and "dropped 3 non-finite value(s)" in out
+    np.testing.assert_allclose(_printed_lambdas(out), glstat.fit(finite).lambdas, rtol=1e-12)
+
+
+def test_hardness_outside_the_fitted_support(tmp_path, capsys):
+    x = 100.0 + 100.0 * np.random.default_rng(6).beta(2.0, 2.0, 400)  # RS moments: support ≈ [101.6, 201.4]
+    csv = tmp_path / "u.csv"
+    pd.DataFrame({"p": x}).to_csv(csv, index=False)
+    lo, hi = glstat.fit(x).dist.support()
+    assert np.isfinite(lo) and np.isfinite(hi)
+    for hardness, value, words in ((hi + 50.0, 0.0, "at or above the upper end"),
+                                   (lo - 50.0, 1.0, "at or below the lower end")):
+        code, out, err = _run(capsys, [csv, "--bootstrap", 20, "--gof-resamples", 0, "--hardness", hardness,
+                                       "--area-factor", 1, 5, "--out", tmp_path / "o", "--seed", 1])
+        assert code == 0, err
+        dmg = _section(out, "damage probability")
+        table = np.array([[float(v) for v in r.split()] for r in dmg[1:3]])
+        np.testing.assert_array_equal(table[:, 2:], value)
+        assert words in out and f"damage probability is {value:g}" in out
+        doc = json.loads((tmp_path / "o" / "fit.json").read_text())
+        assert doc["damage"]["estimate"] == [value, value] and words in doc["damage"]["reason"]
+
+
+# ---------------------------------------------------------------------------------------------
+# bad input
+# ---------------------------------------------------------------------------------------------
+def _bad(capsys, argv) -> str:
+    code, out, err = _run(capsys, argv)
+    assert code == 2, (out, err)
+    assert err.startswith("glstat fit: error: ")
+    return err
+
+
+def test_file_not_found(tmp_path, capsys):
+    err = _bad(capsys, [tmp_path / "nope.csv", "--out", tmp_path / "o"])
+    assert "file not found" in err and "nope.csv" in err and "check the path" in err
+    assert not (tmp_path / "o").exists()
+
+
+def test_unknown_column_lists_available(tmp_path, capsys):
+    csv = tmp_path / "p.csv"
+    pd.DataFrame({"load": [1.0, 2.0], "pressure": [3.0, 4.0], "tag": ["a", "b"]}).to_csv(csv, index=False)
+    err = _bad(capsys, [csv, "--column", "presure", "--out", tmp_path / "o"])
+    assert "column 'presure' not found" in err
+    assert "available columns: 'load', 'pressure', 'tag' (not numeric)" in err
+
+
+def test_several_numeric_columns_need_column(tmp_path, capsys):
+    csv = tmp_path / "p.csv"
+    pd.DataFrame({"load": np.arange(10.0), "pressure": _pressures(10)}).to_csv(csv, index=False)
+    err = _bad(capsys, [csv, "--out", tmp_path / "o"])
+    assert "2 numeric columns ('load', 'pressure')" in err and "--column" in err
+
+
+@pytest.mark.parametrize("content, words", [
+    ("", "is empty (0 bytes)"),
+    ("# only a comment\n\n", "is empty (no values"),
+    ("pressure,load\n", "has no data rows"),
+])
+def test_empty_files(tmp_path, capsys, content, words):
+    csv = tmp_path / "e.csv"
+    csv.write_text(content)
+    err = _bad(capsys, [csv, "--out", tmp_path / "o"])
+    assert words in err
+
+
+def test_empty_npy(tmp_path, capsys):
+    npy = tmp_path / "e.npy"
+    np.save(npy, np.array([], dtype=float))
+    err = _bad(capsys, [npy, "--out", tmp_path / "o"])
+    assert "has no data rows" in err
+
+
+def test_non_numeric_column(tmp_path, capsys):
+    csv = tmp_path / "p.csv"
+    csv.write_text("pressure,load\n1.5,1\n2.5,2\nhigh,3\n3.5,4\n")
+    err = _bad(capsys, [csv, "--column", "pressure", "--out", tmp_path / "o"])
+    assert "column 'pressure'" in err and "is not numeric" in err
+    assert "1 of 4 entries are not numbers (first: 'high' in data row 3)" in err
+    assert "choose a numeric column ('load')" in err
+
+
+def test_no_numeric_column(tmp_path, capsys):
+    csv = tmp_path / "p.csv"
+    csv.write_text("name;pressure\na;1.5\nb;2.5\n")  # semicolons: one text column
+    err = _bad(capsys, [csv, "--out", tmp_path / "o"])
+    assert "no numeric column (columns: 'name;pressure' (not numeric))" in err and "separator" in err
+
+
+def test_rows_longer_than_the_header(tmp_path, capsys):
+    csv = tmp_path / "p.csv"
+    csv.write_text("name;pressure\na;1,5\nb;2,5\n")  # semicolons and decimal commas
+    err = _bad(capsys, [csv, "--out", tmp_path / "o"])
+    assert "more fields than the header" in err and "separator" in err
+
+
+def test_too_few_values(tmp_path, capsys):
+    npy = tmp_path / "few.npy"
+    np.save(npy, np.array([1.0, 2.0, 4.0]))
+    err = _bad(capsys, [npy, "--method", "mle", "--out", tmp_path / "o"])
+    assert "has 3 finite value(s)" in err and "maximum likelihood" in err and "at least 5" in err
+
+
+def test_constant_values(tmp_path, capsys):
+    npy = tmp_path / "c.npy"
+    np.save(npy, np.full(20, 7.0))
+    err = _bad(capsys, [npy, "--bootstrap", 0, "--out", tmp_path / "o"])
+    assert "all 20 values" in err and "equal to 7" in err
+
+
+def test_output_directory_not_writable(tmp_path, capsys):
+    x = _pressures(50)
+    npy = tmp_path / "p.npy"
+    np.save(npy, x)
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a directory")
+    err = _bad(capsys, [npy, "--out", blocker])
+    assert "is an existing file, not a directory" in err and "--out" in err
+    err = _bad(capsys, [npy, "--out", blocker / "sub"])
+    assert "cannot be created" in err and "writable --out" in err
+
+
+def test_output_directory_without_write_permission_is_refused_before_computing(tmp_path, capsys,
+                                                                               monkeypatch):
+    npy = tmp_path / "p.npy"
+    np.save(npy, _pressures(50))
+
+    def denied(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    def no_fit(*args, **kwargs):
+        raise AssertionError("the fit must not start when the output directory is not writable")
+
+    monkeypatch.setattr(cli_fit.tempfile, "NamedTemporaryFile", denied)
+    monkeypatch.setattr(glstat.fitting, "fit", no_fit)
+    code, out, err = _run(capsys, [npy, "--out", tmp_path / "ro"])
+    assert code == 2 and out == ""
+    assert "is not writable (Permission denied)" in err
+
+
+def test_bad_options(tmp_path, capsys):
+    npy = tmp_path / "p.npy"
+    np.save(npy, _pressures(50))
+    err = _bad(capsys, [npy, "--confidence-level", 1.5, "--out", tmp_path / "o"])
+    assert "--confidence-level must lie strictly between 0 and 1" in err
+    err = _bad(capsys, [npy, "--bootstrap", 1, "--out", tmp_path / "o"])
+    assert "--bootstrap must be 0" in err
+    err = _bad(capsys, [npy, "--area-factor", 0, "--hardness", 1, "--out", tmp_path / "o"])
+    assert "--area-factor values must be positive" in err
+    code, out, err = _run(capsys, [npy, "--method", "guess"])
+    assert code == 2 and out == "" and "invalid choice: 'guess'" in err
+
+
+def test_fit_failure_exit_status(tmp_path, capsys):
+    # skewness 0, kurtosis 1.2: no RS GLD reaches these moments
+    npy = tmp_path / "twopoint.npy"
+    np.save(npy, np.r_[np.zeros(40), np.ones(40), [0.5, 0.5]])
+    code, out, err = _run(capsys, [npy, "--bootstrap", 0, "--out", tmp_path / "o"])
+    assert code == 1
+    assert "column '1': 82 values used of 82" in out and "GLD fit:" not in out
+    assert err.startswith("glstat fit: no GLD fit: no RS GLD matches the moments")
+    assert "percentiles" in err  # the library's hint at what works instead
+    assert not (tmp_path / "o" / "fit.json").exists()
+
+
+# ---------------------------------------------------------------------------------------------
+# standalone module run
+# ---------------------------------------------------------------------------------------------
+def test_python_m_glstat_cli_fit(tmp_path):
+    x = _pressures(100, seed=7)
+    csv = tmp_path / "p.csv"
+    pd.DataFrame({"pressure": x}).to_csv(csv, index=False)
+    proc = subprocess.run([sys.executable, "-m", "glstat.cli_fit", str(csv), "--bootstrap", "0",
+                           "--gof-resamples", "0", "--out", str(tmp_path / "o")],
+                          capture_output=True, text=True, timeout=120, check=False)
+    assert proc.returncode == 0, proc.stderr
+    np.testing.assert_allclose(_printed_lambdas(proc.stdout), glstat.fit(x).lambdas, rtol=1e-13)
+    assert json.loads((tmp_path / "o" / "fit.json").read_text())["input"]["n_used"] == 100
