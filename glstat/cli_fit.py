@@ -462,7 +462,8 @@ class FitResults:
         fit's median and interval, and (with a bootstrap) the mixture interval and table.
     damage : dict or None
         Damage at ``--hardness``: ``hardness``, ``n``, ``area_factors``, ``points``,
-        ``estimate``, ``low``, ``high`` (None without bootstrap), ``reason`` (why it is exactly
+        ``estimate`` (damage), ``integrity``, ``low``, ``high`` (the damage interval; None
+        without bootstrap), ``reason`` (why it is exactly
         0 or 1 when the hardness lies outside the fitted support, else None).
     notes : list of str
         Warnings raised while fitting (e.g. failed bootstrap resamples).
@@ -546,13 +547,16 @@ def _support_reason(hardness: float, support: tuple[float, float]) -> str | None
 
 
 def _damage(res: FitResults, hardness: float, n: float, factors: np.ndarray, level: float) -> dict[str, Any]:
-    from .damage import damage_probability
+    from .damage import damage_probability, integrity_probability
 
     reason = _support_reason(hardness, res.support)
     est = np.asarray(damage_probability(res.fit.dist, hardness, n, factors, outside_support="limit"),
                      dtype=float)
+    keep = np.asarray(integrity_probability(res.fit.dist, hardness, n, factors, outside_support="limit"),
+                      dtype=float)
     out: dict[str, Any] = {"hardness": hardness, "n": float(n), "area_factors": factors,
-                           "points": factors * n, "estimate": est, "low": None, "high": None,
+                           "points": factors * n, "estimate": est, "integrity": keep,
+                           "low": None, "high": None,
                            "confidence_level": level, "reason": reason}
     if res.boot is not None:
         bp = res.boot.damage_probability(hardness, n, factors, level)
@@ -674,11 +678,11 @@ def _print_maximum(res: FitResults, emit: Callable[[str], None]) -> None:
     level = 100 * m["confidence_level"]
     emit("")
     if "table" in m:
-        emit(f"maximum of {m['n']:g} values: mean {_g(m['mean'])}, {level:g} % interval "
+        emit(f"maximum of {m['n']:.10g} values: mean {_g(m['mean'])}, {level:g} % interval "
              f"[{_g(m['low'])}, {_g(m['high'])}] (one draw per bootstrap GLD)")
         emit(_indent(_table(m["table"][["quantity", "center", "low", "high"]])))
     else:
-        emit(f"maximum of {m['n']:g} values (full-sample fit, no bootstrap): mean {_g(m['mean'])}, "
+        emit(f"maximum of {m['n']:.10g} values (full-sample fit, no bootstrap): mean {_g(m['mean'])}, "
              f"{level:g} % interval [{_g(m['low'])}, {_g(m['high'])}]")
 
 
@@ -690,9 +694,10 @@ def _print_damage(res: FitResults, args: argparse.Namespace, emit: Callable[[str
     level = 100 * d["confidence_level"]
     emit("")
     with_ci = d["low"] is not None
-    emit(f"damage probability P(max > {d['hardness']:g}) for n = {d['n']:g} points ({src})"
+    emit(f"damage probability P(max > {d['hardness']:g}) for n = {d['n']:.10g} points ({src})"
          + (f", {level:g} % bootstrap interval:" if with_ci else " (no bootstrap: no interval):"))
-    tab = pd.DataFrame({"area_factor": d["area_factors"], "points": d["points"], "damage": d["estimate"]})
+    tab = pd.DataFrame({"area_factor": d["area_factors"], "points": [f"{v:.10g}" for v in d["points"]],
+                        "integrity": d["integrity"], "damage": d["estimate"]})
     if with_ci:
         tab["low"], tab["high"] = d["low"], d["high"]
     emit(_indent(_table(tab)))
@@ -742,7 +747,7 @@ def _integrity_figure(res: FitResults, ax) -> None:
         bp = res.boot.integrity_probability(d["hardness"], d["n"], grid, d["confidence_level"])
         ax.fill_between(grid, bp.low, bp.high, color="C1", alpha=0.25,
                         label=f"{100 * d['confidence_level']:g} % bootstrap interval")
-    ax.plot(k, 1.0 - d["estimate"], linestyle="none", marker="o",
+    ax.plot(k, d["integrity"], linestyle="none", marker="o",
             color="C3", label="requested area factors")
     ax.legend()
 
@@ -772,7 +777,7 @@ def _write_figures(res: FitResults, out: Path) -> None:
         fig = _figure()
         ax = fig.add_subplot()
         plot_maximum_density(res.maximum["dist"], interval=res.maximum["confidence_level"], ax=ax)
-        ax.set_xlabel(f"maximum of {res.maximum['n']:g} values")
+        ax.set_xlabel(f"maximum of {res.maximum['n']:.10g} values")
         _save(fig, out, "maximum_density.png", res)
     if res.damage is not None:
         fig = _figure()

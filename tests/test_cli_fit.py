@@ -98,14 +98,15 @@ def test_csv_full_run_tables_files_and_damage(tmp_path, capsys):
     bf = glstat.bootstrap(x, "rs", "moments", n_resamples=40, rng=SEED)
     want = bf.damage_probability(hardness, n_max, np.array([1.0, 10.0]))
     dmg = _section(out, f"damage probability P(max > {hardness:g})")
-    assert dmg[0].split() == ["area_factor", "points", "damage", "low", "high"]
+    assert dmg[0].split() == ["area_factor", "points", "integrity", "damage", "low", "high"]
     table = np.array([[float(v) for v in r.split()] for r in dmg[1:3]])
     np.testing.assert_allclose(table[:, 0], [1, 10])
     np.testing.assert_allclose(table[:, 1], [1e5, 1e6])
-    np.testing.assert_allclose(table[:, 2], want.estimate, rtol=1e-5)
-    assert table[0, 2] == pytest.approx(0.5, rel=1e-5)
-    np.testing.assert_allclose(table[:, 3], want.low, rtol=1e-5, atol=1e-12)
-    np.testing.assert_allclose(table[:, 4], want.high, rtol=1e-5, atol=1e-12)
+    np.testing.assert_allclose(table[:, 3], want.estimate, rtol=1e-5)
+    np.testing.assert_allclose(table[:, 2], 1 - want.estimate, rtol=1e-5)
+    assert table[0, 3] == pytest.approx(0.5, rel=1e-5)
+    np.testing.assert_allclose(table[:, 4], want.low, rtol=1e-5, atol=1e-12)
+    np.testing.assert_allclose(table[:, 5], want.high, rtol=1e-5, atol=1e-12)
     assert "90 % bootstrap interval" in out
 
     # maximum of n_max values, one draw per bootstrap GLD
@@ -223,7 +224,8 @@ def test_hardness_outside_the_fitted_support(tmp_path, capsys):
         assert code == 0, err
         dmg = _section(out, "damage probability")
         table = np.array([[float(v) for v in r.split()] for r in dmg[1:3]])
-        np.testing.assert_array_equal(table[:, 2:], value)
+        np.testing.assert_array_equal(table[:, 2], 1 - value)
+        np.testing.assert_array_equal(table[:, 3:], value)
         assert words in out and f"damage probability is {value:g}" in out
         doc = json.loads((tmp_path / "o" / "fit.json").read_text())
         assert doc["damage"]["estimate"] == [value, value] and words in doc["damage"]["reason"]
