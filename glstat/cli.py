@@ -1,0 +1,191 @@
+"""The ``glstat`` command: ``glstat study``, ``glstat fit FILE`` and ``glstat demo``.
+
+``glstat study`` runs the study of Bigerelle et al. (2019) end to end (see docs/study.md);
+``glstat fit`` fits a GLD to a user's own samples; ``glstat demo`` prints the quantiles of a
+GLD (the same as ``python -m glstat``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+
+__all__ = ["main", "study_main"]
+
+USAGE = """usage: glstat {study,fit,demo} ...
+
+commands:
+  study   run the contact study end to end (campaign, GLD analysis, validation, report)
+  fit     fit a GLD to samples from a CSV, Parquet or NPY file
+  demo    print quantiles and tail probabilities of a GLD (as python -m glstat)
+
+'glstat COMMAND --help' describes each command."""
+
+#: The paper's settings, and the ``--quick`` overrides.
+DEFAULTS = {"surfaces": 100, "grid": 1024, "bootstrap": 1000, "out": "glstat-study"}
+QUICK = {"surfaces": 30, "grid": 512, "bootstrap": 300, "out": "glstat-study-quick"}
+#: Default Weierstrass truncation (terms per axis), see docs/study.md.
+DEFAULT_N_TERMS = 6
+
+
+def _n_terms_arg(text: str) -> int | None:
+    if text.lower() in ("nyquist", "none", "full"):
+        return None
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"--n-terms takes integers (terms per axis) or 'nyquist', got {text!r}") from None
+    if v < 1:
+        raise argparse.ArgumentTypeError(f"--n-terms must be >= 1, got {v}")
+    return v
+
+
+def _positive(kind):
+    def parse(text: str):
+        try:
+            v = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}") from None
+        if not (math.isfinite(v) and v > 0):
+            raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
+        return v
+    return parse
+
+
+def _study_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="glstat study",
+        description="Contact study of Bigerelle et al. (2019): Weierstrass surfaces pressed by a rigid "
+                    "flat, GLD of the contact pressures, bootstrap, maximal pressure, damage "
+                    "probability at the hardness, integrity against area, and the validation of the "
+                    "predicted maximum across surfaces. Writes report.html and report.md into --out. "
+                    "An interrupted run resumes: rerun the same command.",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p.add_argument("--quick", action="store_true",
+                   help=f"a version that finishes in about a minute ({QUICK['surfaces']} surfaces of "
+                        f"{QUICK['grid']}² per H, {QUICK['bootstrap']} bootstrap resamples, out "
+                        f"{QUICK['out']}); explicit options still win")
+    p.add_argument("--out", help=f"output directory (default {DEFAULTS['out']}, "
+                                 f"{QUICK['out']} with --quick)")
+    p.add_argument("--surfaces", type=_positive(int), help=f"surfaces per H (default {DEFAULTS['surfaces']})")
+    p.add_argument("--grid", type=_positive(int), help=f"points per side (default {DEFAULTS['grid']})")
+    p.add_argument("--hurst", type=float, nargs="+", default=[0.0, 0.5, 1.0], help="Hurst exponents")
+    p.add_argument("--pressure", type=_positive(float), nargs="+", default=[20.0],
+                   help="nominal pressure(s) in MPa")
+    p.add_argument("--hardness", type=_positive(float), default=2050.0, help="hardness Pd in MPa")
+    p.add_argument("--bootstrap", type=_positive(int),
+                   help=f"bootstrap resamples B (default {DEFAULTS['bootstrap']})")
+    p.add_argument("--rq", type=_positive(float), default=50.0, help="RMS roughness in µm")
+    p.add_argument("--size", type=_positive(float), default=1.0, help="side of the surface in mm")
+    p.add_argument("--modulus", type=_positive(float), default=210.0, help="Young's modulus E in GPa")
+    p.add_argument("--poisson", type=float, default=0.3, help="Poisson ratio ν")
+    p.add_argument("--cone-factor", type=_positive(float), default=0.2, help="c in p_m = c E* tan β")
+    trunc = p.add_mutually_exclusive_group()
+    trunc.add_argument("--n-terms", type=_n_terms_arg, nargs="+",
+                       help=f"Weierstrass terms per axis, one value or one per H; 'nyquist' for every "
+                            f"frequency up to the grid's Nyquist limit (default {DEFAULT_N_TERMS}; see "
+                            f"docs/study.md for why)")
+    trunc.add_argument("--max-frequency", type=_positive(float), nargs="+",
+                       help="highest Weierstrass frequency in 1/mm instead of --n-terms (one value or "
+                            "one per H): n_terms = floor(log(f L) / log γ) + 1")
+    p.add_argument("--gamma", type=float, default=1.5, help="Weierstrass frequency ratio γ")
+    p.add_argument("--workers", type=_positive(int), help="local worker processes (default: all cores)")
+    p.add_argument("--scheduler", help="address of a Dask scheduler (tcp://host:8786) to run the surfaces on")
+    p.add_argument("--scheduler-timeout", type=_positive(float), default=10.0,
+                   help="seconds to wait for the Dask scheduler")
+    p.add_argument("--seed", type=int, default=2019, help="root seed of the campaign and the bootstrap")
+    p.add_argument("--force", action="store_true",
+                   help="reuse an output directory holding a campaign with other settings "
+                        "(its surfaces are discarded)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return p
+
+
+def study_main(argv: list[str]) -> int:
+    """``glstat study``: run the study and write the report; returns the exit status."""
+    parser = _study_parser()
+    args = parser.parse_args(argv)
+    base = QUICK if args.quick else DEFAULTS
+    surfaces = args.surfaces or base["surfaces"]
+    grid = args.grid or base["grid"]
+    boot = args.bootstrap or base["bootstrap"]
+    out = args.out or base["out"]
+    from .study import AnalysisSettings, CampaignError, CampaignSettings, run_study
+    from .study.campaign import make_executor
+
+    length = args.size * 1e-3
+    if args.max_frequency:
+        n_terms = [math.floor(math.log(f * 1e3 * length) / math.log(args.gamma) + 1e-12) + 1
+                   for f in args.max_frequency]
+        if min(n_terms) < 1:
+            parser.error(f"--max-frequency must be at least 1/L = {1 / (length * 1e3):g} per mm")
+    else:
+        n_terms = args.n_terms or [DEFAULT_N_TERMS]
+    try:
+        settings = CampaignSettings(
+            hurst=tuple(args.hurst), pressures=tuple(p * 1e6 for p in args.pressure),
+            n_surfaces=surfaces, grid=grid, length=length, rq=args.rq * 1e-6, gamma=args.gamma,
+            n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
+            cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
+        asettings = AnalysisSettings(hardness=args.hardness, n_resamples=boot, seed=args.seed)
+    except ValueError as exc:
+        print(f"glstat study: error: {exc}", file=sys.stderr)
+        return 2
+    shutdown = None
+    try:
+        executor = None
+        label = None
+        if args.scheduler:
+            executor, shutdown = make_executor(scheduler=args.scheduler, timeout=args.scheduler_timeout)
+            label = f"Dask scheduler {args.scheduler}"
+        elif args.workers == 1:
+            label = "1 (serial, in-process)"
+        t0 = time.perf_counter()
+        res = run_study(settings, asettings, out, executor=executor, workers=args.workers,
+                        force=args.force, progress=not args.no_progress,
+                        command="glstat study " + " ".join(argv), workers_label=label)
+    except CampaignError as exc:
+        print(f"glstat study: error: {exc}", file=sys.stderr)
+        return 1
+    finally:
+        if shutdown is not None:
+            shutdown()
+    print(f"study finished in {time.perf_counter() - t0:.1f} s "
+          f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
+    table = res.summary()
+    for _, r in table.iterrows():
+        print(f"H = {r['hurst']:g}, {r['pressure_MPa']:g} MPa: mean contact pressure "
+              f"{r['mean_pressure']:.4g} MPa, 1 - alpha {r['contact_fraction']:.3g}, damage P at "
+              f"{args.hardness:g} MPa {r['damage_grid']:.4g} [{r['damage_grid_low']:.4g}, "
+              f"{r['damage_grid_high']:.4g}] (grid) {r['damage_asperity']:.4g} (asperity); coverage "
+              f"grid {100 * r['coverage_grid']:.0f} %, asperity {100 * r['coverage_asperity']:.0f} %")
+    print(f"report: {res.report_html}  (and {res.report_md})")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``glstat`` console script; dispatches to the subcommands."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if not argv or argv[0] in ("-h", "--help"):
+        print(USAGE)
+        return 0 if argv else 2
+    cmd, rest = argv[0], argv[1:]
+    if cmd == "study":
+        return study_main(rest)
+    if cmd == "fit":
+        from .cli_fit import main as fit_main
+
+        return fit_main(rest)
+    if cmd == "demo":
+        from .__main__ import main as demo_main
+
+        return demo_main(rest)
+    print(f"glstat: unknown command {cmd!r}\n\n{USAGE}", file=sys.stderr)
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,222 @@
+"""The study of Bigerelle et al. (2019) end to end (DESIGN §1): a parallel contact campaign
+over surfaces × Hurst exponents × loads, the GLD analysis of the contact pressures, the
+validation of the predicted maximal pressure, and the report.
+
+The public entry point of the campaign is :func:`run_campaign`; :func:`run_study` adds the
+analysis and writes ``report.html`` / ``report.md``. The ``glstat study`` command calls
+:func:`run_study`. This package is not imported by ``import glstat``.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import platform
+import sys
+import time
+from concurrent.futures import Executor
+from pathlib import Path
+
+import numpy as np
+
+from .analysis import AnalysisSettings, analyse, wilson_interval
+from .campaign import (
+    CampaignError,
+    CampaignRun,
+    CampaignSettings,
+    SerialExecutor,
+    load_results,
+    make_executor,
+    nyquist_terms,
+    run_campaign,
+    simulate_surface,
+    surface_path,
+)
+
+__all__ = [
+    "TRUNCATION_TABLE",
+    "AnalysisSettings",
+    "CampaignError",
+    "CampaignRun",
+    "CampaignSettings",
+    "SerialExecutor",
+    "StudyResult",
+    "analyse",
+    "load_results",
+    "make_executor",
+    "nyquist_terms",
+    "run_campaign",
+    "run_study",
+    "simulate_surface",
+    "surface_path",
+    "truncation_table",
+    "wilson_interval",
+]
+
+#: Measured with :func:`truncation_table` (20 surfaces per row, 1024², 1 mm², Rq = 50 µm,
+#: 20 MPa, E = 210 GPa, ν = 0.3, c = 0.2, seed 2019): rows (H, n_terms, highest frequency in
+#: 1/mm, mean contact pressure in GPa, 1 − α, asperities in contact). Filled in docs/study.md.
+TRUNCATION_TABLE: list[list[float]] = []
+
+
+def truncation_table(n_terms=(1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16), hurst=(0.0, 0.5, 1.0),
+                     n_surfaces: int = 20, settings: CampaignSettings | None = None,
+                     progress: bool = False) -> list[list[float]]:
+    """Mean pressure, contact fraction and asperity count against the Weierstrass truncation.
+
+    Parameters
+    ----------
+    n_terms : sequence of int
+        Terms per axis to try (highest frequency ``gamma^(n_terms-1) / L``).
+    hurst : sequence of float
+        Hurst exponents.
+    n_surfaces : int
+        Surfaces per (H, n_terms).
+    settings : CampaignSettings, optional
+        The other settings (default: the paper's; its ``n_terms`` and ``hurst`` are replaced).
+    progress : bool
+        Print one line per row.
+
+    Returns
+    -------
+    list of rows
+        ``[H, n_terms, highest frequency (1/mm), mean contact pressure (GPa), its standard
+        error (GPa), 1 − α, asperities in contact]``, means over the surfaces.
+    """
+    import dataclasses
+
+    base = settings or CampaignSettings()
+    rows = []
+    for h in hurst:
+        for nt in n_terms:
+            s = dataclasses.replace(base, hurst=(float(h),), n_terms=(int(nt),), n_examples=0,
+                                    n_surfaces=n_surfaces, pressures=base.pressures[:1])
+            rs = [simulate_surface(s, 0, 0, i) for i in range(n_surfaces)]
+            mp = np.array([float(r["mean_pressure"]) for r in rs]) / 1e9
+            rows.append([float(h), int(nt), s.max_frequency(0) / 1e3, float(mp.mean()),
+                         float(mp.std(ddof=1) / math.sqrt(mp.size)) if mp.size > 1 else math.nan,
+                         float(np.mean([1 - r["alpha"] for r in rs])),
+                         float(np.mean([r["n_asperities"] for r in rs]))])
+            if progress:
+                print(*(f"{v:.4g}" for v in rows[-1]), flush=True)
+    return rows
+
+
+class StudyResult:
+    """What :func:`run_study` produced.
+
+    Attributes
+    ----------
+    out : Path
+        Output directory.
+    report_html, report_md : Path
+        The report files.
+    analysis : dict
+        Output of :func:`glstat.study.analyse`.
+    timings : dict
+        Seconds per stage.
+    campaign : CampaignRun
+    """
+
+    def __init__(self, out, report_html, report_md, analysis, timings, campaign):
+        self.out = Path(out)
+        self.report_html = report_html
+        self.report_md = report_md
+        self.analysis = analysis
+        self.timings = timings
+        self.campaign = campaign
+
+    def summary(self):
+        """One row per (H, load): mean pressure (MPa), 1 − α, damage probability and interval,
+        coverage of both samples (a pandas DataFrame)."""
+        import pandas as pd
+
+        rows = []
+        for (ih, il), r in self.analysis.items():
+            row = {"hurst": self.campaign.settings.hurst[ih],
+                   "pressure_MPa": self.campaign.settings.pressures[il] / 1e6, **r["summary"]}
+            for kind in ("grid", "asperity"):
+                d, v = r[kind].damage, r[kind].validation
+                row[f"damage_{kind}"] = math.nan if d is None else float(d.estimate)
+                row[f"damage_{kind}_low"] = math.nan if d is None else float(d.low)
+                row[f"damage_{kind}_high"] = math.nan if d is None else float(d.high)
+                row[f"coverage_{kind}"] = v.coverage
+                row[f"coverage_{kind}_low"], row[f"coverage_{kind}_high"] = v.coverage_interval
+                row[f"ttest_p_{kind}"] = v.t_pvalue
+            rows.append(row)
+        return pd.DataFrame(rows)
+
+
+def _versions() -> dict[str, str]:
+    import importlib.metadata as md
+
+    out = {"python": platform.python_version(), "platform": platform.platform()}
+    for name in ("glstat", "numpy", "scipy", "numba", "pandas", "matplotlib", "tqdm", "distributed"):
+        try:
+            out[name] = md.version(name)
+        except md.PackageNotFoundError:
+            out[name] = "not installed"
+    return out
+
+
+def run_study(
+    settings: CampaignSettings,
+    analysis: AnalysisSettings,
+    out: str | os.PathLike,
+    *,
+    executor: Executor | None = None,
+    workers: int | None = None,
+    force: bool = False,
+    progress: bool = True,
+    command: str = "",
+    workers_label: str | None = None,
+) -> StudyResult:
+    """Run (or resume) the campaign, analyse it and write the report.
+
+    Parameters
+    ----------
+    settings : CampaignSettings
+        The campaign (surfaces, Hurst exponents, loads, contact model).
+    analysis : AnalysisSettings
+        Hardness, bootstrap, fit and levels.
+    out : path
+        Output directory (campaign files, ``report.html``, ``report.md``, ``report_files/``).
+    executor, workers, force, progress
+        As for :func:`run_campaign`.
+    command : str
+        Command line recorded in the report.
+    workers_label : str, optional
+        Description of the workers for the report.
+
+    Returns
+    -------
+    StudyResult
+    """
+    t0 = time.perf_counter()
+    camp = run_campaign(settings, out, executor=executor, workers=workers, force=force,
+                        progress=progress)
+    t1 = time.perf_counter()
+    results = load_results(out, settings)
+    examples = [(ih, il, i) for ih in range(len(settings.hurst)) for il in range(len(settings.pressures))
+                for i in range(min(1, settings.n_examples))]
+    results.update(load_results(out, settings, examples, maps=True))
+    t2 = time.perf_counter()
+    an = analyse(results, settings, analysis)
+    t3 = time.perf_counter()
+    from .report import build_report
+
+    timings = {"campaign (this run)": t1 - t0, "surfaces computed in this run": len(camp.computed),
+               "surfaces reused from the directory": camp.skipped,
+               "mean seconds per computed surface (one worker)":
+                   float(np.mean(list(camp.task_times.values()))) if camp.task_times else math.nan,
+               "loading results": t2 - t1, "analysis (fits, bootstrap, validation)": t3 - t2}
+    info = {"versions": _versions(), "timings": timings, "truncation": TRUNCATION_TABLE and [
+                [r[0], r[1], r[2], r[3], r[5], r[6]] for r in TRUNCATION_TABLE],
+            "command": command or " ".join(sys.argv),
+            "workers": workers_label or (type(executor).__name__ if executor is not None
+                                         else f"{workers or os.cpu_count()} local processes")}
+    rep = build_report(settings, analysis, results, an, info)
+    timings["report"] = time.perf_counter() - t3
+    timings["total"] = time.perf_counter() - t0
+    html, md = rep.write(out)
+    return StudyResult(out, html, md, an, timings, camp)

@@ -1,0 +1,550 @@
+"""Parallel contact campaigns: surfaces × Hurst exponents × loads, saved as they finish.
+
+One task simulates one surface: a Weierstrass surface (:func:`contact.weierstrass`) pressed by
+a rigid flat with the asperity model (:func:`contact.solve`). Tasks run on any
+:class:`concurrent.futures.Executor`; every result is written by the calling process as soon as
+it arrives, atomically, so an interrupted campaign resumes by computing only what is missing.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import io
+import json
+import math
+import os
+import tempfile
+import time
+import zipfile
+from collections.abc import Callable, Iterable
+from concurrent.futures import Executor, Future, as_completed
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "CampaignError",
+    "CampaignSettings",
+    "SerialExecutor",
+    "load_results",
+    "make_executor",
+    "run_campaign",
+    "simulate_surface",
+    "surface_path",
+]
+
+#: Version of the on-disk layout; part of the manifest.
+FORMAT_VERSION = 1
+MANIFEST = "manifest.json"
+
+
+class CampaignError(RuntimeError):
+    """A campaign cannot start or did not finish (the message says how to proceed)."""
+
+
+@dataclass(frozen=True)
+class CampaignSettings:
+    """What a campaign computes; two runs with equal settings give identical files.
+
+    Attributes
+    ----------
+    hurst : tuple of float
+        Hurst exponents H in [0, 1].
+    pressures : tuple of float
+        Nominal pressures in pascals (the loads).
+    n_surfaces : int
+        Independent surfaces per (H, load).
+    grid : int
+        Grid points per side (square grid).
+    length : float
+        Side of the square surface in metres.
+    rq : float
+        RMS roughness in metres.
+    gamma : float
+        Frequency ratio of the Weierstrass series.
+    n_terms : tuple of (int or None)
+        Weierstrass terms per axis for each H (highest frequency ``gamma^(n_terms-1) / length``);
+        None means every frequency up to the grid's Nyquist limit.
+    E : float
+        Young's modulus of the rough body in pascals.
+    nu : float
+        Poisson ratio of the rough body.
+    cone_factor : float
+        ``c`` in ``p_m = c E* tan(beta)``.
+    seed : int
+        Root of the :class:`numpy.random.SeedSequence`.
+    n_examples : int
+        Surfaces per (H, load) (the first ones) whose full height and pressure maps are kept.
+    """
+
+    hurst: tuple[float, ...] = (0.0, 0.5, 1.0)
+    pressures: tuple[float, ...] = (20e6,)
+    n_surfaces: int = 100
+    grid: int = 1024
+    length: float = 1e-3
+    rq: float = 50e-6
+    gamma: float = 1.5
+    n_terms: tuple[int | None, ...] = (6, 6, 6)
+    E: float = 210e9
+    nu: float = 0.3
+    cone_factor: float = 0.2
+    seed: int = 2019
+    n_examples: int = 1
+
+    def __post_init__(self) -> None:
+        h = tuple(float(v) for v in np.atleast_1d(self.hurst))
+        p = tuple(float(v) for v in np.atleast_1d(self.pressures))
+        nt = self.n_terms if isinstance(self.n_terms, tuple | list) else (self.n_terms,)
+        nt = tuple(None if v is None else int(v) for v in nt)
+        if len(nt) == 1:
+            nt = nt * len(h)
+        object.__setattr__(self, "hurst", h)
+        object.__setattr__(self, "pressures", p)
+        object.__setattr__(self, "n_terms", nt)
+        if not h or any(not (0.0 <= v <= 1.0) for v in h):
+            raise ValueError(f"hurst must be one or more exponents in [0, 1], got {self.hurst!r}")
+        if len(set(h)) != len(h):
+            raise ValueError(f"hurst exponents must be distinct, got {h!r}")
+        if not p or any(not (math.isfinite(v) and v > 0) for v in p):
+            raise ValueError(f"pressures must be positive finite nominal pressures in Pa, got {p!r}")
+        if len(nt) != len(h):
+            raise ValueError(
+                f"n_terms must be one value or one per Hurst exponent ({len(h)}), got {len(nt)}"
+            )
+        if int(self.n_surfaces) != self.n_surfaces or self.n_surfaces < 1:
+            raise ValueError(f"n_surfaces must be a positive integer, got {self.n_surfaces!r}")
+        if int(self.grid) != self.grid or self.grid < 16:
+            raise ValueError(f"grid must be an integer >= 16 points per side, got {self.grid!r}")
+        for name in ("length", "rq", "E"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v > 0):
+                raise ValueError(f"{name} must be positive and finite (SI units), got {v!r}")
+        if not (math.isfinite(self.gamma) and self.gamma > 1):
+            raise ValueError(f"gamma must be > 1, got {self.gamma!r}")
+        limit = nyquist_terms(self.grid, self.length, self.gamma)
+        for v in nt:
+            if v is not None and not (1 <= v <= limit):
+                raise ValueError(
+                    f"n_terms must be between 1 and {limit} (the Nyquist limit of a {self.grid}² "
+                    f"grid with gamma={self.gamma}), got {v}; use None for the full spectrum"
+                )
+        if not (0 <= self.n_examples <= self.n_surfaces):
+            raise ValueError(f"n_examples must be in [0, n_surfaces], got {self.n_examples!r}")
+
+    def identity(self) -> dict[str, Any]:
+        """The settings that define the stored results (everything but ``n_surfaces``).
+
+        Surface i of a given (H, load) has the same seed whatever the number of surfaces,
+        so a campaign can be extended with more surfaces in the same directory.
+        """
+        d = dataclasses.asdict(self)
+        d.pop("n_surfaces")
+        d = {k: list(v) if isinstance(v, tuple) else v for k, v in d.items()}
+        d["format_version"] = FORMAT_VERSION
+        return d
+
+    def max_frequency(self, ih: int) -> float:
+        """Highest Weierstrass frequency of Hurst exponent number ``ih``, in 1/m."""
+        nt = self.n_terms[ih]
+        if nt is None:
+            nt = nyquist_terms(self.grid, self.length, self.gamma)
+        return self.gamma ** (nt - 1) / self.length
+
+    def tasks(self) -> list[tuple[int, int, int]]:
+        """Every (H index, load index, surface index) of the campaign."""
+        return [(ih, il, i) for ih in range(len(self.hurst)) for il in range(len(self.pressures))
+                for i in range(self.n_surfaces)]
+
+    def seed_sequence(self, ih: int, il: int, i: int) -> np.random.SeedSequence:
+        """``SeedSequence(seed).spawn(nH)[ih].spawn(nL)[il].spawn(...)[i]`` (spawn key (ih, il, i))."""
+        return np.random.SeedSequence(self.seed, spawn_key=(ih, il, i))
+
+
+def nyquist_terms(grid: int, length: float, gamma: float) -> int:
+    """Number of Weierstrass terms up to the Nyquist limit ``grid / (2 length)`` (as
+    :func:`contact.weierstrass` computes it)."""
+    return math.floor(math.log(grid / 2) / math.log(gamma) + 1e-12) + 1
+
+
+def surface_path(root: str | os.PathLike, settings: CampaignSettings, ih: int, il: int, i: int) -> Path:
+    """File of one surface's result: ``root/H<h>_P<MPa>/surface_<i>.npz``."""
+    h = settings.hurst[ih]
+    p = settings.pressures[il] / 1e6
+    return Path(root) / f"H{h:g}_P{p:g}MPa" / f"surface_{i:04d}.npz"
+
+
+def simulate_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> dict[str, np.ndarray]:
+    """Generate and solve one surface (a campaign task; runs on a worker).
+
+    Returns
+    -------
+    dict of ndarray
+        ``samples`` (non-zero grid pressures, Pa, row-major order), ``asperity_peak``
+        (``1.5 p_m`` per asperity in contact, Pa), ``asperity_p_m``, ``asperity_beta`` (rad),
+        ``asperity_a``, ``asperity_b`` (m), and scalars ``max_pressure``, ``mean_pressure``
+        (Pa), ``alpha``, ``n_contact``, ``n_points``, ``n_asperities``, ``separation`` (m),
+        ``force_error``, ``rq`` (m, achieved); for example surfaces also ``heights`` (m) and
+        ``pressure`` (Pa) maps as float32.
+    """
+    import contact
+
+    rng = np.random.default_rng(settings.seed_sequence(ih, il, i))
+    surf = contact.weierstrass((settings.grid, settings.grid), settings.length, settings.hurst[ih],
+                               settings.gamma, rq=settings.rq, rng=rng, n_terms=settings.n_terms[ih])
+    res = contact.solve(surf, settings.pressures[il], settings.E, settings.nu, settings.cone_factor)
+    asp = res.asperities
+    p = res.pressure
+    out = {
+        "samples": p[p > 0].astype(np.float64),
+        "asperity_peak": 1.5 * asp["p_m"].to_numpy(dtype=float),
+        "asperity_p_m": asp["p_m"].to_numpy(dtype=float),
+        "asperity_beta": asp["beta"].to_numpy(dtype=float),
+        "asperity_a": asp["a"].to_numpy(dtype=float),
+        "asperity_b": asp["b"].to_numpy(dtype=float),
+        "max_pressure": np.float64(res.max_pressure),
+        "mean_pressure": np.float64(res.mean_pressure),
+        "alpha": np.float64(res.alpha),
+        "n_contact": np.int64(np.count_nonzero(p > 0)),
+        "n_points": np.int64(p.size),
+        "n_asperities": np.int64(len(asp)),
+        "separation": np.float64(res.separation),
+        "force_error": np.float64(res.force_error),
+        "rq": np.float64(np.sqrt(np.mean((surf.heights - surf.heights.mean()) ** 2))),
+    }
+    if i < settings.n_examples:
+        out["heights"] = surf.heights.astype(np.float32)
+        out["pressure"] = p.astype(np.float32)
+    return out
+
+
+def _task(settings: CampaignSettings, key: tuple[int, int, int]):
+    t0 = time.perf_counter()
+    out = simulate_surface(settings, *key)
+    return key, out, time.perf_counter() - t0
+
+
+# -- files ---------------------------------------------------------------------------------------
+def _npz_bytes(arrays: dict[str, np.ndarray]) -> bytes:
+    """An .npz archive with fixed member timestamps, so equal arrays give equal bytes."""
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", compression=zipfile.ZIP_DEFLATED) as zf:
+        for name in sorted(arrays):
+            member = io.BytesIO()
+            np.lib.format.write_array(member, np.asarray(arrays[name]), allow_pickle=False)
+            info = zipfile.ZipInfo(name + ".npy", date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            zf.writestr(info, member.getvalue())
+    return buf.getvalue()
+
+
+def atomic_write(path: str | os.PathLike, data: bytes) -> None:
+    """Write ``data`` to ``path`` through a temporary file in the same folder and ``os.replace``."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix="." + path.name + ".", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def _is_complete(path: Path) -> bool:
+    if not path.is_file():
+        return False
+    try:
+        with np.load(path) as z:
+            return "samples" in z.files and "max_pressure" in z.files
+    except Exception:
+        return False
+
+
+def _check_writable(root: Path) -> None:
+    try:
+        root.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=".write-test.", dir=root)
+        os.close(fd)
+        os.unlink(tmp)
+    except OSError as exc:
+        raise CampaignError(
+            f"the output directory {str(root)!r} is not writable ({exc.strerror or exc}); "
+            f"choose another one with --out DIR (or out= in Python)"
+        ) from None
+
+
+def _prepare_dir(root: Path, settings: CampaignSettings, force: bool) -> None:
+    _check_writable(root)
+    mpath = root / MANIFEST
+    ident = settings.identity()
+    if mpath.exists():
+        try:
+            old = json.loads(mpath.read_text())["campaign"]
+        except (ValueError, KeyError) as exc:
+            raise CampaignError(
+                f"{mpath} is not a campaign manifest ({exc}); use a new output directory"
+            ) from None
+        if old != ident and not force:
+            diff = ", ".join(f"{k}: {old.get(k)!r} -> {v!r}" for k, v in ident.items() if old.get(k) != v)
+            raise CampaignError(
+                f"{root} holds results of a campaign with different settings ({diff}); "
+                f"resuming would mix them. Use a new output directory (--out DIR), or --force "
+                f"(force=True) to discard the stored surfaces and start over in this directory"
+            )
+        if old != ident and force:
+            for sub in root.glob("H*_P*MPa"):
+                for f in sub.glob("surface_*"):
+                    f.unlink()
+    manifest = {"campaign": ident, "created": time.strftime("%Y-%m-%dT%H:%M:%S")}
+    if mpath.exists() and not force:
+        manifest["created"] = json.loads(mpath.read_text()).get("created", manifest["created"])
+    atomic_write(mpath, json.dumps(manifest, indent=2).encode())
+
+
+# -- executors -----------------------------------------------------------------------------------
+class SerialExecutor(Executor):
+    """Run every task at submission, in the calling thread (``--workers 1``)."""
+
+    def submit(self, fn, /, *args, **kwargs) -> Future:
+        fut: Future = Future()
+        try:
+            fut.set_result(fn(*args, **kwargs))
+        except BaseException as exc:
+            fut.set_exception(exc)
+        return fut
+
+
+def make_executor(workers: int | None = None, scheduler: str | None = None,
+                  timeout: float = 10.0) -> tuple[Executor, Callable[[], None]]:
+    """An executor and the function that shuts it down.
+
+    Parameters
+    ----------
+    workers : int or None
+        Local worker processes; None means ``os.cpu_count()``; 1 runs serially in-process.
+    scheduler : str or None
+        Address of a Dask scheduler (``tcp://host:8786``); its workers run the tasks through
+        ``distributed.Client(address).get_executor()``.
+    timeout : float
+        Seconds to wait for the scheduler.
+
+    Raises
+    ------
+    CampaignError
+        The scheduler cannot be reached, or ``distributed`` is not installed.
+    """
+    if scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise CampaignError(
+                "a Dask scheduler needs the 'distributed' package: pip install 'glstat[distributed]'"
+            ) from None
+        try:
+            client = Client(scheduler, timeout=f"{timeout}s")
+        except Exception as exc:  # OSError, TimeoutError, ValueError for a bad address
+            raise CampaignError(
+                f"cannot reach the Dask scheduler at {scheduler!r} within {timeout:g} s ({exc}); "
+                f"check the address and that the scheduler is running, or drop --scheduler to "
+                f"run on local processes"
+            ) from None
+        return client.get_executor(), client.close
+    n = (os.cpu_count() or 1) if workers is None else int(workers)
+    if n < 1:
+        raise ValueError(f"workers must be >= 1, got {workers!r}")
+    if n == 1:
+        ex = SerialExecutor()
+        return ex, ex.shutdown
+    from concurrent.futures import ProcessPoolExecutor
+
+    ex = ProcessPoolExecutor(n)
+    return ex, lambda: ex.shutdown(cancel_futures=True)
+
+
+# -- the campaign --------------------------------------------------------------------------------
+@dataclass
+class CampaignRun:
+    """What a call to :func:`run_campaign` did.
+
+    Attributes
+    ----------
+    out : Path
+        The output directory.
+    settings : CampaignSettings
+    computed : list of (int, int, int)
+        Tasks computed in this call, in completion order.
+    skipped : int
+        Tasks already stored and not recomputed.
+    wall_time : float
+        Seconds spent in this call.
+    task_times : dict
+        Seconds per computed task.
+    """
+
+    out: Path
+    settings: CampaignSettings
+    computed: list = field(default_factory=list)
+    skipped: int = 0
+    wall_time: float = 0.0
+    task_times: dict = field(default_factory=dict)
+
+
+def run_campaign(
+    settings: CampaignSettings,
+    out: str | os.PathLike,
+    *,
+    executor: Executor | None = None,
+    workers: int | None = None,
+    force: bool = False,
+    progress: bool = True,
+    max_pending: int | None = None,
+) -> CampaignRun:
+    """Run (or resume) a campaign of contact simulations, saving every surface as it finishes.
+
+    Parameters
+    ----------
+    settings : CampaignSettings
+        Hurst exponents × loads × surfaces and the surface/contact parameters.
+    out : path
+        Output directory; holds ``manifest.json`` and one ``.npz`` per surface
+        (:func:`surface_path`). Created if needed.
+    executor : concurrent.futures.Executor, optional
+        Where the tasks run (a process or thread pool, :class:`SerialExecutor`, or a Dask
+        cluster's ``Client.get_executor()``). Default: a local process pool with ``workers``
+        processes, shut down at the end.
+    workers : int, optional
+        Size of the default pool (default ``os.cpu_count()``); ignored with ``executor``.
+    force : bool
+        Start over in a directory whose manifest has different settings (its surfaces are
+        deleted); without it such a directory is refused.
+    progress : bool
+        Show a tqdm progress bar.
+    max_pending : int, optional
+        Tasks in flight at once (default 4 per worker, at least 8).
+
+    Returns
+    -------
+    CampaignRun
+
+    Raises
+    ------
+    CampaignError
+        Unwritable directory, a manifest with different settings, or a failed task (the
+        surfaces finished before it are kept; rerunning the same call resumes).
+
+    Notes
+    -----
+    Surface i of Hurst exponent number ih at load number il uses the seed
+    ``SeedSequence(seed, spawn_key=(ih, il, i))`` — the child that
+    ``SeedSequence(seed).spawn`` produces at that position of the nested spawn — so its
+    result does not depend on the executor, the worker count or the order of completion.
+    Results are written by the calling process (workers need no shared file system).
+    """
+    t0 = time.perf_counter()
+    root = Path(out)
+    _prepare_dir(root, settings, force)
+    run = CampaignRun(out=root, settings=settings)
+    todo = []
+    for key in settings.tasks():
+        if _is_complete(surface_path(root, settings, *key)):
+            run.skipped += 1
+        else:
+            todo.append(key)
+    if not todo:
+        run.wall_time = time.perf_counter() - t0
+        return run
+    shutdown = None
+    if executor is None:
+        executor, shutdown = make_executor(workers)
+    n_workers = workers or os.cpu_count() or 1
+    limit = max_pending or max(8, 4 * n_workers)
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=len(settings.tasks()), initial=run.skipped, desc="surfaces", unit="surface",
+               disable=not progress, leave=False)
+    pending: set[Future] = set()
+    queue = iter(todo)
+    try:
+        def fill():
+            for key in queue:
+                pending.add(executor.submit(_task, settings, key))
+                if len(pending) >= limit:
+                    break
+
+        fill()
+        while pending:
+            done = next(as_completed(pending))
+            pending.discard(done)
+            try:
+                key, arrays, seconds = done.result()
+            except Exception as exc:
+                for f in pending:
+                    f.cancel()
+                n_saved = run.skipped + len(run.computed)
+                raise CampaignError(
+                    f"a surface task failed ({type(exc).__name__}: {exc}); {n_saved} of "
+                    f"{len(settings.tasks())} surfaces are saved in {root}; rerun the same "
+                    f"command to compute only the missing ones"
+                ) from exc
+            atomic_write(surface_path(root, settings, *key), _npz_bytes(arrays))
+            run.computed.append(key)
+            run.task_times[key] = seconds
+            bar.update(1)
+            fill()
+    finally:
+        bar.close()
+        if shutdown is not None:
+            shutdown()
+    _record_times(root, run.task_times)
+    run.wall_time = time.perf_counter() - t0
+    return run
+
+
+def _record_times(root: Path, times: dict) -> None:
+    path = root / "timings.json"
+    old = {}
+    if path.exists():
+        try:
+            old = json.loads(path.read_text())
+        except ValueError:
+            old = {}
+    old.update({"/".join(map(str, k)): v for k, v in times.items()})
+    atomic_write(path, json.dumps(old, indent=1, sort_keys=True).encode())
+
+
+def load_results(out: str | os.PathLike, settings: CampaignSettings,
+                 keys: Iterable[tuple[int, int, int]] | None = None,
+                 maps: bool = False) -> dict[tuple[int, int, int], dict[str, np.ndarray]]:
+    """Read stored surface results.
+
+    Parameters
+    ----------
+    out : path
+        Campaign directory.
+    settings : CampaignSettings
+    keys : iterable of (ih, il, i), optional
+        Which surfaces (default: all of the campaign).
+    maps : bool
+        Also load the height and pressure maps of example surfaces.
+
+    Raises
+    ------
+    CampaignError
+        A requested surface is missing.
+    """
+    res = {}
+    for key in settings.tasks() if keys is None else keys:
+        path = surface_path(out, settings, *key)
+        if not path.is_file():
+            raise CampaignError(f"{path} is missing: run the campaign (it resumes) before analysing")
+        with np.load(path) as z:
+            res[key] = {k: z[k] for k in z.files if maps or k not in ("heights", "pressure")}
+    return res
+
