@@ -452,11 +452,15 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
         (n+1)p). ``"lmoments"``: unbiased sample L-moments. ``"mle"``: maximum likelihood;
         ``"mps"``: maximum product of spacings; ``"starship"``: minimum Anderson–Darling
         statistic of the probability integral transform. The last three start from the
-        percentile, L-moment and moment fits and keep the support covering the data.
+        percentile and L-moment fits, are refined by a compiled BFGS with analytic
+        gradients and keep the support covering the data.
     nan_policy : {"raise", "omit", "propagate"}
         Non-finite values (NaN, inf): raise ``ValueError``, drop them, or return a NaN fit.
     **options
-        ``u`` (percentiles), ``maxiter`` and ``starts`` (data-based methods).
+        ``u`` (percentiles); for the data-based methods ``starts`` (number of distinct
+        starting points refined, default 2), ``maxiter`` (iterations per start; default 500
+        for BFGS, 2000 for Nelder–Mead) and ``optimizer`` (``"bfgs"``, default, or
+        ``"nelder-mead"``).
 
     Returns
     -------
