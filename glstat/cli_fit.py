@@ -371,7 +371,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="output directory for figures, fit.json and summary.csv (default "
                         "glstat_fit_<file stem> in the current directory)")
     p.add_argument("--seed", type=int, default=None, metavar="S",
-                   help="random seed of the bootstrap (default: fresh entropy, recorded in fit.json)")
+                   help="random seed of the bootstrap and of the goodness-of-fit p-values (default: fresh "
+                        "entropy, recorded in fit.json)")
     p.add_argument("--nan-policy", choices=("raise", "omit"), default="raise",
                    help="missing/NaN/infinite entries: refuse the file (raise, default) or drop them (omit)")
     p.add_argument("--gof-resamples", type=int, default=99, metavar="B",
@@ -568,11 +569,8 @@ def _damage(res: FitResults, hardness: float, n: float, factors: np.ndarray, lev
     return out
 
 
-def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
-    from .bootstrap import bootstrap
-    from .fitting import fit
-    from .gof import gof_report
-
+def _check_sample(args: argparse.Namespace, sample: Sample) -> None:
+    """Refuse samples no fit or bootstrap can use, before anything is computed or written."""
     x = sample.values
     if x.size < MIN_N:
         raise InputError(f"column {sample.column!r} in {sample.path} has {x.size} finite value(s); a GLD "
@@ -585,6 +583,14 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         raise InputError(f"column {sample.column!r} has only {x.size} values: too few to bootstrap a "
                          f"4-parameter fit (resamples repeat values); give at least {2 * MIN_N} values "
                          "or pass --bootstrap 0")
+
+
+def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
+    from .bootstrap import bootstrap
+    from .fitting import fit
+    from .gof import gof_report
+
+    x = sample.values
     seed = int(args.seed) if args.seed is not None else int(np.random.SeedSequence().entropy % 2**63)
     notes: list[str] = []
     with warnings.catch_warnings(record=True) as caught:
@@ -903,6 +909,7 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
     """
     _check_options(args)
     sample = read_sample(args.file, args.column, args.nan_policy)
+    _check_sample(args, sample)
     out = check_output_dir(args.out if args.out is not None else f"glstat_fit_{Path(args.file).stem}")
     _print_header(sample, emit)
     res = _compute(args, sample, emit)

@@ -309,6 +309,10 @@ def test_too_few_values(tmp_path, capsys):
     np.save(npy, np.array([1.0, 2.0, 4.0]))
     err = _bad(capsys, [npy, "--method", "mle", "--out", tmp_path / "o"])
     assert "has 3 finite value(s)" in err and "maximum likelihood" in err and "at least 5" in err
+    np.save(npy, _pressures(7))
+    err = _bad(capsys, [npy, "--bootstrap", 100, "--out", tmp_path / "o"])
+    assert "only 7 values: too few to bootstrap" in err and "--bootstrap 0" in err
+    assert not (tmp_path / "o").exists()  # refused before the output directory is made
 
 
 def test_constant_values(tmp_path, capsys):
