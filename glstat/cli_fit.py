@@ -183,7 +183,7 @@ def _read_npy(path: Path) -> pd.DataFrame:
                              ) from exc
         raise InputError(f"{path} is not a NumPy .npy file ({exc}); give a file written by numpy.save, "
                          "or use a .csv or .txt name for text") from exc
-    if isinstance(arr, np.lib.npyio.NpzFile):  # pragma: no cover - np.load of a .npz renamed .npy
+    if isinstance(arr, np.lib.npyio.NpzFile):  # a .npz archive saved under a .npy name
         arr.close()
         raise InputError(f"{path} is a .npz archive, not a .npy array; save one array with numpy.save")
     if arr.dtype.names:
@@ -212,7 +212,7 @@ def _describe_columns(df) -> str:
     return ", ".join(parts)
 
 
-def _select_column(df, column: str | None, path: Path) -> tuple[str, Any]:
+def _select_column(df, column: str | None, path: Path, fmt: str) -> tuple[str, Any]:
     names = list(df.columns)
     if column is not None:
         if column in names:
@@ -229,8 +229,10 @@ def _select_column(df, column: str | None, path: Path) -> tuple[str, Any]:
     if len(numeric) == 1:
         return numeric[0], df[numeric[0]]
     if not numeric:
+        hint = ("save the values as numbers (e.g. numpy.asarray(values, dtype=float))"
+                if fmt in ("npy", "parquet") else "check the separator, or choose a column with --column")
         raise InputError(f"{path} has no numeric column (columns: {_describe_columns(df)}); the values "
-                         "to fit must be numbers - check the separator, or choose a column with --column")
+                         f"to fit must be numbers - {hint}")
     listed = ", ".join(repr(c) for c in numeric)
     raise InputError(f"{path} has {len(numeric)} numeric columns ({listed}); choose the one to fit "
                      f"with --column, e.g. --column {numeric[-1]}")
@@ -310,7 +312,7 @@ def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "
     if df.shape[0] == 0:
         raise InputError(f"{path} has no data rows (columns: {_describe_columns(df)}); give a file with "
                          "the values to fit")
-    name, series = _select_column(df, column, path)
+    name, series = _select_column(df, column, path, fmt)
     values = _to_float(series, name, path, df)
     nan = np.isnan(values)
     inf = np.isinf(values)

@@ -281,6 +281,28 @@ def test_empty_npy(tmp_path, capsys):
     assert "has no data rows" in err
 
 
+@pytest.mark.parametrize("kind, words", [
+    ("objects", "holds Python objects"),
+    ("npz", "is a .npz archive, not a .npy array"),
+    ("3d", "holds an array of shape (2, 3, 4)"),
+    ("strings", "has no numeric column (columns: '1' (not numeric)); the values to fit must be numbers - "
+                "save the values as numbers"),
+])
+def test_unusable_npy(tmp_path, capsys, kind, words):
+    npy = tmp_path / "bad.npy"
+    if kind == "objects":
+        np.save(npy, np.array([1.0, "a"], dtype=object), allow_pickle=True)
+    elif kind == "npz":
+        with npy.open("wb") as fh:
+            np.savez(fh, a=np.arange(10.0))
+    elif kind == "3d":
+        np.save(npy, np.zeros((2, 3, 4)))
+    else:
+        np.save(npy, np.array(["1.5", "x", "2.5"]))
+    err = _bad(capsys, [npy, "--out", tmp_path / "o"])
+    assert words in err
+
+
 def test_non_numeric_column(tmp_path, capsys):
     csv = tmp_path / "p.csv"
     csv.write_text("pressure,load\n1.5,1\n2.5,2\nhigh,3\n3.5,4\n")
