@@ -416,6 +416,24 @@ def standardize(x, loc, inv_scale):
     return fast_two_sum(y_hi, e + d_lo * inv_scale)
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def emit(what, fam, ae, be, p, t, upper, inv_scale, log_scale):
+    """The requested quantity from the smaller tail probability ``p`` (log ``t``) on the
+    lower (``upper`` False) or upper side; ``ae, be`` are the shapes of that side's lower-tail
+    problem. what: 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf."""
+    if what <= 3:
+        want_small = (what == 0 or what == 2) != upper
+        if what < 2:
+            return p if want_small else 1.0 - p
+        return t if want_small else math.log1p(-p)
+    if p == 0.0:
+        return 0.0 if what == 4 else -math.inf
+    if what == 4 and t > -600.0:
+        return inv_scale / qprime_lower(fam, ae, be, t, math.log1p(-p))
+    lq = log_qprime_lower(fam, ae, be, t, math.log1p(-p))
+    return math.exp(-lq) * inv_scale if what == 4 else log_scale - lq
+
+
 # what = 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf
 @njit(cache=True, error_model="numpy")
 def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
@@ -438,36 +456,11 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
             out[i] = math.nan
             continue
         if yi == -math.inf or yi == math.inf:
-            lower = yi < 0.0
-            if what == 0:
-                out[i] = 0.0 if lower else 1.0
-            elif what == 1:
-                out[i] = 1.0 if lower else 0.0
-            elif what == 2:
-                out[i] = -math.inf if lower else 0.0
-            elif what == 3:
-                out[i] = 0.0 if lower else -math.inf
-            elif what == 4:
-                out[i] = 0.0
-            else:
-                out[i] = -math.inf
+            out[i] = emit(what, fam, ai, bi, 0.0, -math.inf, yi > 0.0, inv_scale, log_scale)
             continue
         p, lp, upper, st, ae, be = _invert(fam, ai, bi, yi, yi_lo)
         status[i] = st
-        if what <= 3:
-            # 0 cdf, 1 sf, 2 logcdf, 3 logsf; p is the smaller tail
-            want_small = (what == 0 or what == 2) != upper
-            if what < 2:
-                out[i] = p if want_small else 1.0 - p
-            else:
-                out[i] = lp if want_small else math.log1p(-p)
-        else:
-            if p == 0.0 and lp == -math.inf:
-                out[i] = 0.0 if what == 4 else -math.inf
-                continue
-            l1 = math.log1p(-p)
-            lq = log_qprime_lower(fam, ae, be, lp, l1)
-            out[i] = math.exp(-lq) * inv_scale if what == 4 else log_scale - lq
+        out[i] = emit(what, fam, ae, be, p, lp, upper, inv_scale, log_scale)
 
 
 # what = 0 ppf(u), 1 isf(q)

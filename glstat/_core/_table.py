@@ -20,7 +20,7 @@ from ._gld import (
     LN2,
     _case,
     _residual,
-    log_qprime_lower,
+    emit,
     q_lower,
     qprime_lower,
     rs_sign,
@@ -239,18 +239,4 @@ def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0)
                 p, t, st = solve_lower(fam, ae, be, -yi if upper else yi,
                                        -yi_lo if upper else yi_lo)
                 status[i] = st
-        if what <= 3:
-            want_small = (what == 0 or what == 2) != upper
-            if what < 2:
-                out[i] = p if want_small else 1.0 - p
-            else:
-                out[i] = t if want_small else math.log1p(-p)
-        else:
-            if p == 0.0:
-                out[i] = 0.0 if what == 4 else -math.inf
-                continue
-            if what == 4 and t > -600.0:
-                out[i] = inv_scale / qprime_lower(fam, ae, be, t, math.log1p(-p))
-            else:
-                lq = log_qprime_lower(fam, ae, be, t, math.log1p(-p))
-                out[i] = math.exp(-lq) * inv_scale if what == 4 else log_scale - lq
+        out[i] = emit(what, fam, ae, be, p, t, upper, inv_scale, log_scale)
