@@ -677,8 +677,6 @@ def _print_bootstrap(res: FitResults, emit: Callable[[str], None]) -> None:
     emit(f"bootstrap: {bf.n_resamples} resamples ({bf.kind}), {bf.n_failed} failed; "
          f"{100 * bf.confidence_level:g} % percentile intervals of the lambdas:")
     emit(_indent(_table(s[cols])))
-    for note in res.notes:
-        emit(f"  note: {note}")
 
 
 def _print_maximum(res: FitResults, emit: Callable[[str], None]) -> None:
@@ -915,6 +913,10 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
     out = check_output_dir(args.out if args.out is not None else f"glstat_fit_{Path(args.file).stem}")
     _print_header(sample, emit)
     res = _compute(args, sample, emit)
+    if res.notes:
+        emit("")
+        for note in res.notes:
+            emit(f"note: {note}")
     _write_figures(res, out)
     _write_tables(res, args, out)
     emit("")

@@ -231,6 +231,25 @@ def test_hardness_outside_the_fitted_support(tmp_path, capsys):
         assert doc["damage"]["estimate"] == [value, value] and words in doc["damage"]["reason"]
 
 
+def test_failed_bootstrap_resamples_are_reported(tmp_path, capsys):
+    # nearly uniform data: kurtosis close to the RS reach, so some resamples have no moment fit
+    g = np.random.default_rng(4)
+    x = 0.98 * g.uniform(0.0, 1.0, 300) + np.random.default_rng(5).normal(0.0, 0.06, 300)
+    npy = tmp_path / "u.npy"
+    np.save(npy, x)
+    with pytest.warns(glstat.BootstrapWarning, match="bootstrap fits failed"):
+        bf = glstat.bootstrap(x, "rs", "moments", n_resamples=60, rng=1)
+    assert 0 < bf.n_failed < 60
+    code, out, err = _run(capsys, [npy, "--bootstrap", 60, "--gof-resamples", 0, "--out", tmp_path / "o",
+                                   "--seed", 1])
+    assert code == 0, err
+    assert f"bootstrap: 60 resamples (nonparametric), {bf.n_failed} failed;" in out
+    assert f"note: bootstrap fits failed: {bf.n_failed} of 60 resamples" in out
+    doc = json.loads((tmp_path / "o" / "fit.json").read_text())
+    assert doc["bootstrap"]["n_failed"] == bf.n_failed
+    assert any(f"{bf.n_failed} of 60 resamples" in note for note in doc["notes"])
+
+
 # ---------------------------------------------------------------------------------------------
 # bad input
 # ---------------------------------------------------------------------------------------------
