@@ -202,7 +202,7 @@ def _bootstrap(x: np.ndarray, a: AnalysisSettings, rng, param=None, method=None)
             note = "" if not notes else "; ".join(notes) + f"; used {p.upper()} {m}"
             return bf, p, m, note
         except (FitError, ValueError) as exc:
-            notes.append(f"{p.upper()} {m}: {str(exc).splitlines()[0][:160]}")
+            notes.append(f"{p.upper()} {m}: {str(exc).split('. ')[0].splitlines()[0][:120]}")
     return None, "", "", "; ".join(notes)
 
 

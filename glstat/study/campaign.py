@@ -485,8 +485,21 @@ def run_campaign(
             try:
                 key, arrays, seconds = done.result()
             except Exception as exc:
+                # Keep everything that finished or is running: cancel only what has not started,
+                # then save the results of the others before reporting the failure.
                 for f in pending:
                     f.cancel()
+                for f in pending:
+                    if f.cancelled():
+                        continue
+                    try:
+                        key, arrays, seconds = f.result()
+                    except Exception:
+                        continue
+                    atomic_write(surface_path(root, settings, *key), _npz_bytes(arrays))
+                    run.computed.append(key)
+                    run.task_times[key] = seconds
+                _record_times(root, run.task_times)
                 n_saved = run.skipped + len(run.computed)
                 raise CampaignError(
                     f"a surface task failed ({type(exc).__name__}: {exc}); {n_saved} of "

@@ -264,7 +264,8 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     ex = [(c, r) for c, r in ex if r is not None and "heights" in r]
     if ex:
         rep.heading("Example surfaces")
-        fig, axes = plt.subplots(1, len(ex), figsize=(4.2 * len(ex), 3.6), squeeze=False)
+        fig, axes = plt.subplots(1, len(ex), figsize=(4.6 * len(ex), 3.6), squeeze=False,
+                                 layout="constrained")
         ext = [0, settings.length * 1e3, 0, settings.length * 1e3]
         for ax, ((ih, il), r) in zip(axes[0], ex, strict=True):
             im = ax.imshow(r["heights"].T * 1e6, origin="lower", extent=ext, cmap="viridis")
@@ -274,7 +275,8 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
             fig.colorbar(im, ax=ax, label="height (µm)")
         rep.figure("surfaces", fig, "Example surface (surface 0) of every case: heights in µm.")
         rep.heading("Pressure maps")
-        fig, axes = plt.subplots(2, len(ex), figsize=(4.2 * len(ex), 7.4), squeeze=False)
+        fig, axes = plt.subplots(2, len(ex), figsize=(4.6 * len(ex), 7.4), squeeze=False,
+                                 layout="constrained")
         dx = settings.length / settings.grid * 1e3
         for col, ((ih, il), r) in enumerate(ex):
             p = r["pressure"].astype(float) / 1e6
@@ -329,7 +331,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         rep.paragraph("Fit notes: " + " | ".join(notes))
 
     rep.heading("Histograms with the fitted GLD densities")
-    fig, axes = plt.subplots(2, nc, figsize=(4.2 * nc, 6.8), squeeze=False)
+    fig, axes = plt.subplots(2, nc, figsize=(4.2 * nc, 6.8), squeeze=False, layout="constrained")
     for col, ((ih, il), r) in enumerate(analysis.items()):
         for row, kind in enumerate(("grid", "asperity")):
             sa = r[kind]
@@ -343,7 +345,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     rep.figure("histograms", fig, "Pooled pressures and the fitted GLD density: grid-point pressures "
                "(top) and per-asperity peak pressures (bottom).")
 
-    rep.heading("Bootstrap densities of the λ's")
+    rep.heading("Bootstrap densities of the λ parameters")
     for (ih, il), r in analysis.items():
         sa = r["grid"]
         if not sa.ok:
@@ -361,7 +363,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         "surface (grid sample) or of asperities in contact per surface (asperity sample): the "
         "α δ(p) part of PR(p) carries no pressure, so the maximum over all N grid points is the "
         "maximum over the (1 − α) N points in contact.")
-    fig, axes = plt.subplots(1, 2, figsize=(11, 3.8), squeeze=False)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 3.8), squeeze=False, layout="constrained")
     rows = []
     for col, kind in enumerate(("grid", "asperity")):
         ax = axes[0, col]
@@ -400,15 +402,17 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         f"signed-rank p-value for reference).")
     vrows = []
     for kind in ("grid", "asperity"):
-        figv, axv = plt.subplots(1, nc, figsize=(4.2 * nc, 3.6), squeeze=False)
-        figh, axh = plt.subplots(1, nc, figsize=(4.2 * nc, 3.2), squeeze=False)
+        figv, axv = plt.subplots(1, nc, figsize=(4.2 * nc, 3.6), squeeze=False, layout="constrained")
+        figh, axh = plt.subplots(1, nc, figsize=(4.2 * nc, 3.2), squeeze=False, layout="constrained")
         for col, ((ih, il), r) in enumerate(analysis.items()):
             v = r[kind].validation
             ax = axv[0, col]
             ax.set_title(f"{_label(settings, ih, il)}", fontsize=9)
             if v.table is None:
-                ax.text(0.5, 0.5, v.error or r[kind].note or "no fit", ha="center", va="center",
-                        wrap=True, fontsize=8, transform=ax.transAxes)
+                import textwrap
+
+                ax.text(0.5, 0.5, textwrap.fill((v.error or r[kind].note or "no fit")[:200], 40),
+                        ha="center", va="center", fontsize=7, transform=ax.transAxes)
                 vrows.append([_label(settings, ih, il), SAMPLE_LABELS[kind], 0, "—", "—", "—",
                               "—", "—", v.error or r[kind].note])
                 continue
@@ -463,7 +467,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
               f"({settings.length * 1e3:g} × {settings.length * 1e3:g} mm²).")
 
     rep.heading("Integrity against area")
-    fig, axes = plt.subplots(1, 2, figsize=(11, 3.8), squeeze=False)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 3.8), squeeze=False, layout="constrained")
     grows = []
     for col, kind in enumerate(("grid", "asperity")):
         ax = axes[0, col]
@@ -480,7 +484,8 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         ax.set_ylabel(f"integrity probability at {hard:g} MPa")
         ax.set_ylim(-0.02, 1.02)
         ax.set_title(SAMPLE_LABELS[kind])
-        ax.legend(fontsize=8)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=8)
     rep.figure("integrity_vs_area", fig, f"Integrity probability F(Pd)^(k n) against the area factor "
                f"k, with the {lvl} % bootstrap band.")
     rep.table(["case", "sample", "k = 1", "k = 10", "k = 100", "k = 1000"], grows,

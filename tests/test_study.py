@@ -1,0 +1,249 @@
+"""End-to-end tests of the study: campaign (parallel, resumable), `glstat study`, the report."""
+
+from __future__ import annotations
+
+import base64
+import os
+import re
+import shutil
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from glstat.cli import main
+from glstat.study import (
+    AnalysisSettings,
+    CampaignError,
+    CampaignSettings,
+    SerialExecutor,
+    load_results,
+    run_campaign,
+    surface_path,
+    wilson_interval,
+)
+from glstat.study import campaign as campaign_mod
+
+TINY = ["--surfaces", "6", "--grid", "64", "--rq", "5", "--bootstrap", "50", "--no-progress"]
+SMALL = CampaignSettings(n_surfaces=4, grid=48, n_terms=(5,), hurst=(0.0, 1.0), n_examples=1)
+
+
+def _files(root: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.glob("H*/surface_*.npz"))}
+
+
+@pytest.fixture(scope="module")
+def tiny_study(tmp_path_factory):
+    out = tmp_path_factory.mktemp("study") / "run"
+    rc = main(["study", *TINY, "--workers", "1", "--out", str(out)])
+    assert rc == 0
+    return out
+
+
+def _md_table(md: str, first_header: str) -> list[list[str]]:
+    """Rows of the Markdown table whose header starts with ``| first_header |``."""
+    lines = md.splitlines()
+    start = next(i for i, ln in enumerate(lines) if ln.startswith(f"| {first_header} |"))
+    rows = []
+    for ln in lines[start + 2:]:
+        if not ln.startswith("|"):
+            break
+        rows.append([c.strip() for c in ln.strip("|").split("|")])
+    return rows
+
+
+def test_study_report_contents(tiny_study):
+    html = (tiny_study / "report.html").read_text()
+    md = (tiny_study / "report.md").read_text()
+    for section in ("Main results", "Settings, versions and timings", "Example surfaces", "Pressure maps",
+                    "Moments and fitted GLD", "Histograms with the fitted GLD densities",
+                    "Bootstrap densities of the λ parameters", "Maximal pressure over the analysed area",
+                    "Validation across surfaces", "Damage probability at the hardness",
+                    "Integrity against area"):
+        assert f"<h2>{section}</h2>" in html
+        assert f"## {section}" in md
+    # every figure is embedded as a decodable PNG, and the Markdown references PNG files
+    imgs = re.findall(r"src='data:image/png;base64,([A-Za-z0-9+/=]+)'", html)
+    assert len(imgs) >= 10
+    assert all(base64.b64decode(b)[:8] == b"\x89PNG\r\n\x1a\n" for b in imgs)
+    refs = re.findall(r"\]\((report_files/[\w.]+\.png)\)", md)
+    assert len(refs) == len(imgs)
+    assert all((tiny_study / r).is_file() for r in refs)
+    # tables: one row per H in the summary, one per (H, sample) in the fit and damage tables
+    main_rows = _md_table(md, "case")
+    assert [r[0] for r in main_rows] == ["H = 0, 20 MPa", "H = 0.5, 20 MPa", "H = 1, 20 MPa"]
+    fit_rows = _md_table(md, "case | sample | n | mean")
+    assert len(fit_rows) == 6
+    assert {r[1] for r in fit_rows} == {"grid-point pressures", "per-asperity peak pressures"}
+    grid_fit = [r for r in fit_rows if r[1] == "grid-point pressures"]
+    assert all(r[7] == "RS moments" for r in grid_fit)
+    assert all(float(r[3]) > 1000 for r in grid_fit)  # mean contact pressure in MPa
+    dmg = _md_table(md, "case | sample | n | damage probability")
+    assert len(dmg) == 6
+    for r in dmg:
+        if r[3] != "—":
+            assert 0.0 <= float(r[3]) <= 1.0
+    assert "Wilson" in md and "t-test" in md
+    assert "n_terms" in md and "Nyquist" in md
+    settings_rows = dict((r[0], r[1]) for r in _md_table(md, "setting"))
+    assert settings_rows["surfaces per (H, load)"] == "6"
+    assert settings_rows["bootstrap resamples B"] == "50"
+    assert settings_rows["Weierstrass terms per axis (n_terms) per H"] == "6, 6, 6"
+
+
+def test_study_rerun_reuses_everything(tiny_study, capsys):
+    before = _files(tiny_study)
+    assert len(before) == 18
+    rc = main(["study", *TINY, "--workers", "1", "--out", str(tiny_study)])
+    assert rc == 0
+    assert "0 surfaces computed, 18 reused" in capsys.readouterr().out
+    assert _files(tiny_study) == before
+
+
+def test_console_script(tmp_path):
+    exe = shutil.which("glstat", path=os.path.dirname(sys.executable))
+    cmd = [exe] if exe else [sys.executable, "-m", "glstat.cli"]
+    out = tmp_path / "q"
+    proc = subprocess.run([*cmd, "study", "--quick", "--surfaces", "4", "--grid", "48", "--bootstrap",
+                           "30", "--hurst", "0.5", "--n-terms", "4", "--out", str(out), "--no-progress"],
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert "H = 0.5, 20 MPa: mean contact pressure" in proc.stdout
+    assert (out / "report.html").stat().st_size > 10_000
+    md = (out / "report.md").read_text()
+    assert [r[0] for r in _md_table(md, "case")] == ["H = 0.5, 20 MPa"]
+    # unknown command: clear message, exit status 2
+    proc = subprocess.run([*cmd, "nonsense"], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2 and "unknown command 'nonsense'" in proc.stderr
+
+
+def test_same_files_whatever_the_executor(tmp_path):
+    runs = {"serial": dict(executor=SerialExecutor()), "threads": dict(executor=ThreadPoolExecutor(2)),
+            "processes": dict(workers=2)}
+    files = {}
+    for name, kw in runs.items():
+        r = run_campaign(SMALL, tmp_path / name, progress=False, **kw)
+        assert len(r.computed) == 8 and r.skipped == 0
+        files[name] = _files(tmp_path / name)
+    assert len(files["serial"]) == 8
+    assert files["serial"] == files["threads"] == files["processes"]
+    res = load_results(tmp_path / "serial", SMALL, maps=True)
+    assert "heights" in res[(0, 0, 0)] and "heights" not in res[(0, 0, 1)]
+    r = res[(1, 0, 2)]
+    assert r["samples"].size == r["n_contact"] > 0
+    assert np.isclose(r["samples"].max(), r["max_pressure"])
+    assert r["asperity_peak"].size == r["n_asperities"]
+    assert abs(float(r["rq"]) - SMALL.rq) < 1e-9 * SMALL.rq
+
+
+def test_one_and_two_workers_through_the_command(tmp_path):
+    args = ["study", "--surfaces", "3", "--grid", "48", "--bootstrap", "20", "--hurst", "0", "1",
+            "--n-terms", "5", "--no-progress"]
+    assert main([*args, "--workers", "1", "--out", str(tmp_path / "w1")]) == 0
+    assert main([*args, "--workers", "2", "--out", str(tmp_path / "w2")]) == 0
+    f1, f2 = _files(tmp_path / "w1"), _files(tmp_path / "w2")
+    assert len(f1) == 6 and f1 == f2
+    t1 = _md_table((tmp_path / "w1" / "report.md").read_text(), "case | sample | n | mean")
+    t2 = _md_table((tmp_path / "w2" / "report.md").read_text(), "case | sample | n | mean")
+    assert t1 == t2
+
+
+def test_interrupted_campaign_resumes_only_the_rest(tmp_path, monkeypatch):
+    ref = tmp_path / "ref"
+    run_campaign(SMALL, ref, executor=SerialExecutor(), progress=False)
+    original = campaign_mod.simulate_surface
+    k = 5
+    calls = []
+
+    def failing(settings, ih, il, i):
+        calls.append((ih, il, i))
+        if len(calls) == k + 1:
+            raise RuntimeError("node lost")
+        return original(settings, ih, il, i)
+
+    monkeypatch.setattr(campaign_mod, "simulate_surface", failing)
+    out = tmp_path / "run"
+    with pytest.raises(CampaignError, match=r"node lost.*5 of 8 surfaces are saved.*rerun"):
+        run_campaign(SMALL, out, executor=SerialExecutor(), progress=False, max_pending=3)
+    assert len(_files(out)) == k
+    assert not list(out.rglob("*.tmp"))
+    monkeypatch.setattr(campaign_mod, "simulate_surface", original)
+    r = run_campaign(SMALL, out, executor=SerialExecutor(), progress=False)
+    assert r.skipped == k and len(r.computed) == 8 - k
+    assert set(r.computed) == set(SMALL.tasks()) - set(calls[:k])
+    assert _files(out) == _files(ref)
+
+
+def test_resume_with_other_settings_is_refused(tmp_path, capsys):
+    out = tmp_path / "run"
+    run_campaign(SMALL, out, executor=SerialExecutor(), progress=False)
+    before = _files(out)
+    other = CampaignSettings(**{**SMALL.__dict__, "seed": 7})
+    with pytest.raises(CampaignError, match=r"different settings \(seed: 2019 -> 7\).*--out DIR.*--force"):
+        run_campaign(other, out, executor=SerialExecutor(), progress=False)
+    assert _files(out) == before  # nothing computed is lost
+    # more surfaces with the same settings extend the campaign
+    more = CampaignSettings(**{**SMALL.__dict__, "n_surfaces": 5})
+    r = run_campaign(more, out, executor=SerialExecutor(), progress=False)
+    assert r.skipped == 8 and len(r.computed) == 2
+    # through the command: exit status 1 and the message
+    rc = main(["study", "--surfaces", "4", "--grid", "32", "--bootstrap", "20", "--no-progress",
+               "--workers", "1", "--out", str(out)])
+    assert rc == 1
+    err = capsys.readouterr().err
+    assert "different settings" in err and "grid: 48 -> 32" in err and "--force" in err
+    r = run_campaign(other, out, executor=SerialExecutor(), progress=False, force=True)
+    assert r.skipped == 0 and len(r.computed) == 8
+    assert _files(out) != before
+
+
+def test_unwritable_output_directory(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a directory")
+    with pytest.raises(CampaignError, match=r"not writable.*--out DIR"):
+        run_campaign(SMALL, blocker / "out", executor=SerialExecutor(), progress=False)
+    rc = main(["study", *TINY, "--workers", "1", "--out", str(blocker / "out")])
+    assert rc == 1
+    assert "is not writable" in capsys.readouterr().err
+
+
+def test_unreachable_scheduler(tmp_path, capsys):
+    rc = main(["study", *TINY, "--scheduler", "tcp://127.0.0.1:1", "--scheduler-timeout", "2",
+               "--out", str(tmp_path / "d")])
+    assert rc == 1
+    err = capsys.readouterr().err
+    assert "cannot reach the Dask scheduler at 'tcp://127.0.0.1:1'" in err and "--scheduler" in err
+
+
+def test_bad_settings():
+    with pytest.raises(ValueError, match="n_terms must be between 1 and 9"):
+        CampaignSettings(grid=64, n_terms=(12,))
+    with pytest.raises(ValueError, match="one value or one per Hurst exponent"):
+        CampaignSettings(n_terms=(5, 6))
+    with pytest.raises(ValueError, match=r"hurst must be one or more exponents in \[0, 1\]"):
+        CampaignSettings(hurst=(1.5,))
+    with pytest.raises(ValueError, match="hardness must be a positive pressure in MPa"):
+        AnalysisSettings(hardness=-1.0)
+    assert main(["study", "--hurst", "2", "--no-progress"]) == 2
+
+
+def test_seeds_do_not_depend_on_the_number_of_surfaces():
+    a = CampaignSettings(n_surfaces=3)
+    b = CampaignSettings(n_surfaces=50)
+    state = a.seed_sequence(1, 0, 2).generate_state(4).tolist()
+    assert state == b.seed_sequence(1, 0, 2).generate_state(4).tolist()
+    child = np.random.SeedSequence(2019).spawn(3)[1].spawn(1)[0].spawn(3)[2]
+    assert child.generate_state(4).tolist() == a.seed_sequence(1, 0, 2).generate_state(4).tolist()
+    assert surface_path("x", a, 1, 0, 2) == Path("x/H0.5_P20MPa/surface_0002.npz")
+
+
+def test_wilson_interval_against_statsmodels():
+    from statsmodels.stats.proportion import proportion_confint
+
+    for k, n in ((90, 100), (0, 30), (30, 30), (7, 13)):
+        lo, hi = wilson_interval(k, n)
+        slo, shi = proportion_confint(k, n, alpha=0.05, method="wilson")
+        assert lo == pytest.approx(slo, abs=1e-12) and hi == pytest.approx(shi, abs=1e-12)
