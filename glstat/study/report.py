@@ -210,12 +210,14 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
             v = r[kind].validation
             if v.table is not None:
                 lo, hi = v.coverage_interval
-                ok = lo <= asettings.confidence_level <= hi and not v.reject
-                calib.append(f"{_label(settings, ih, il)}, {SAMPLE_LABELS[kind]}: "
-                             f"{'calibrated' if ok else 'not calibrated'}")
+                cov_ok = lo <= asettings.confidence_level <= hi
+                centre = "≠ 0 (t-test rejects)" if v.reject else "compatible with 0"
+                calib.append(f"{_label(settings, ih, il)}, {SAMPLE_LABELS[kind]}: coverage "
+                             f"{'consistent with' if cov_ok else 'incompatible with'} {lvl} %, "
+                             f"mean (predicted − observed) {centre}")
     if calib:
-        rep.paragraph("Calibration of the predicted maximum (the nominal level inside the Wilson "
-                      "interval of the coverage and the t-test not rejecting): " + "; ".join(calib) + ".")
+        rep.paragraph("Calibration of the predicted maximum (coverage: the nominal level inside the "
+                      "Wilson interval; centring: t-test at the test level): " + "; ".join(calib) + ".")
 
     # ---- settings ---------------------------------------------------------------------------
     rep.heading("Settings, versions and timings")
