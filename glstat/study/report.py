@@ -245,7 +245,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     rep.paragraph(
         "**Truncation of the Weierstrass series.** With every frequency up to the grid's Nyquist "
         "limit (DESIGN §3.1), these surfaces have grid-scale slopes of order 1–10 and the asperity "
-        "model gives mean contact pressures of ~70 GPa (H = 1) to ~2.5 TPa (H = 0) carried by a "
+        "model gives mean contact pressures of ~77 GPa (H = 1) to ~3.4 TPa (H = 0) carried by a "
         "handful of asperities; Bigerelle et al. (2019) report 1.1–1.7 GPa. The study therefore "
         "truncates the series (the `--n-terms` setting above). The measured dependence of the "
         "pressures on the truncation, and why the default is what it is, are in docs/study.md; "
