@@ -28,6 +28,8 @@ DEFAULTS = {"surfaces": 100, "grid": 1024, "bootstrap": 1000, "out": "glstat-stu
 QUICK = {"surfaces": 30, "grid": 512, "bootstrap": 300, "out": "glstat-study-quick"}
 #: Default Weierstrass truncation (terms per axis), see docs/study.md.
 DEFAULT_N_TERMS = 6
+#: Surfaces per H compared with the elastic BEM by ``--compare-bem`` without a value.
+DEFAULT_COMPARE_BEM = 5
 
 
 def _n_terms_arg(text: str) -> int | None:
@@ -100,6 +102,12 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--force", action="store_true",
                    help="reuse an output directory holding a campaign with other settings "
                         "(its surfaces are discarded)")
+    p.add_argument("--compare-bem", type=_positive(int), nargs="?", const=DEFAULT_COMPARE_BEM,
+                   default=None, metavar="K",
+                   help=f"also solve the first K surfaces of every H with the elastic boundary-element "
+                        f"method and compare it with the asperity model (K = {DEFAULT_COMPARE_BEM} "
+                        f"when given without a value; off by default); adds the report section "
+                        f"'Asperity model vs elastic BEM'")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     return p
 
@@ -131,6 +139,9 @@ def study_main(argv: list[str]) -> int:
             n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
             cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
         asettings = AnalysisSettings(hardness=args.hardness, n_resamples=boot, seed=args.seed)
+        if args.compare_bem is not None and args.compare_bem > surfaces:
+            raise ValueError(f"--compare-bem K = {args.compare_bem} cannot exceed the {surfaces} "
+                             f"surfaces per H (--surfaces); lower K or add surfaces")
     except ValueError as exc:
         print(f"glstat study: error: {exc}", file=sys.stderr)
         return 2
@@ -146,7 +157,8 @@ def study_main(argv: list[str]) -> int:
         t0 = time.perf_counter()
         res = run_study(settings, asettings, out, executor=executor, workers=args.workers,
                         force=args.force, progress=not args.no_progress,
-                        command="glstat study " + " ".join(argv), workers_label=label)
+                        command="glstat study " + " ".join(argv), workers_label=label,
+                        compare_bem=args.compare_bem)
     except CampaignError as exc:
         print(f"glstat study: error: {exc}", file=sys.stderr)
         return 1
@@ -162,6 +174,16 @@ def study_main(argv: list[str]) -> int:
               f"{args.hardness:g} MPa {r['damage_grid']:.4g} [{r['damage_grid_low']:.4g}, "
               f"{r['damage_grid_high']:.4g}] (grid) {r['damage_asperity']:.4g} (asperity); coverage "
               f"grid {100 * r['coverage_grid']:.0f} %, asperity {100 * r['coverage_asperity']:.0f} %")
+    if res.bem:
+        run = res.bem_run
+        print(f"BEM comparison: {len(run.computed)} surfaces solved, {run.skipped} reused")
+        for (ih, il), c in res.bem.items():
+            r = c.summary().set_index("quantity")["ratio_mean"]
+            fits = c.fit_frame().set_index("model")["damage"]
+            print(f"H = {settings.hurst[ih]:g}, {settings.pressures[il] / 1e6:g} MPa: asperity / BEM "
+                  f"contact fraction {r['contact_fraction']:.3g}, mean pressure "
+                  f"{r['mean_pressure_MPa']:.3g}, max pressure {r['max_pressure_MPa']:.3g}; damage P "
+                  f"{fits['asperity']:.4g} (asperity) vs {fits['bem']:.4g} (BEM)")
     print(f"report: {res.report_html}  (and {res.report_md})")
     return 0
 

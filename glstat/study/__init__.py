@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from .analysis import AnalysisSettings, analyse, wilson_interval
+from .bem import BEMComparison, BEMSettings, compare_bem, compare_study, load_bem_maps, run_bem
 from .campaign import (
     CampaignError,
     CampaignRun,
@@ -36,15 +37,20 @@ from .campaign import (
 __all__ = [
     "TRUNCATION_TABLE",
     "AnalysisSettings",
+    "BEMComparison",
+    "BEMSettings",
     "CampaignError",
     "CampaignRun",
     "CampaignSettings",
     "SerialExecutor",
     "StudyResult",
     "analyse",
+    "compare_bem",
+    "compare_study",
     "load_results",
     "make_executor",
     "nyquist_terms",
+    "run_bem",
     "run_campaign",
     "run_study",
     "simulate_surface",
@@ -151,15 +157,37 @@ class StudyResult:
     timings : dict
         Seconds per stage.
     campaign : CampaignRun
+    bem : dict or None
+        ``(ih, il) -> BEMComparison`` with ``compare_bem``, else None.
+    bem_run : BEMRun or None
+        What the BEM comparison computed in this run.
     """
 
-    def __init__(self, out, report_html, report_md, analysis, timings, campaign):
+    def __init__(self, out, report_html, report_md, analysis, timings, campaign, bem=None,
+                 bem_run=None):
         self.out = Path(out)
         self.report_html = report_html
         self.report_md = report_md
         self.analysis = analysis
         self.timings = timings
         self.campaign = campaign
+        self.bem = bem
+        self.bem_run = bem_run
+
+    def bem_summary(self):
+        """One row per (H, load, quantity) of the BEM comparison: both models' means and the
+        ratio asperity / BEM with its spread (a pandas DataFrame; empty without it)."""
+        import pandas as pd
+
+        if not self.bem:
+            return pd.DataFrame()
+        frames = []
+        for (ih, il), c in self.bem.items():
+            f = c.summary()
+            f.insert(0, "pressure_MPa", self.campaign.settings.pressures[il] / 1e6)
+            f.insert(0, "hurst", self.campaign.settings.hurst[ih])
+            frames.append(f)
+        return pd.concat(frames, ignore_index=True)
 
     def summary(self):
         """One row per (H, load): mean pressure (MPa), 1 − α, damage probability and interval,
@@ -205,6 +233,7 @@ def run_study(
     progress: bool = True,
     command: str = "",
     workers_label: str | None = None,
+    compare_bem: int | BEMSettings | None = None,
 ) -> StudyResult:
     """Run (or resume) the campaign, analyse it and write the report.
 
@@ -222,14 +251,34 @@ def run_study(
         Command line recorded in the report.
     workers_label : str, optional
         Description of the workers for the report.
+    compare_bem : int or BEMSettings, optional
+        Compare the asperity model with the elastic BEM on the first K surfaces of every
+        (H, load) (an int is K with the default :class:`BEMSettings`); the solves are stored
+        next to the campaign's and resumed like it; the report gets the section "Asperity
+        model vs elastic BEM".
 
     Returns
     -------
     StudyResult
     """
+    bsettings = None
+    if compare_bem is not None:
+        bsettings = (compare_bem if isinstance(compare_bem, BEMSettings)
+                     else BEMSettings(n_compare=compare_bem))
+        if bsettings.n_compare > settings.n_surfaces:
+            raise ValueError(
+                f"compare_bem: K = {bsettings.n_compare} surfaces per H cannot exceed the campaign's "
+                f"{settings.n_surfaces} surfaces per H; lower K or raise the number of surfaces"
+            )
     t0 = time.perf_counter()
     camp = run_campaign(settings, out, executor=executor, workers=workers, force=force,
                         progress=progress)
+    bem_run = None
+    if bsettings is not None:
+        tb = time.perf_counter()
+        bem_run = run_bem(settings, bsettings, out, executor=executor, workers=workers, force=force,
+                          progress=progress)
+        bem_wall = time.perf_counter() - tb
     t1 = time.perf_counter()
     results = load_results(out, settings)
     examples = [(ih, il, i) for ih in range(len(settings.hurst)) for il in range(len(settings.pressures))
@@ -237,6 +286,11 @@ def run_study(
     results.update(load_results(out, settings, examples, maps=True))
     t2 = time.perf_counter()
     an = analyse(results, settings, analysis)
+    bem = None
+    if bsettings is not None:
+        tc = time.perf_counter()
+        bem = compare_study(out, settings, bsettings, analysis, campaign=results)
+        bem_analysis = time.perf_counter() - tc
     t3 = time.perf_counter()
     from .report import build_report
 
@@ -245,13 +299,27 @@ def run_study(
                "mean seconds per computed surface (one worker)":
                    float(np.mean(list(camp.task_times.values()))) if camp.task_times else math.nan,
                "loading results": t2 - t1, "analysis (fits, bootstrap, validation)": t3 - t2}
+    if bem_run is not None:
+        timings["campaign (this run)"] -= bem_wall
+        timings["analysis (fits, bootstrap, validation)"] -= bem_analysis
+        timings.update({
+            "BEM comparison: both models on K surfaces per case (this run)": bem_wall,
+            "BEM comparisons computed in this run": len(bem_run.computed),
+            "BEM comparisons reused from the directory": bem_run.skipped,
+            "mean seconds per computed BEM comparison (one worker)":
+                float(np.mean(list(bem_run.task_times.values()))) if bem_run.task_times else math.nan,
+            "BEM comparison: GLD fits and bootstrap": bem_analysis})
     info = {"versions": _versions(), "timings": timings, "truncation": TRUNCATION_TABLE and [
                 [r[0], r[1], r[2], r[3], r[5], r[6]] for r in TRUNCATION_TABLE],
             "command": command or " ".join(sys.argv),
             "workers": workers_label or (type(executor).__name__ if executor is not None
                                          else f"{workers or os.cpu_count()} local processes")}
+    if bem is not None:
+        info["bem"] = bem
+        info["bem_settings"] = bsettings
+        info["bem_maps"] = load_bem_maps(out, settings)
     rep = build_report(settings, analysis, results, an, info)
     timings["report"] = time.perf_counter() - t3
     timings["total"] = time.perf_counter() - t0
     html, md = rep.write(out)
-    return StudyResult(out, html, md, an, timings, camp)
+    return StudyResult(out, html, md, an, timings, camp, bem, bem_run)

@@ -284,6 +284,7 @@ def _prepare_dir(root: Path, settings: CampaignSettings, force: bool) -> None:
     _check_writable(root)
     mpath = root / MANIFEST
     ident = settings.identity()
+    old = None
     if mpath.exists():
         try:
             old = json.loads(mpath.read_text())["campaign"]
@@ -299,12 +300,15 @@ def _prepare_dir(root: Path, settings: CampaignSettings, force: bool) -> None:
                 f"(force=True) to discard the stored surfaces and start over in this directory"
             )
         if old != ident and force:
+            # The BEM solves of the comparison are of the same surfaces: they go too.
             for sub in root.glob("H*_P*MPa"):
-                for f in sub.glob("surface_*"):
+                for f in [*sub.glob("surface_*"), *sub.glob("bem_*")]:
                     f.unlink()
     manifest = {"campaign": ident, "created": time.strftime("%Y-%m-%dT%H:%M:%S")}
-    if mpath.exists() and not force:
-        manifest["created"] = json.loads(mpath.read_text()).get("created", manifest["created"])
+    if mpath.exists() and old == ident:
+        previous = json.loads(mpath.read_text())
+        # Keep the other sections (the BEM comparison's settings) of a resumed campaign.
+        manifest = {**previous, **manifest, "created": previous.get("created", manifest["created"])}
     atomic_write(mpath, json.dumps(manifest, indent=2).encode())
 
 
@@ -469,55 +473,88 @@ def run_campaign(
 
     bar = tqdm(total=len(settings.tasks()), initial=run.skipped, desc="surfaces", unit="surface",
                disable=not progress, leave=False)
-    pending: set[Future] = set()
-    queue = iter(todo)
-    try:
-        def fill():
-            for key in queue:
-                pending.add(executor.submit(_task, settings, key))
-                if len(pending) >= limit:
-                    break
 
-        fill()
-        while pending:
-            done = next(as_completed(pending))
-            pending.discard(done)
-            try:
-                key, arrays, seconds = done.result()
-            except Exception as exc:
-                # Keep everything that finished or is running: cancel only what has not started,
-                # then save the results of the others before reporting the failure.
-                for f in pending:
-                    f.cancel()
-                for f in pending:
-                    if f.cancelled():
-                        continue
-                    try:
-                        key, arrays, seconds = f.result()
-                    except Exception:
-                        continue
-                    atomic_write(surface_path(root, settings, *key), _npz_bytes(arrays))
-                    run.computed.append(key)
-                    run.task_times[key] = seconds
-                _record_times(root, run.task_times)
-                n_saved = run.skipped + len(run.computed)
-                raise CampaignError(
-                    f"a surface task failed ({type(exc).__name__}: {exc}); {n_saved} of "
-                    f"{len(settings.tasks())} surfaces are saved in {root}; rerun the same "
-                    f"command to compute only the missing ones"
-                ) from exc
-            atomic_write(surface_path(root, settings, *key), _npz_bytes(arrays))
-            run.computed.append(key)
-            run.task_times[key] = seconds
-            bar.update(1)
-            fill()
+    def save(key, arrays, seconds):
+        atomic_write(surface_path(root, settings, *key), _npz_bytes(arrays))
+        run.computed.append(key)
+        run.task_times[key] = seconds
+
+    try:
+        exc = execute_tasks(executor, _task, (settings,), todo, save, limit=limit, bar=bar)
     finally:
         bar.close()
         if shutdown is not None:
             shutdown()
+    if exc is not None:
+        _record_times(root, run.task_times)
+        n_saved = run.skipped + len(run.computed)
+        raise CampaignError(
+            f"a surface task failed ({type(exc).__name__}: {exc}); {n_saved} of "
+            f"{len(settings.tasks())} surfaces are saved in {root}; rerun the same "
+            f"command to compute only the missing ones"
+        ) from exc
     _record_times(root, run.task_times)
     run.wall_time = time.perf_counter() - t0
     return run
+
+
+def execute_tasks(executor: Executor, fn: Callable, args: tuple, todo: Iterable, save: Callable,
+                  *, limit: int, bar: Any = None) -> BaseException | None:
+    """Run ``fn(*args, key)`` for every key of ``todo`` and save each result as it arrives.
+
+    Parameters
+    ----------
+    executor : concurrent.futures.Executor
+    fn : callable
+        A picklable task returning ``(key, arrays, seconds)``.
+    args : tuple
+        Leading arguments of ``fn``.
+    todo : iterable of keys
+    save : callable
+        ``save(key, arrays, seconds)``, called in this process for every finished task.
+    limit : int
+        Tasks in flight at once.
+    bar : tqdm progress bar, optional
+        Advanced by one per saved task.
+
+    Returns
+    -------
+    Exception or None
+        The first failure. Tasks not yet started are then cancelled, and those that finish
+        anyway are saved before returning, so nothing computed is lost.
+    """
+    pending: set[Future] = set()
+    queue = iter(todo)
+
+    def fill():
+        for key in queue:
+            pending.add(executor.submit(fn, *args, key))
+            if len(pending) >= limit:
+                break
+
+    fill()
+    while pending:
+        done = next(as_completed(pending))
+        pending.discard(done)
+        try:
+            key, arrays, seconds = done.result()
+        except Exception as exc:
+            for f in pending:
+                f.cancel()
+            for f in pending:
+                if f.cancelled():
+                    continue
+                try:
+                    key, arrays, seconds = f.result()
+                except Exception:
+                    continue
+                save(key, arrays, seconds)
+            return exc
+        save(key, arrays, seconds)
+        if bar is not None:
+            bar.update(1)
+        fill()
+    return None
 
 
 def _record_times(root: Path, times: dict) -> None:

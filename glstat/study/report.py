@@ -241,6 +241,11 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
              ["interval level", asettings.confidence_level],
              ["test level", asettings.test_level],
              ["guaranteed-pressure integrity level", asettings.integrity_level]]
+    if info.get("bem_settings") is not None:
+        b = info["bem_settings"]
+        srows.append(["BEM comparison: surfaces per case K, boundary, tolerance, iteration limit",
+                      f"{b.n_compare}, {'periodic' if b.periodic else 'isolated patch'}, {b.tol:g}, "
+                      f"{b.max_iter}"])
     rep.table(["setting", "value"], [[a, _fmt(b)] for a, b in srows])
     rep.paragraph(
         "**Truncation of the Weierstrass series.** With every frequency up to the grid's Nyquist "
@@ -493,4 +498,144 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     rep.table(["case", "sample", "k = 1", "k = 10", "k = 100", "k = 1000"], grows,
               f"Guaranteed pressure Q(p^(1/(k n))) (MPa): all points of an area k times the analysed "
               f"one stay below it with probability p = {asettings.integrity_level:g}.")
+    if info.get("bem"):
+        _bem_section(rep, settings, asettings, info["bem"], info["bem_settings"],
+                     info.get("bem_maps") or {})
     return rep
+
+
+def _pm(v) -> str:
+    """Mean ± standard deviation of a column (just the mean for one value)."""
+    v = np.asarray(v, dtype=float)
+    if v.size > 1:
+        return f"{_fmt(float(v.mean()))} ± {_fmt(float(v.std(ddof=1)))}"
+    return _fmt(float(v.mean()))
+
+
+def _bem_section(rep: Report, settings, asettings, comps: dict, bsettings, maps: dict) -> None:
+    """The section "Asperity model vs elastic BEM" (``glstat study --compare-bem``)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm
+
+    from .bem import MODEL_LABELS, MODELS, QUANTITIES, QUANTITY_LABELS, findings
+
+    hard = asettings.hardness
+    lvl = round(100 * asettings.confidence_level)
+    k = bsettings.n_compare
+    rep.heading("Asperity model vs elastic BEM")
+    rep.paragraph(
+        f"The first {k} surface{'s' if k > 1 else ''} of every case, solved again at the same nominal "
+        f"pressure by the asperity model (`contact.solve`, c = {settings.cone_factor:g}) and by the "
+        f"elastic boundary-element method (`contact.solve_bem`, Polonsky–Keer, tolerance "
+        f"{bsettings.tol:g}), which keeps the elastic interaction between all grid points and "
+        f"prescribes no pressure shape. Boundary condition of the BEM: "
+        + ("periodic" if bsettings.periodic else
+           "isolated patch on an unloaded half-space (the Weierstrass frequencies γ^n/L, γ = "
+           f"{settings.gamma:g}, are not integer multiples of 1/L, so the surfaces do not repeat "
+           "on the grid; the asperity model sees an isolated patch too)")
+        + f". The grid-point pressures of each model, pooled over the {k} surface{'s' if k > 1 else ''}, get the study's "
+        f"GLD fit ({asettings.param.upper()} {asettings.method}, fallbacks as above) with B = "
+        f"{asettings.n_resamples} bootstrap resamples, and the damage probability at {hard:g} MPa is "
+        f"1 − F(Pd)^n with n = that model's mean number of points in contact per surface "
+        f"({lvl} % bootstrap interval). Ratios are asperity model / BEM (1: no error); ± is the "
+        f"standard deviation over the surfaces, the range their minimum and maximum.")
+    labels = {c: _label(settings, *c) for c in comps}
+    rep.paragraph("**Findings.** " + findings({labels[c]: v for c, v in comps.items()}))
+    unconverged = sum(int((~v.surfaces.loc[v.surfaces["model"] == "bem", "converged"]).sum())
+                      for v in comps.values())
+    if unconverged:
+        rep.paragraph(f"**Warning:** {unconverged} BEM solve(s) did not reach the tolerance "
+                      f"{bsettings.tol:g} within {bsettings.max_iter} iterations; their rows use the "
+                      f"last iterate.")
+    extra = {"n_clusters": "contact spots per surface", "mean_peak_MPa": "mean spot peak pressure (MPa)",
+             "border_load_fraction": "load share on the grid border"}
+    for c, v in comps.items():
+        s = v.surfaces
+        r = v.ratios()
+        rows = []
+        for q in (*QUANTITIES, *extra):
+            a = s.loc[s["model"] == "asperity", q].to_numpy(dtype=float)
+            b = s.loc[s["model"] == "bem", q].to_numpy(dtype=float)
+            if q in QUANTITIES:
+                rq = r[q].to_numpy(dtype=float)
+                ratio, span = _pm(rq), f"{_fmt(float(rq.min()))} – {_fmt(float(rq.max()))}"
+            else:
+                ratio = span = "—"
+            rows.append([QUANTITY_LABELS.get(q) or extra[q], _pm(a), _pm(b), ratio, span])
+        rep.table(["quantity", "asperity model", "elastic BEM", "ratio asperity / BEM", "ratio range"],
+                  rows, f"{labels[c]}: {k} surface{'s' if k > 1 else ''}, per-surface values "
+                  f"(mean ± standard deviation).")
+    # histograms of both models with their GLD densities, one panel per case
+    nc = len(comps)
+    fig, axes = plt.subplots(1, nc, figsize=(4.6 * nc, 3.8), squeeze=False, layout="constrained")
+    colours = {"asperity": "tab:blue", "bem": "tab:red"}
+    for ax, (c, v) in zip(axes[0], comps.items(), strict=True):
+        data = [v.fits[m].data for m in MODELS]
+        allx = np.concatenate(data)
+        if allx.size == 0:
+            ax.set_title(labels[c])
+            continue
+        lo, hi = float(allx.min()), float(allx.max())
+        bins = np.geomspace(lo, hi * (1 + 1e-9), 40) if hi > lo > 0 else 10
+        for m, x in zip(MODELS, data, strict=True):
+            if x.size:
+                ax.hist(x, bins=bins, density=True, histtype="step", lw=1.5, color=colours[m],
+                        label=f"{MODEL_LABELS[m]} (n = {x.size})")
+            f = v.fits[m]
+            if f.ok:
+                xs = np.geomspace(lo, hi, 400) if hi > lo > 0 else np.linspace(lo, hi + 1, 400)
+                with np.errstate(all="ignore"):
+                    ys = np.asarray(f.boot.fit.dist.pdf(xs), dtype=float)
+                ax.plot(xs, ys, color=colours[m], ls="--", lw=1,
+                        label=f"GLD {f.param.upper()} {f.method}")
+        ax.axvline(hard, color="k", ls=":", label=f"hardness {hard:g} MPa")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("grid-point pressure (MPa)")
+        ax.set_ylabel("density (1/MPa)")
+        ax.set_title(labels[c], fontsize=9)
+        ax.legend(fontsize=7)
+    rep.figure("bem_histograms", fig, f"Grid-point pressures of the asperity model (blue) and of the "
+               f"elastic BEM (red), pooled over the {k} compared surface{'s' if k > 1 else ''} of each "
+               f"case (log bins, densities per MPa), with each model's fitted GLD density (dashed).")
+    rows = []
+    for c, v in comps.items():
+        for _, f in v.fit_frame().iterrows():
+            rows.append([labels[c], MODEL_LABELS[f["model"]], f["n"], f["n_ref"], f["fit"],
+                         f["lambda1"], f["lambda2"], f["lambda3"], f["lambda4"], f["damage"],
+                         f["damage_low"], f["damage_high"]])
+    rep.table(["case", "model", "n pooled", "n per surface", "fit", "λ1", "λ2", "λ3", "λ4",
+               "damage probability", f"{lvl} % low", f"{lvl} % high"], rows,
+              f"GLD of each model's grid-point pressures (MPa; λ1 in MPa, λ2 in 1/MPa) and the damage "
+              f"probability 1 − F(Pd)^n at Pd = {hard:g} MPa on one analysed area.")
+    notes = [f"{labels[c]}, {MODEL_LABELS[m]}: {v.fits[m].note}" for c, v in comps.items()
+             for m in MODELS if v.fits[m].note]
+    if notes:
+        rep.paragraph("Fit notes: " + " | ".join(notes))
+    if maps:
+        cases = [c for c in comps if c in maps]
+        fig, axes = plt.subplots(2, len(cases), figsize=(4.6 * len(cases), 7.4), squeeze=False,
+                                 layout="constrained")
+        dx = settings.length / settings.grid * 1e3
+        for col, c in enumerate(cases):
+            mp = {m: maps[c][m] / 1e6 for m in MODELS}
+            pos = np.concatenate([x[x > 0] for x in mp.values()])
+            norm = LogNorm(vmin=pos.min(), vmax=pos.max()) if pos.size and pos.min() < pos.max() else None
+            i0, j0 = np.unravel_index(np.argmax(mp["bem"]), mp["bem"].shape)
+            h = max(8, settings.grid // 16)
+            sl = (slice(max(0, i0 - h), i0 + h), slice(max(0, j0 - h), j0 + h))
+            for row, m in enumerate(MODELS):
+                sub = np.ma.masked_less_equal(mp[m][sl], 0)
+                ext = [sl[0].start * dx, (sl[0].start + sub.shape[0]) * dx,
+                       sl[1].start * dx, (sl[1].start + sub.shape[1]) * dx]
+                ax = axes[row, col]
+                im = ax.imshow(sub.T, origin="lower", extent=ext, cmap="magma", norm=norm,
+                               interpolation="nearest")
+                ax.set_facecolor("#dde")
+                ax.set_title(f"{labels[c]}: {MODEL_LABELS[m]}", fontsize=9)
+                ax.set_xlabel("x (mm)")
+                ax.set_ylabel("y (mm)")
+                fig.colorbar(im, ax=ax, label="pressure (MPa)")
+        rep.figure("bem_maps", fig, "Surface 0 of every case: pressure of the asperity model (top) and "
+                   "of the elastic BEM (bottom) around the BEM's highest pressure (common log colour "
+                   "scale per case, grey: no contact).")
