@@ -533,7 +533,8 @@ def _bem_section(rep: Report, settings, asettings, comps: dict, bsettings, maps:
            "isolated patch on an unloaded half-space (the Weierstrass frequencies γ^n/L, γ = "
            f"{settings.gamma:g}, are not integer multiples of 1/L, so the surfaces do not repeat "
            "on the grid; the asperity model sees an isolated patch too)")
-        + f". The grid-point pressures of each model, pooled over the {k} surface{'s' if k > 1 else ''}, get the study's "
+        + f". The grid-point pressures of each model, pooled over the {k} surface"
+        f"{'s' if k > 1 else ''}, get the study's "
         f"GLD fit ({asettings.param.upper()} {asettings.method}, fallbacks as above) with B = "
         f"{asettings.n_resamples} bootstrap resamples, and the damage probability at {hard:g} MPa is "
         f"1 − F(Pd)^n with n = that model's mean number of points in contact per surface "
