@@ -774,9 +774,29 @@ def findings(comparisons: dict[str, BEMComparison]) -> str:
             d.append("no fit" if dm is None else
                      f"{float(dm.estimate):.4g} [{float(dm.low):.4g}, {float(dm.high):.4g}]")
         damage.append(f"{label}: {d[0]} (asperity) vs {d[1]} (BEM)")
+    inner = []
+    for label, c in comparisons.items():
+        s = c.surfaces
+        b = s[s["model"] == "bem"].set_index("surface")
+        clean = b.index[b["border_load_fraction"] <= 1e-3]
+        if 0 < len(clean) < len(b):
+            v = c.ratios().set_index("surface").loc[clean, "max_pressure_MPa"].to_numpy(dtype=float)
+            inner.append(f"{label}: {_x(float(v.mean()))} on the {len(clean)} of {len(b)} surfaces "
+                         f"without BEM load on the grid border")
+    if inner:
+        text.append("The spread of the maximal-pressure ratio comes from the grid border: "
+                    + "; ".join(inner) + " (a surface cut by the grid edge is pressed like a punch "
+                    "with a sharp edge in the BEM).")
     text.append("Contact spots per surface, asperity model vs BEM: " + "; ".join(spots) + ".")
     text.append("Share of the BEM load on the outermost grid rows and columns, where the asperity "
                 "model has no summits (a summit needs 8 neighbours): " + ", ".join(border) + ".")
     hard = next(iter(comparisons.values())).hardness
     text.append(f"Damage probability at {hard:g} MPa on one analysed area: " + "; ".join(damage) + ".")
+    est = [float(c.fits[m].damage.estimate) for c in comparisons.values() for m in MODELS
+           if c.fits[m].damage is not None]
+    if est and min(est) > 0.999:
+        low = min(float(c.surfaces["mean_pressure_MPa"].min()) for c in comparisons.values())
+        text.append(f"Both models predict certain damage at this hardness: every mean contact pressure "
+                    f"is at least {low / hard:.3g} times Pd, so the asperity model's error does not "
+                    f"change the damage verdict here.")
     return " ".join(text)

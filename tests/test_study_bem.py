@@ -1,0 +1,285 @@
+"""The asperity model against the elastic BEM in the study: `glstat study --compare-bem`,
+its stored and resumed solves, the report section, and `glstat.study.compare_bem`."""
+
+from __future__ import annotations
+
+import base64
+import json
+import re
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import contact
+import glstat
+from glstat.cli import main
+from glstat.study import (
+    AnalysisSettings,
+    BEMSettings,
+    CampaignError,
+    CampaignSettings,
+    SerialExecutor,
+    compare_bem,
+    run_bem,
+    run_campaign,
+)
+from glstat.study import bem as bem_mod
+from glstat.study.bem import bem_path, contact_record, findings
+
+ARGS = ["study", "--surfaces", "2", "--grid", "64", "--rq", "5", "--bootstrap", "30", "--no-progress",
+        "--workers", "1"]
+CASES = ["H = 0, 20 MPa", "H = 0.5, 20 MPa", "H = 1, 20 MPa"]
+TINY = CampaignSettings(n_surfaces=2, grid=64, rq=5e-6, n_terms=(6,), hurst=(0.0, 0.5, 1.0), n_examples=1)
+
+
+def _bem_files(root: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.glob("H*/bem_*.npz"))}
+
+
+def _tables(md: str, header: str) -> list[list[list[str]]]:
+    """Every Markdown table whose header line is exactly ``header``."""
+    lines = md.splitlines()
+    out = []
+    for i, ln in enumerate(lines):
+        if ln == header:
+            rows = []
+            for row in lines[i + 2:]:
+                if not row.startswith("|"):
+                    break
+                rows.append([c.strip() for c in row.strip("|").split("|")])
+            out.append(rows)
+    return out
+
+
+def _section(md: str) -> str:
+    return md.split("## Asperity model vs elastic BEM", 1)[1]
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory):
+    out = tmp_path_factory.mktemp("bem") / "run"
+    assert main([*ARGS, "--compare-bem", "1", "--out", str(out)]) == 0
+    return out
+
+
+def test_report_section(study):
+    html = (study / "report.html").read_text()
+    md = (study / "report.md").read_text()
+    assert "<h2>Asperity model vs elastic BEM</h2>" in html
+    sec = _section(md)
+    # one table per H, one row per quantity, values consistent with the stored solves
+    header = "| quantity | asperity model | elastic BEM | ratio asperity / BEM | ratio range |"
+    tables = _tables(sec, header)
+    assert len(tables) == 3
+    for case, tab in zip(CASES, tables, strict=True):
+        assert f"*{case}: 1 surface, per-surface values" in sec
+        assert [r[0] for r in tab] == ["contact fraction 1 − α", "mean contact pressure (MPa)",
+                                       "maximal pressure (MPa)", "contact spots per surface",
+                                       "mean spot peak pressure (MPa)", "load share on the grid border"]
+        for r in tab[:3]:
+            a, b, ratio = float(r[1]), float(r[2]), float(r[3])
+            assert a > 0 and b > 0
+            assert ratio == pytest.approx(a / b, rel=2e-3)
+    for ih, tab in enumerate(tables):
+        z = np.load(bem_path(study, TINY, ih, 0, 0))
+        camp = np.load(study / f"H{TINY.hurst[ih]:g}_P20MPa" / "surface_0000.npz")
+        assert float(tab[0][1]) == pytest.approx(1 - float(camp["alpha"]), rel=1e-3)
+        assert float(tab[0][2]) == pytest.approx(float(z["bem_contact_fraction"]), rel=1e-3)
+        assert float(tab[2][2]) == pytest.approx(float(z["bem_max_pressure"]) / 1e6, rel=1e-3)
+        assert bool(z["bem_converged"])
+        # load balance of both models: mean pressure × contact fraction = nominal pressure
+        for m in ("asperity", "bem"):
+            assert float(z[f"{m}_mean_pressure"]) * float(z[f"{m}_contact_fraction"]) == \
+                pytest.approx(20e6, rel=1e-6)
+    # GLD and damage table: one row per (H, model)
+    fits = _tables(sec, "| case | model | n pooled | n per surface | fit | λ1 | λ2 | λ3 | λ4 | "
+                        "damage probability | 90 % low | 90 % high |")
+    assert len(fits) == 1 and len(fits[0]) == 6
+    assert [(r[0], r[1]) for r in fits[0]] == [(c, m) for c in CASES
+                                              for m in ("asperity model", "elastic BEM")]
+    fitted = [r for r in fits[0] if r[4] != "none"]
+    assert len(fitted) >= 4
+    for r in fitted:
+        assert 0 <= float(r[9]) <= 1 and float(r[10]) <= float(r[9]) <= float(r[11])
+    # the findings paragraph is computed from the tables
+    para = next(ln for ln in sec.splitlines() if ln.startswith("**Findings.**"))
+    assert "The largest error is on the" in para
+    ratio0 = float(tables[0][0][3])
+    assert f"contact fraction ×{ratio0:.3g}" in para
+    # figures: histograms of both models and the pressure maps, embedded and as files
+    for name in ("bem_histograms", "bem_maps"):
+        m = re.search(rf"<figure id='{name}'><img alt='[^']*' src='data:image/png;base64,([A-Za-z0-9+/=]+)'",
+                      html)
+        assert m and base64.b64decode(m.group(1))[:8] == b"\x89PNG\r\n\x1a\n"
+        assert f"(report_files/{name}.png)" in sec
+        assert (study / "report_files" / f"{name}.png").stat().st_size > 5000
+    settings_rows = dict((r[0], r[1]) for r in _tables(md, "| setting | value |")[0])
+    assert settings_rows["BEM comparison: surfaces per case K, boundary, tolerance, iteration limit"] \
+        == "1, isolated patch, 1e-08, 1000"
+
+
+def test_resume_reuses_the_bem_solves(study, tmp_path, capsys, monkeypatch):
+    out = tmp_path / "run"
+    shutil.copytree(study, out)
+    before = _bem_files(out)
+    assert len(before) == 3
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("a finished BEM solve was recomputed")
+
+    monkeypatch.setattr(bem_mod, "simulate_bem", refuse)
+    capsys.readouterr()
+    assert main([*ARGS, "--compare-bem", "1", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "0 surfaces computed, 6 reused" in text and "BEM comparison: 0 surfaces solved, 3 reused" in text
+    assert _bem_files(out) == before
+    # a larger K computes only the new surfaces
+    monkeypatch.undo()
+    assert main([*ARGS, "--compare-bem", "2", "--out", str(out)]) == 0
+    assert "BEM comparison: 3 surfaces solved, 3 reused" in capsys.readouterr().out
+    after = _bem_files(out)
+    assert len(after) == 6 and all(after[k] == v for k, v in before.items())
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest["compare_bem_surfaces"] == 2
+    assert manifest["compare_bem"] == {"periodic": False, "tol": 1e-8, "max_iter": 1000, "format_version": 1}
+    assert "campaign" in manifest
+    sec = _section((out / "report.md").read_text())
+    assert "*H = 0, 20 MPa: 2 surfaces, per-surface values" in sec
+    assert "±" in sec
+    # other BEM settings are refused, as the campaign refuses other settings; force recomputes
+    with pytest.raises(CampaignError, match=r"BEM solves with different settings \(tol: 1e-08 -> 1e-06\)"):
+        run_bem(TINY, BEMSettings(n_compare=2, tol=1e-6), out, executor=SerialExecutor(), progress=False)
+    assert _bem_files(out) == after
+    r = run_bem(TINY, BEMSettings(n_compare=1, tol=1e-6), out, executor=SerialExecutor(), progress=False,
+                force=True)
+    assert len(r.computed) == 3 and r.skipped == 0
+    assert len(_bem_files(out)) == 3
+
+
+def test_interrupted_comparison_resumes(tmp_path, monkeypatch):
+    s = CampaignSettings(n_surfaces=2, grid=48, rq=5e-6, n_terms=(5,), hurst=(0.5,), n_examples=0)
+    out = tmp_path / "run"
+    run_campaign(s, out, executor=SerialExecutor(), progress=False)
+    original = bem_mod.simulate_bem
+    calls = []
+
+    def failing(settings, bsettings, ih, il, i):
+        calls.append(i)
+        if i == 1:
+            raise RuntimeError("node lost")
+        return original(settings, bsettings, ih, il, i)
+
+    monkeypatch.setattr(bem_mod, "simulate_bem", failing)
+    with pytest.raises(CampaignError, match=r"node lost.*1 of 2 comparisons are saved.*rerun"):
+        run_bem(s, BEMSettings(n_compare=2), out, executor=SerialExecutor(), progress=False)
+    assert bem_path(out, s, 0, 0, 0).is_file() and not bem_path(out, s, 0, 0, 1).exists()
+    assert not list(out.rglob("*.tmp"))
+    monkeypatch.setattr(bem_mod, "simulate_bem", original)
+    r = run_bem(s, BEMSettings(n_compare=2), out, executor=SerialExecutor(), progress=False)
+    assert r.computed == [(0, 0, 1)] and r.skipped == 1
+
+
+def test_bad_k(tmp_path, capsys):
+    assert main([*ARGS, "--compare-bem", "3", "--out", str(tmp_path / "x")]) == 2
+    assert "--compare-bem K = 3 cannot exceed the 2 surfaces per H" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main([*ARGS, "--compare-bem", "0", "--out", str(tmp_path / "x")])
+    with pytest.raises(ValueError, match="positive integer"):
+        BEMSettings(n_compare=0)
+    with pytest.raises(CampaignError, match="run the campaign before the BEM comparison"):
+        run_bem(TINY, BEMSettings(n_compare=1), tmp_path / "empty", executor=SerialExecutor(),
+                progress=False)
+
+
+def test_weierstrass_surfaces_are_not_periodic_on_the_grid():
+    """Why the study's BEM uses the isolated patch: gamma^n / L is not a multiple of 1/L."""
+    s = contact.weierstrass((256, 256), 1e-3, 0.5, 1.5, rq=50e-6, rng=1, n_terms=6)
+    h = s.heights
+    step = np.abs(np.diff(h, axis=0)).mean()
+    wrap = np.abs(h[0] - h[-1]).mean()
+    assert wrap > 5 * step  # ~10 here, 55-100 at 1024²
+    p = contact.self_affine((256, 256), 1e-3, 0.5, rq=50e-6, rng=1)
+    assert np.abs(p.heights[0] - p.heights[-1]).mean() < 3 * np.abs(np.diff(p.heights, axis=0)).mean()
+
+
+def test_compare_bem_agrees_with_the_solvers():
+    surf = contact.weierstrass((64, 64), 1e-3, 0.5, 1.5, rq=5e-6, rng=7, n_terms=6)
+    a = AnalysisSettings(n_resamples=30)
+    res = compare_bem(surf, 20e6, 210e9, 0.3, analysis=a)
+    asp = contact.solve(surf, 20e6, 210e9, 0.3, 0.2)
+    bem = contact.solve_bem(surf, 20e6, 210e9, 0.3)
+    s = res.surfaces
+    assert list(s["model"]) == ["asperity", "bem"] and list(s["surface"]) == [0, 0]
+    for row, ref in zip(s.itertuples(), (asp, bem), strict=True):
+        assert row.contact_fraction == ref.contact_fraction
+        assert row.mean_pressure_MPa == pytest.approx(ref.mean_pressure / 1e6, rel=1e-12)
+        assert row.max_pressure_MPa == pytest.approx(ref.max_pressure / 1e6, rel=1e-12)
+        assert row.n_contact == int((ref.pressure > 0).sum())
+        assert row.converged
+    r = res.ratios()
+    assert r.loc[0, "contact_fraction"] == pytest.approx(asp.contact_fraction / bem.contact_fraction)
+    assert r.loc[0, "max_pressure_MPa"] == pytest.approx(asp.max_pressure / bem.max_pressure)
+    # the same numbers as contact.compare_models
+    cm = contact.compare_models(surf, 20e6, 210e9, 0.3)
+    assert r.loc[0, "mean_pressure_MPa"] == pytest.approx(cm.loc["mean_pressure", "ratio"], rel=1e-12)
+    summ = res.summary().set_index("quantity")
+    assert summ.loc["max_pressure_MPa", "bem_mean"] == pytest.approx(bem.max_pressure / 1e6)
+    assert np.isnan(summ.loc["max_pressure_MPa", "ratio_std"])  # one surface: no spread
+    # GLD of each model's pressures, fitted as the study fits them
+    ff = res.fit_frame().set_index("model")
+    for m, ref in (("asperity", asp), ("bem", bem)):
+        x = ref.samples / 1e6
+        np.testing.assert_array_equal(res.fits[m].data, x)
+        assert ff.loc[m, "n"] == x.size and ff.loc[m, "n_ref"] == x.size
+        if ff.loc[m, "fit"] == "RS moments":
+            lam = glstat.fit(x, param="rs", method="moments").lambdas
+            np.testing.assert_allclose([ff.loc[m, f"lambda{j}"] for j in range(1, 5)], lam, rtol=1e-8)
+            d = res.fits[m].boot.damage_probability(2050.0, x.size)
+            assert ff.loc[m, "damage"] == pytest.approx(float(d.estimate))
+            assert ff.loc[m, "damage_low"] <= ff.loc[m, "damage"] <= ff.loc[m, "damage_high"]
+    assert (ff["fit"] != "none").sum() >= 1
+    text = findings({"H = 0.5": res})
+    assert f"contact fraction ×{r.loc[0, 'contact_fraction']:.3g}" in text
+    assert "Damage probability at 2050 MPa" in text
+
+
+def test_compare_bem_several_surfaces_and_bad_input():
+    surfs = [contact.self_affine((32, 32), 1e-3, 0.8, rq=2e-6, rng=k) for k in range(2)]
+    res = compare_bem(surfs, 20e6, 210e9, 0.3, periodic=True, analysis=AnalysisSettings(n_resamples=20))
+    assert list(res.surfaces["surface"]) == [0, 0, 1, 1]
+    bem1 = contact.solve_bem(surfs[1], 20e6, 210e9, 0.3, periodic=True)
+    row = res.surfaces[(res.surfaces["surface"] == 1) & (res.surfaces["model"] == "bem")].iloc[0]
+    assert row["max_pressure_MPa"] == pytest.approx(bem1.max_pressure / 1e6, rel=1e-12)
+    n_bem = int(res.surfaces.loc[res.surfaces["model"] == "bem", "n_contact"].sum())
+    assert res.fits["bem"].data.size == n_bem
+    summ = res.summary()
+    assert list(summ["quantity"]) == ["contact_fraction", "mean_pressure_MPa", "max_pressure_MPa"]
+    assert (summ["ratio_min"] <= summ["ratio_mean"]).all() and (summ["ratio_mean"] <= summ["ratio_max"]).all()
+    with pytest.raises(ValueError, match="surfaces is empty"):
+        compare_bem([], 20e6, 210e9, 0.3)
+    with pytest.raises(TypeError, match=r"surfaces\[1\] must be a contact.Surface"):
+        compare_bem([surfs[0], np.zeros((8, 8))], 20e6, 210e9, 0.3)
+    with pytest.raises(ValueError, match="nominal"):
+        compare_bem(surfs[0], -1.0, 210e9, 0.3)
+
+
+def test_contact_record_spots_and_border():
+    class R:
+        pressure = np.zeros((8, 8))
+        max_pressure = 5.0
+        mean_pressure = 2.5
+        contact_fraction = 4 / 64
+        force_error = 0.0
+        converged = True
+        n_iterations = 3
+
+    R.pressure[0, 3] = 1.0  # on the border
+    R.pressure[4, 4], R.pressure[5, 5] = 5.0, 2.0  # one spot (diagonal neighbours)
+    R.pressure[2, 6] = 2.0
+    rec = contact_record(R)
+    assert rec["n_clusters"] == 3 and rec["n_contact"] == 4
+    assert sorted(rec["cluster_peaks"].tolist()) == [1.0, 2.0, 5.0]
+    assert rec["border_load_fraction"] == pytest.approx(1.0 / 10.0)
+    np.testing.assert_array_equal(rec["samples"], [1.0, 2.0, 5.0, 2.0])
