@@ -9,7 +9,7 @@ solver (:func:`solve_bem`) as its reference.
 
 from .bem import BEMConvergenceWarning, solve_bem, solve_bem_displacement
 from .bem_compare import compare_models
-from .errors import TopographyFileError
+from .errors import ContactWarning, TopographyFileError
 from .generators import self_affine, weierstrass
 from .io import read, write
 from .result import ContactResult
@@ -20,6 +20,7 @@ from .surface import Surface
 __all__ = [
     "BEMConvergenceWarning",
     "ContactResult",
+    "ContactWarning",
     "Summits",
     "Surface",
     "TopographyFileError",

@@ -6,13 +6,25 @@ Functions here take plain arrays: heights (m), spacing (m) and a validity map.
 from __future__ import annotations
 
 import math
+import warnings
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
-import pandas as pd
 
 from ._kernels import find_summits
+from .errors import ContactWarning
 
-__all__ = ["UNITS", "hurst_exponent", "level_heights", "roughness_parameters"]
+if TYPE_CHECKING:
+    import pandas as pd
+
+__all__ = [
+    "UNITS",
+    "HurstFit",
+    "hurst_exponent",
+    "hurst_fit",
+    "level_heights",
+    "roughness_parameters",
+]
 
 #: Unit of each parameter returned by :func:`roughness_parameters`.
 UNITS = {
@@ -29,6 +41,9 @@ UNITS = {
     "Spc": "1/m",
     "hurst": "1",
     "fractal_dimension": "1",
+    "hurst_r2": "1",
+    "hurst_lag_min": "m",
+    "hurst_lag_max": "m",
 }
 
 
@@ -51,15 +66,38 @@ def level_heights(
     raise ValueError(f"level must be 'mean' or 'plane', got {level!r}")
 
 
-def hurst_exponent(
-    h: np.ndarray, dx: float, dy: float, valid: np.ndarray | None = None, max_lag: float = 0.125
-) -> float:
-    """Hurst exponent from the height-difference structure function.
+class HurstFit(NamedTuple):
+    """Least-squares power-law fit of the height-difference structure function.
 
-    ``S(tau) = <(z(x + tau) - z(x))^2>`` is averaged over both grid directions (pairs of
-    measured points only) and ``H`` is half the least-squares slope of ``log S`` against
-    ``log tau`` on logarithmically spaced lags from 1 grid step to ``max_lag`` times the
-    smaller side. For a self-affine surface ``S(tau) ∝ tau^(2H)``.
+    Attributes
+    ----------
+    slope_hurst : float
+        Half the fitted slope of ``log S`` against ``log tau`` (dimensionless), not
+        restricted to the physical range [0, 1].
+    r2 : float
+        Coefficient of determination of the log-log fit, in [0, 1] (dimensionless).
+    lag_min, lag_max : float
+        Smallest and largest lag entering the fit, in metres.
+    n_points : int
+        Number of (lag, direction) points in the fit.
+    """
+
+    slope_hurst: float
+    r2: float
+    lag_min: float
+    lag_max: float
+    n_points: int
+
+
+def hurst_fit(
+    h: np.ndarray, dx: float, dy: float, valid: np.ndarray | None = None, max_lag: float = 0.125
+) -> HurstFit:
+    """Fit ``S(tau) ∝ tau^(2H)`` to the height-difference structure function.
+
+    ``S(tau) = <(z(x + tau) - z(x))^2>`` is computed along both grid directions (pairs of
+    measured points only) on logarithmically spaced lags from 1 grid step to ``max_lag``
+    times the smaller side; each (lag, direction) with ``S > 0`` is one point of a
+    least-squares line of ``log S`` against ``log tau``.
 
     Parameters
     ----------
@@ -74,8 +112,14 @@ def hurst_exponent(
 
     Returns
     -------
-    float
-        The estimated Hurst exponent (not clipped to [0, 1]).
+    HurstFit
+        Half the slope (the raw Hurst estimate, unrestricted), the fit's R² and the lag
+        range in metres.
+
+    Raises
+    ------
+    ValueError
+        The structure function is zero at all but one lag (a flat surface).
     """
     if valid is None:
         valid = np.ones(h.shape, dtype=bool)
@@ -100,12 +144,94 @@ def hurst_exponent(
     keep = s_a > 0
     if keep.sum() < 2:
         raise ValueError("the structure function is zero at every lag; is the surface flat?")
-    slope = np.polyfit(np.log(taus_a[keep]), np.log(s_a[keep]), 1)[0]
-    return float(slope / 2)
+    x, y = np.log(taus_a[keep]), np.log(s_a[keep])
+    if np.ptp(x) == 0:
+        raise ValueError(
+            "the structure function is non-zero at a single lag only; the Hurst exponent "
+            "needs at least two lags"
+        )
+    slope, intercept = np.polyfit(x, y, 1)
+    ss_tot = float(np.sum((y - y.mean()) ** 2))
+    ss_res = float(np.sum((y - (slope * x + intercept)) ** 2))
+    r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 else 1.0
+    return HurstFit(
+        slope_hurst=float(slope / 2),
+        r2=float(min(max(r2, 0.0), 1.0)),
+        lag_min=float(taus_a[keep].min()),
+        lag_max=float(taus_a[keep].max()),
+        n_points=int(keep.sum()),
+    )
+
+
+def _physical_hurst(fit: HurstFit, min_r2: float) -> float:
+    """The fitted H when it is physical (in [0, 1]) with R² >= ``min_r2``; else NaN, warned."""
+    in_range = 0.0 <= fit.slope_hurst <= 1.0
+    if in_range and fit.r2 >= min_r2:
+        return fit.slope_hurst
+    why = (
+        "outside the physical range [0, 1]"
+        if not in_range
+        else f"from a poor fit (R² below {min_r2:g})"
+    )
+    warnings.warn(
+        f"Hurst exponent undefined: the structure-function fit gives H = "
+        f"{fit.slope_hurst:.4g}, {why} (R² = {fit.r2:.3g} over lags "
+        f"{fit.lag_min:.4g} m to {fit.lag_max:.4g} m); the surface is not self-affine "
+        "over these lags (periodic, a remaining form, or uncorrelated noise), so hurst and "
+        "fractal_dimension are NaN",
+        ContactWarning,
+        stacklevel=3,
+    )
+    return float("nan")
+
+
+def hurst_exponent(
+    h: np.ndarray,
+    dx: float,
+    dy: float,
+    valid: np.ndarray | None = None,
+    max_lag: float = 0.125,
+    min_r2: float = 0.5,
+) -> float:
+    """Hurst exponent from the height-difference structure function.
+
+    For a self-affine surface ``S(tau) ∝ tau^(2H)`` with ``0 <= H <= 1``; ``H`` is half the
+    slope of the log-log fit of :func:`hurst_fit`.
+
+    Parameters
+    ----------
+    h : ndarray, shape (nx, ny)
+        Heights in metres.
+    dx, dy : float
+        Grid spacing in metres.
+    valid : ndarray of bool, optional
+        False at missing points.
+    max_lag : float, default 0.125
+        Largest lag as a fraction of the smaller side of the grid.
+    min_r2 : float, default 0.5
+        Smallest R² of the log-log fit for which the estimate is accepted.
+
+    Returns
+    -------
+    float
+        The Hurst exponent in [0, 1] (dimensionless), or NaN when the fitted value lies
+        outside [0, 1] or the fit's R² is below ``min_r2``.
+
+    Warns
+    -----
+    contact.ContactWarning
+        When NaN is returned, with the fitted value, R² and lag range.
+    """
+    return _physical_hurst(hurst_fit(h, dx, dy, valid, max_lag), min_r2)
 
 
 def roughness_parameters(
-    h: np.ndarray, dx: float, dy: float, valid: np.ndarray | None = None, level: str = "mean"
+    h: np.ndarray,
+    dx: float,
+    dy: float,
+    valid: np.ndarray | None = None,
+    level: str = "mean",
+    hurst_min_r2: float = 0.5,
 ) -> pd.Series:
     """ISO 25178-2 field parameters and the Hurst exponent of a height map.
 
@@ -119,6 +245,8 @@ def roughness_parameters(
         False at missing points, which are left out.
     level : {"mean", "plane"}
         Reference surface: the mean height, or the least-squares plane (form removal).
+    hurst_min_r2 : float, default 0.5
+        Smallest R² of the structure-function fit for which ``hurst`` is reported.
 
     Returns
     -------
@@ -126,7 +254,16 @@ def roughness_parameters(
         ``Sa, Sq, Ssk, Sku, Sp, Sv, Sz`` (heights in m, Ssk and Sku dimensionless), ``Sdq``
         (RMS gradient), ``Sdr`` (developed interfacial area ratio as a fraction, not %),
         ``Spd`` (summit density, 1/m^2), ``Spc`` (mean summit curvature, 1/m), ``hurst``
-        and ``fractal_dimension = 3 - hurst``. Units are in :data:`UNITS`.
+        (in [0, 1]) and ``fractal_dimension = 3 - hurst`` (in [2, 3]), both NaN when the
+        surface has no physical Hurst exponent, then the quality of the Hurst fit:
+        ``hurst_r2`` (R² of the log-log fit) and ``hurst_lag_min``, ``hurst_lag_max``
+        (lag range of the fit, m). Units are in :data:`UNITS`.
+
+    Warns
+    -----
+    contact.ContactWarning
+        The structure-function fit gives a Hurst exponent outside [0, 1] or has an R²
+        below ``hurst_min_r2`` (``hurst`` and ``fractal_dimension`` are then NaN).
 
     Notes
     -----
@@ -135,7 +272,16 @@ def roughness_parameters(
     without the Wolf pruning of ISO 25178-2 segmentation, so they depend on the sampling
     interval; ``Spc = -mean((z_xx + z_yy) / 2)`` over those summits with second
     differences.
+
+    The Hurst exponent is half the slope of the structure function
+    ``<(z(x + tau) - z(x))^2>`` against the lag on log-log axes (:func:`hurst_fit`). A
+    self-affine surface has ``0 <= H <= 1``; a fitted value outside that range (a periodic
+    surface, a remaining form, uncorrelated noise) or a fit with R² below ``hurst_min_r2``
+    is not a Hurst exponent, and NaN is reported with a warning. ``hurst_r2`` and the lag
+    range are reported in every case.
     """
+    import pandas as pd
+
     if valid is None:
         valid = np.ones(h.shape, dtype=bool)
     z = level_heights(h, valid, dx, dy, level)
@@ -159,7 +305,8 @@ def roughness_parameters(
     else:
         spc = float("nan")
     area = valid.sum() * dx * dy
-    hurst = hurst_exponent(z, dx, dy, valid)
+    fit = hurst_fit(z, dx, dy, valid)
+    hurst = _physical_hurst(fit, hurst_min_r2)
     values = {
         "Sa": float(np.mean(np.abs(zv))),
         "Sq": sq,
@@ -174,5 +321,8 @@ def roughness_parameters(
         "Spc": spc,
         "hurst": hurst,
         "fractal_dimension": 3.0 - hurst,
+        "hurst_r2": fit.r2,
+        "hurst_lag_min": fit.lag_min,
+        "hurst_lag_max": fit.lag_max,
     }
     return pd.Series(values, name="roughness", dtype=float)

@@ -79,23 +79,34 @@ class Surface:
         lx, ly = self.size
         return lx * ly
 
-    def roughness(self, level: str = "mean") -> pd.Series:
+    def roughness(self, level: str = "mean", hurst_min_r2: float = 0.5) -> pd.Series:
         """ISO 25178-2 roughness parameters and the Hurst exponent.
 
         Parameters
         ----------
         level : {"mean", "plane"}
             Reference surface: the mean height, or the least-squares plane (form removal).
+        hurst_min_r2 : float, default 0.5
+            Smallest R² of the structure-function fit for which ``hurst`` is reported.
 
         Returns
         -------
         pandas.Series
             ``Sa, Sq, Sp, Sv, Sz`` (m), ``Ssk, Sku`` (1), ``Sdq`` (1), ``Sdr`` (fraction, not
-            %), ``Spd`` (1/m^2), ``Spc`` (1/m), ``hurst`` and ``fractal_dimension``; see
+            %), ``Spd`` (1/m^2), ``Spc`` (1/m), ``hurst`` (in [0, 1]) and
+            ``fractal_dimension`` (in [2, 3]) or NaN when the surface has no physical Hurst
+            exponent, ``hurst_r2`` (1) and ``hurst_lag_min``, ``hurst_lag_max`` (m); see
             :func:`contact.roughness.roughness_parameters`.
+
+        Warns
+        -----
+        contact.ContactWarning
+            The Hurst fit is outside [0, 1] or has R² below ``hurst_min_r2``.
         """
         valid = None if self.mask is None else ~np.asarray(self.mask, dtype=bool)
-        return roughness_parameters(self.heights, self.dx, self.dy, valid, level=level)
+        return roughness_parameters(
+            self.heights, self.dx, self.dy, valid, level=level, hurst_min_r2=hurst_min_r2
+        )
 
     def detrend(self, level: str = "plane") -> Surface:
         """A new surface with the mean (``"mean"``) or least-squares plane (``"plane"``)

@@ -12,12 +12,14 @@ For the egg crate A cos(kx) cos(ky) the second differences at a summit are
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
 from scipy.special import ellipe
 
 import contact
+from contact.roughness import hurst_exponent, hurst_fit
 
 
 def test_sinusoid_height_and_slope_parameters():
@@ -52,6 +54,8 @@ def test_egg_crate_summit_density_and_curvature():
     assert r["Spc"] == pytest.approx(amp * (2 - 2 * math.cos(k * dx)) / dx**2, rel=1e-9)
 
 
+# White noise has no Hurst exponent; this test is about Sq only.
+@pytest.mark.filterwarnings("ignore::contact.ContactWarning")
 def test_plane_levelling_removes_tilt():
     rng = np.random.default_rng(0)
     base = rng.standard_normal((64, 64)) * 1e-7
@@ -69,6 +73,58 @@ def test_hurst_exponent_of_self_affine_surfaces(hurst):
     r = s.roughness()
     assert r["hurst"] == pytest.approx(hurst, abs=0.1)
     assert r["fractal_dimension"] == pytest.approx(3 - r["hurst"], rel=1e-15)
+    # The fit's quality and lag range: one grid step to 1/8 of the 512-point side.
+    assert 0.9 < r["hurst_r2"] <= 1
+    assert r["hurst_lag_min"] == pytest.approx(s.dx, rel=1e-12)
+    assert r["hurst_lag_max"] == pytest.approx(64 * s.dx, rel=1e-12)
+
+
+def sinusoid_surface():
+    n, length = 256, 1e-3
+    x = np.meshgrid(np.arange(n) * length / n, np.arange(n) * length / n, indexing="ij")[0]
+    return contact.Surface(1e-6 * np.sin(2 * np.pi * x / (length / 8)), length / n)
+
+
+def test_hurst_of_a_sinusoid_is_undefined_not_impossible():
+    # S(tau) = A^2 (1 - cos(k tau)) falls back to ~0 at one period (32 steps = the largest
+    # lag), so the raw log-log slope is strongly negative: no Hurst exponent exists.
+    s = sinusoid_surface()
+    fit = hurst_fit(s.heights, s.dx, s.dy)
+    assert fit.slope_hurst < -1
+    with pytest.warns(contact.ContactWarning, match=r"outside the physical range \[0, 1\]"):
+        r = s.roughness()
+    assert np.isnan(r["hurst"]) and np.isnan(r["fractal_dimension"])
+    assert r["hurst_r2"] == pytest.approx(fit.r2, rel=1e-3)  # after removing the mean
+    assert 0 <= r["hurst_r2"] < 0.5
+    assert r["hurst_lag_min"] == pytest.approx(s.dx, rel=1e-12)
+    assert r["hurst_lag_max"] == pytest.approx(32 * s.dx, rel=1e-12)
+    with pytest.warns(contact.ContactWarning, match=r"H = -3.27"):
+        assert np.isnan(hurst_exponent(s.heights, s.dx, s.dy))
+
+
+def test_hurst_and_fractal_dimension_stay_in_their_physical_ranges():
+    rng = np.random.default_rng(4)
+    surfaces = [
+        sinusoid_surface(),
+        contact.Surface(rng.standard_normal((128, 128)) * 1e-6, 1e-6),  # no correlation
+        contact.Surface(np.add.outer(np.arange(64.0) ** 2, np.zeros(64)) * 1e-9, 1e-6),  # form
+    ] + [contact.weierstrass((128, 128), 1e-3, h, rq=5e-6, rng=7) for h in (0.0, 0.5, 1.0)]
+    for s in surfaces:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", contact.ContactWarning)
+            r = s.roughness()
+        assert np.isnan(r["hurst"]) or 0 <= r["hurst"] <= 1, r["hurst"]
+        assert np.isnan(r["fractal_dimension"]) or 2 <= r["fractal_dimension"] <= 3
+        assert 0 <= r["hurst_r2"] <= 1
+
+
+def test_poor_hurst_fit_is_rejected_at_the_requested_quality():
+    s = contact.self_affine((256, 256), 1e-3, 0.5, rq=1e-6, rng=5)
+    r = s.roughness()
+    assert 0 <= r["hurst"] <= 1 and r["hurst_r2"] < 1
+    with pytest.warns(contact.ContactWarning, match=r"poor fit \(R² below 1\)"):
+        strict = s.roughness(hurst_min_r2=1.0)
+    assert np.isnan(strict["hurst"]) and strict["hurst_r2"] == r["hurst_r2"]
 
 
 def test_mask_is_ignored():
@@ -77,8 +133,11 @@ def test_mask_is_ignored():
     mask[:, 16:] = True
     spoiled = z.copy()
     spoiled[mask] = 1e3
-    full = contact.Surface(z[:, :16], 1e-6).roughness()
-    part = contact.Surface(spoiled, 1e-6, mask=mask).roughness()
+    # Uncorrelated noise has no Hurst exponent (warned); the height parameters are defined.
+    with pytest.warns(contact.ContactWarning, match=r"Hurst exponent undefined"):
+        full = contact.Surface(z[:, :16], 1e-6).roughness()
+    with pytest.warns(contact.ContactWarning, match=r"Hurst exponent undefined"):
+        part = contact.Surface(spoiled, 1e-6, mask=mask).roughness()
     for key in ("Sa", "Sq", "Ssk", "Sku", "Sp", "Sv"):
         assert part[key] == pytest.approx(full[key], rel=1e-12)
 
@@ -90,7 +149,8 @@ def test_series_shape_and_plot():
     s = contact.weierstrass((64, 64), 1e-3, 0.5, rq=5e-6, rng=0)
     r = s.roughness()
     assert list(r.index) == ["Sa", "Sq", "Ssk", "Sku", "Sp", "Sv", "Sz", "Sdq", "Sdr", "Spd",
-                             "Spc", "hurst", "fractal_dimension"]
+                             "Spc", "hurst", "fractal_dimension", "hurst_r2", "hurst_lag_min",
+                             "hurst_lag_max"]
     ax = s.plot()
     assert ax.get_xlabel() == "x (µm)"
     res = contact.solve(s, 20e6, 210e9, 0.3)
