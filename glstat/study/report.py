@@ -578,10 +578,12 @@ def _bem_section(rep: Report, settings, asettings, comps: dict, bsettings, maps:
             continue
         lo, hi = float(allx.min()), float(allx.max())
         bins = np.geomspace(lo, hi * (1 + 1e-9), 40) if hi > lo > 0 else 10
+        heights = []
         for m, x in zip(MODELS, data, strict=True):
             if x.size:
-                ax.hist(x, bins=bins, density=True, histtype="step", lw=1.5, color=colours[m],
-                        label=f"{MODEL_LABELS[m]} (n = {x.size})")
+                hv, _, _ = ax.hist(x, bins=bins, density=True, histtype="step", lw=1.5, color=colours[m],
+                                   label=f"{MODEL_LABELS[m]} (n = {x.size})")
+                heights.append(np.asarray(hv)[np.asarray(hv) > 0])
             f = v.fits[m]
             if f.ok:
                 xs = np.geomspace(lo, hi, 400) if hi > lo > 0 else np.linspace(lo, hi + 1, 400)
@@ -592,6 +594,9 @@ def _bem_section(rep: Report, settings, asettings, comps: dict, bsettings, maps:
         ax.axvline(hard, color="k", ls=":", label=f"hardness {hard:g} MPa")
         ax.set_xscale("log")
         ax.set_yscale("log")
+        hv = np.concatenate(heights) if heights else np.empty(0)
+        if hv.size:  # the GLD densities vanish at bounded supports: keep the histograms in view
+            ax.set_ylim(hv.min() / 5, hv.max() * 5)
         ax.set_xlabel("grid-point pressure (MPa)")
         ax.set_ylabel("density (1/MPa)")
         ax.set_title(labels[c], fontsize=9)
