@@ -9,12 +9,14 @@ Coatings 10(1):15, 2019, §2.2). The numerical work is done by the compiled kern
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
 import pandas as pd
 
 from . import _kernels
+from .errors import ContactWarning
 from .result import ContactResult
 from .summits import valid_map
 from .surface import Surface
@@ -149,7 +151,7 @@ class _Model:
         )
 
     def result(self, d, tables, weights, target, nominal_pressure, method, **extra):
-        """Build the result from one state, or a blend of two states at a force jump."""
+        """Build the result from one state (weight 1), or a blend of two states at a jump."""
         pressure = np.zeros_like(self.h)
         for tab, w in zip(tables, weights, strict=True):
             if w > 0:
@@ -281,6 +283,7 @@ def solve(
     *,
     rtol: float = 1e-10,
     maxiter: int = 200,
+    jump: str = "nearest",
 ) -> ContactResult:
     """Press a flat onto a rough surface until it carries a given nominal pressure.
 
@@ -303,21 +306,38 @@ def solve(
         Relative tolerance on the force balance.
     maxiter : int, default 200
         Iteration limit of the root finder on the separation.
+    jump : {"nearest", "deeper", "blend"}, default "nearest"
+        What to return when the load falls inside a jump of the force ``F(d)`` (see Notes):
+        the state of the model whose force is closest to the load (``"nearest"``; never a
+        state without contact), the deeper state, which carries more than the load
+        (``"deeper"``), or a force-balanced blend of the two states, which is not a state
+        of the model (``"blend"``).
 
     Returns
     -------
     ContactResult
-        Pressure map (Pa), plane height ``separation`` (m), ``force`` (N), ``alpha``,
-        ``samples`` and the per-asperity table ``asperities`` with columns ``i``, ``j``,
-        ``x``, ``y`` (m), ``height`` (m), ``delta`` (interference, m), ``a``, ``b``
-        (semi-axes along x and y, m), ``beta`` (attack angle, rad), ``p_m`` (mean
-        pressure, Pa) and ``F`` (force, N).
+        Pressure map (Pa), plane height ``separation`` (m), ``force`` (N), ``force_error``
+        (relative to the load), ``alpha``, ``samples`` and the per-asperity table
+        ``asperities`` with columns ``i``, ``j``, ``x``, ``y`` (m), ``height`` (m),
+        ``delta`` (interference, m), ``a``, ``b`` (semi-axes along x and y, m), ``beta``
+        (attack angle, rad), ``p_m`` (mean pressure, Pa) and ``F`` (force, N). ``info``
+        holds ``in_jump`` (bool), ``force_jump`` (jump of F relative to the load, 0 outside
+        a jump), ``other_force`` (N) and ``other_separation`` (m) of the other limiting
+        state (NaN outside a jump), ``separation_bracket`` (m, in a jump), ``jump`` and
+        ``blend_weight`` (the deeper state's weight with ``jump="blend"``, else 1).
 
     Raises
     ------
     ValueError
         Non-positive load, invalid elastic constants, flat surface, no summit, NaN heights
-        outside the mask, or a load no separation can carry.
+        outside the mask, a load no separation can carry, or an unknown ``jump``.
+
+    Warns
+    -----
+    contact.ContactWarning
+        The load falls inside a jump of F(d) and a state of the model is returned
+        (``jump`` is ``"nearest"`` or ``"deeper"``): its force differs from the load by
+        ``force_error``; the message gives the jump.
 
     Notes
     -----
@@ -333,12 +353,19 @@ def solve(
 
     ``F(d)`` is monotone but has jumps: when a summit first touches (its centre point
     carries ``1.5 p_m`` at once) and when a walk passes a valley as the plane descends.
-    The separation is found by bracketing and safeguarded regula falsi. When the load falls
-    inside a jump, the bracket shrinks to the jump's separation (to machine precision) and
-    the result is the blend of the two limiting states with the weight that balances the
-    force exactly; ``info['blend_weight']`` and ``info['force_jump']`` report it, and the
-    table's geometry is that of the lower (deeper) state.
+    The separation is found by bracketing and safeguarded regula falsi to ``rtol``. When
+    the load falls inside a jump, the bracket shrinks to the jump's separation (to machine
+    precision) and no state of the model carries the load: the pressure map, ``samples``
+    and ``asperities`` are those of one state (by default the one with the force closest to
+    the load), ``force_error`` is that state's honest error, of order the jump, and a
+    :class:`~contact.ContactWarning` is issued. With ``jump="blend"`` the map is instead
+    ``theta * (deeper state) + (1 - theta) * (shallower state)`` with the weight ``theta``
+    that balances the force; its samples (e.g. ``theta * 1.5 p_m`` at a summit that
+    just touched) are not pressures of the model, and the table's geometry and ``p_m`` are
+    those of the deeper state with the blended ``F``.
     """
+    if jump not in ("nearest", "deeper", "blend"):
+        raise ValueError(f"jump must be 'nearest', 'deeper' or 'blend', got {jump!r}")
     if not (
         isinstance(nominal_pressure, int | float | np.floating | np.integer)
         and math.isfinite(nominal_pressure)
@@ -362,16 +389,47 @@ def solve(
     if lo == hi:
         return model.result(
             lo, [model.table(lo)], [1.0], target, float(nominal_pressure), "asperity",
-            n_iterations=it, blend_weight=1.0, force_jump=0.0,
+            n_iterations=it, jump=jump, in_jump=False, blend_weight=1.0, force_jump=0.0,
+            other_force=float("nan"), other_separation=float("nan"),
         )
+    # The load falls inside a jump of F(d): the deeper state (plane at lo) carries more than
+    # the load, the shallower one (plane at hi, a hair higher) less.
     tab_lo, tab_hi = model.table(lo), model.table(hi)
     f_lo, f_hi = float(tab_lo[:, 5].sum()), float(tab_hi[:, 5].sum())
-    theta = 1.0 if f_lo == f_hi else (target - f_hi) / (f_lo - f_hi)
-    theta = min(max(theta, 0.0), 1.0)
+    force_jump = (f_lo - f_hi) / target
+    bracket = (lo, hi)
+    if jump == "blend":
+        theta = 1.0 if f_lo == f_hi else (target - f_hi) / (f_lo - f_hi)
+        theta = min(max(theta, 0.0), 1.0)
+        return model.result(
+            lo, [tab_lo, tab_hi], [theta, 1.0 - theta], target, float(nominal_pressure),
+            "asperity", n_iterations=it, jump=jump, in_jump=True, blend_weight=theta,
+            force_jump=force_jump, other_force=f_hi, other_separation=hi,
+            separation_bracket=bracket,
+        )
+    deeper = (
+        jump == "deeper"
+        or tab_hi.shape[0] == 0
+        or f_hi <= 0.0
+        or abs(f_lo - target) <= abs(f_hi - target)
+    )
+    d, tab, other_f, other_d = (lo, tab_lo, f_hi, hi) if deeper else (hi, tab_hi, f_lo, lo)
+    force = float(tab[:, 5].sum())
+    warnings.warn(
+        f"the requested load {target:.6g} N ({nominal_pressure:.6g} Pa nominal) falls inside "
+        f"a jump of the asperity model's force at separation {lo:.10g} m: F jumps from "
+        f"{f_hi:.6g} N to {f_lo:.6g} N ({force_jump:.3g} of the load) as the plane passes "
+        f"it, so no state of the model carries the load exactly; returned the "
+        f"{'deeper' if deeper else 'shallower'} state with F = {force:.6g} N "
+        f"(force_error = {(force - target) / target:+.3g}); pass jump='blend' for a "
+        "force-balanced mix of the two states that is not a state of the model",
+        ContactWarning,
+        stacklevel=2,
+    )
     return model.result(
-        lo, [tab_lo, tab_hi], [theta, 1.0 - theta], target, float(nominal_pressure),
-        "asperity", n_iterations=it, blend_weight=theta, force_jump=(f_lo - f_hi) / target,
-        separation_bracket=(lo, hi),
+        d, [tab], [1.0], target, float(nominal_pressure), "asperity", n_iterations=it,
+        jump=jump, in_jump=True, blend_weight=1.0, force_jump=force_jump,
+        other_force=other_f, other_separation=other_d, separation_bracket=bracket,
     )
 
 
