@@ -7,6 +7,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ._validate import real_scalar
 from .surface import Surface
 
 __all__ = ["self_affine", "weierstrass"]
@@ -22,24 +23,30 @@ def _grid(shape, length) -> tuple[int, int, float, float]:
     lengths = (length, length) if np.ndim(length) == 0 else tuple(length)
     if len(lengths) != 2:
         raise ValueError(f"length must be a number or a pair (Lx, Ly) in metres, got {length!r}")
-    lx, ly = (float(v) for v in lengths)
-    for name, v in (("Lx", lx), ("Ly", ly)):
-        if not (math.isfinite(v) and v > 0):
+    checked = []
+    for name, v in zip(("Lx", "Ly"), lengths, strict=True):
+        x = real_scalar(v)
+        if x is None or not (math.isfinite(x) and x > 0):
             raise ValueError(f"length {name} must be a positive finite size in metres, got {v!r}")
+        checked.append(x)
+    lx, ly = checked
     return nx, ny, lx, ly
 
 
 def _check_hurst(hurst: float) -> float:
-    if not (isinstance(hurst, int | float | np.floating | np.integer) and 0 <= hurst <= 1):
+    h = real_scalar(hurst)
+    if h is None or not (0 <= h <= 1):
         raise ValueError(f"hurst must be in [0, 1] (fractal dimension 3 - H), got {hurst!r}")
-    return float(hurst)
+    return h
 
 
 def _scale(w: np.ndarray, rq: float | None) -> np.ndarray:
     if rq is None:
         return w
-    if not (math.isfinite(rq) and rq > 0):
+    value = real_scalar(rq)
+    if value is None or not (math.isfinite(value) and value > 0):
         raise ValueError(f"rq must be a positive finite RMS height in metres, got {rq!r}")
+    rq = value
     w = w - w.mean()
     s = math.sqrt(float(np.mean(w * w)))
     if s == 0:
@@ -105,8 +112,10 @@ def weierstrass(
     """
     nx, ny, lx, ly = _grid(shape, length)
     h = _check_hurst(hurst)
-    if not (math.isfinite(gamma) and gamma > 1):
+    g = real_scalar(gamma)
+    if g is None or not (math.isfinite(g) and g > 1):
         raise ValueError(f"gamma must be a finite frequency ratio > 1, got {gamma!r}")
+    gamma = g
     if method not in ("matrix", "direct"):
         raise ValueError(f"method must be 'matrix' or 'direct', got {method!r}")
     rng = np.random.default_rng(rng)
@@ -196,13 +205,16 @@ def self_affine(
     qx = 2 * np.pi * np.fft.fftfreq(nx, d=lx / nx)
     qy = 2 * np.pi * np.fft.rfftfreq(ny, d=ly / ny)
     q = np.hypot(qx[:, None], qy[None, :])
-    q0 = 2 * np.pi / max(lx, ly) if rolloff is None else float(rolloff)
-    if not (math.isfinite(q0) and q0 > 0):
+    q0 = 2 * np.pi / max(lx, ly) if rolloff is None else real_scalar(rolloff)
+    if q0 is None or not (math.isfinite(q0) and q0 > 0):
         raise ValueError(f"rolloff must be a positive wavevector in rad/m, got {rolloff!r}")
-    if cutoff is not None and not (math.isfinite(cutoff) and cutoff > q0):
-        raise ValueError(
-            f"cutoff must be a wavevector above rolloff={q0:.6g} rad/m, got {cutoff!r}"
-        )
+    if cutoff is not None:
+        qc = real_scalar(cutoff)
+        if qc is None or not (math.isfinite(qc) and qc > q0):
+            raise ValueError(
+                f"cutoff must be a wavevector above rolloff={q0:.6g} rad/m, got {cutoff!r}"
+            )
+        cutoff = qc
     filt = np.maximum(q, q0) ** (-(h + 1))
     filt[0, 0] = 0.0
     if cutoff is not None:

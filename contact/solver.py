@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 from . import _kernels
+from ._validate import real_scalar
 from .errors import ContactWarning
 from .result import ContactResult
 from .summits import valid_map
@@ -26,17 +27,21 @@ __all__ = ["effective_modulus", "solve", "solve_displacement"]
 _COLUMNS = ["i", "j", "x", "y", "height", "delta", "a", "b", "beta", "p_m", "F"]
 
 
-def _check_material(E: float, nu: float, which: str = "") -> None:
+def _check_material(E, nu, which: str = "") -> tuple[float, float]:
+    """``(E, nu)`` as floats after checking them; a 0-d array counts as a scalar."""
     name_e, name_nu = f"E{which}", f"nu{which}"
-    if not (isinstance(E, int | float | np.floating | np.integer) and math.isfinite(E) and E > 0):
+    e = real_scalar(E)
+    if e is None or not (math.isfinite(e) and e > 0):
         raise ValueError(
             f"{name_e} must be a positive finite Young's modulus in pascals, got {E!r}"
         )
-    if not (isinstance(nu, int | float | np.floating | np.integer) and -1.0 < nu <= 0.5):
+    n = real_scalar(nu)
+    if n is None or not (-1.0 < n <= 0.5):
         raise ValueError(
             f"{name_nu} must be a Poisson ratio in (-1, 0.5], got {nu!r}; "
             "0.5 is incompressible, typical metals are near 0.3"
         )
+    return e, n
 
 
 def effective_modulus(E: float, nu: float, counter_face: Sequence[float] | None = None) -> float:
@@ -58,7 +63,7 @@ def effective_modulus(E: float, nu: float, counter_face: Sequence[float] | None 
         ``E*`` with ``1/E* = (1 - nu^2)/E + (1 - nu2^2)/E2`` (the second term is 0 for a
         rigid plane), Pa.
     """
-    _check_material(E, nu)
+    E, nu = _check_material(E, nu)
     inv = (1.0 - nu * nu) / E
     if counter_face is not None:
         try:
@@ -68,7 +73,7 @@ def effective_modulus(E: float, nu: float, counter_face: Sequence[float] | None 
                 f"counter_face must be a pair (E2, nu2) in pascals and dimensionless, "
                 f"got {counter_face!r}; use None for a rigid plane"
             ) from None
-        _check_material(e2, nu2, which="2 (counter_face)")
+        e2, nu2 = _check_material(e2, nu2, which="2 (counter_face)")
         inv += (1.0 - nu2 * nu2) / e2
     return 1.0 / inv
 
@@ -102,7 +107,8 @@ class _Model:
     """The asperity model of one surface, with its summits sorted by decreasing height."""
 
     def __init__(self, surface: Surface, E, nu, cone_factor, counter_face):
-        if not (math.isfinite(cone_factor) and cone_factor > 0):
+        c = real_scalar(cone_factor)
+        if c is None or not (math.isfinite(c) and c > 0):
             raise ValueError(
                 f"cone_factor must be a positive number, got {cone_factor!r} "
                 "(0.2 in Bigerelle et al. 2019, 0.5 for Sneddon's elastic cone)"
@@ -110,7 +116,7 @@ class _Model:
         self.h, self.valid = _check_surface(surface)
         self.surface = surface
         self.e_star = effective_modulus(E, nu, counter_face)
-        self.cone_factor = float(cone_factor)
+        self.cone_factor = c
         self.pm_coef = self.cone_factor * self.e_star
         self.dx, self.dy = surface.dx, surface.dy
         self.cell = self.dx * self.dy
@@ -366,17 +372,21 @@ def solve(
     """
     if jump not in ("nearest", "deeper", "blend"):
         raise ValueError(f"jump must be 'nearest', 'deeper' or 'blend', got {jump!r}")
-    if not (
-        isinstance(nominal_pressure, int | float | np.floating | np.integer)
-        and math.isfinite(nominal_pressure)
-        and nominal_pressure > 0
-    ):
+    p_nom = real_scalar(nominal_pressure)
+    if p_nom is None or not (math.isfinite(p_nom) and p_nom > 0):
         raise ValueError(
             f"nominal_pressure must be a positive finite pressure in pascals, got "
             f"{nominal_pressure!r}; a compressive load is positive"
         )
-    if not (0 < rtol < 1e-3):
+    nominal_pressure = p_nom
+    r = real_scalar(rtol)
+    if r is None or not (0 < r < 1e-3):
         raise ValueError(f"rtol must be in (0, 1e-3), got {rtol!r}")
+    rtol = r
+    m = real_scalar(maxiter)
+    if m is None or not (m >= 1 and m == int(m)):
+        raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
+    maxiter = int(m)
     model = _Model(surface, E, nu, cone_factor, counter_face)
     target = float(nominal_pressure) * model.nominal_area
     lo, hi, f_lo, f_hi, it, ok = _find_separation(model, target, rtol, maxiter)
@@ -458,9 +468,8 @@ def solve_displacement(
     ContactResult
         As in :func:`solve`, with ``target_force`` None and ``force_error`` 0.
     """
-    if not (isinstance(separation, int | float | np.floating | np.integer)
-            and math.isfinite(separation)):
+    d = real_scalar(separation)
+    if d is None or not math.isfinite(d):
         raise ValueError(f"separation must be a finite height in metres, got {separation!r}")
     model = _Model(surface, E, nu, cone_factor, counter_face)
-    return model.result(float(separation), [model.table(float(separation))], [1.0], None, None,
-                        "asperity-displacement")
+    return model.result(d, [model.table(d)], [1.0], None, None, "asperity-displacement")

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ._validate import real_scalar
 from .roughness import level_heights, roughness_parameters
 
 if TYPE_CHECKING:
@@ -40,11 +41,15 @@ class Surface:
         if min(h.shape) < 3:
             raise ValueError(f"heights must be at least 3 x 3 points, got {h.shape}")
         dy = dx if dy is None else dy
+        spacing = []
         for name, value in (("dx", dx), ("dy", dy)):
-            if not (np.isfinite(value) and value > 0):
+            v = real_scalar(value)
+            if v is None or not (np.isfinite(v) and v > 0):
                 raise ValueError(
                     f"{name} must be a positive finite spacing in metres, got {value!r}"
                 )
+            spacing.append(v)
+        dx, dy = spacing
         if mask is not None:
             mask = np.array(mask, dtype=bool, copy=True)
             if mask.shape != h.shape:

@@ -119,3 +119,62 @@ def test_roughness_of_flat_surface():
         contact.Surface(np.ones((8, 8)), 1e-6).roughness()
     with pytest.raises(ValueError, match=r"level must be 'mean' or 'plane'"):
         bump().roughness(level="cubic")
+
+
+def test_zero_dimensional_arrays_are_scalars():
+    # np.array(1e6) is a scalar like np.float64(1e6): same result, no error.
+    s = bump()
+    ref = contact.solve(s, 1e7, E, NU, 0.2, (E, NU))
+    got = contact.solve(s, np.array(1e7), np.array(E), np.array(NU), np.array(0.2),
+                        (np.array(E), np.array(NU)), rtol=np.array(1e-10),
+                        maxiter=np.array(200))
+    np.testing.assert_array_equal(got.pressure, ref.pressure)
+    assert got.nominal_pressure == 1e7 and type(got.nominal_pressure) is float
+    assert abs(got.force_error) <= 1e-6
+    assert contact.solve(s, np.float32(1e7), np.int64(210_000_000_000), NU).force > 0
+    disp = contact.solve_displacement(s, np.array(-2e-8), np.array(E), np.array(NU))
+    ref_disp = contact.solve_displacement(s, -2e-8, E, NU)
+    np.testing.assert_array_equal(disp.pressure, ref_disp.pressure)
+    assert type(disp.separation) is float
+    assert contact.effective_modulus(np.array(E), np.array(NU)) == contact.effective_modulus(E, NU)
+    w = contact.weierstrass((16, 16), np.array(1e-3), np.array(0.5), np.array(1.5),
+                            rq=np.array(1e-6), rng=0)
+    np.testing.assert_array_equal(
+        w.heights, contact.weierstrass((16, 16), 1e-3, 0.5, 1.5, rq=1e-6, rng=0).heights
+    )
+    f = contact.self_affine((16, 16), 1e-3, np.array(0.5), rng=0, rolloff=np.array(1e4),
+                            cutoff=np.array(1e6))
+    np.testing.assert_array_equal(
+        f.heights, contact.self_affine((16, 16), 1e-3, 0.5, rng=0, rolloff=1e4,
+                                       cutoff=1e6).heights
+    )
+    surf = contact.Surface(np.zeros((4, 4)), np.array(1e-6), np.array(2e-6))
+    assert (surf.dx, surf.dy) == (1e-6, 2e-6) and type(surf.dx) is float
+
+
+@pytest.mark.parametrize("value", [np.array([1e6]), np.array([[1e6]]), "1e6", True,
+                                   np.array(True), 1e6 + 0j, np.array(1e6 + 0j), None])
+def test_non_scalar_pressure_is_rejected(rough, value):
+    with pytest.raises(ValueError, match=r"nominal_pressure must be a positive finite"):
+        contact.solve(rough, value, E, NU)
+
+
+@pytest.mark.parametrize("value", [np.array([E]), "210e9", np.array(E + 0j)])
+def test_non_scalar_modulus_is_rejected(rough, value):
+    with pytest.raises(ValueError, match=r"E must be a positive finite Young's modulus"):
+        contact.solve(rough, 20e6, value, NU)
+    with pytest.raises(ValueError, match=r"E2 \(counter_face\) must be a positive"):
+        contact.solve(rough, 20e6, E, NU, counter_face=(value, NU))
+
+
+def test_non_scalar_separation_cone_factor_and_hurst(rough):
+    with pytest.raises(ValueError, match=r"separation must be a finite height"):
+        contact.solve_displacement(rough, np.array([0.0]), E, NU)
+    with pytest.raises(ValueError, match=r"cone_factor must be a positive number"):
+        contact.solve(rough, 20e6, E, NU, cone_factor=np.array([0.2]))
+    with pytest.raises(ValueError, match=r"nu must be a Poisson ratio"):
+        contact.solve(rough, 20e6, E, np.array([0.3]))
+    with pytest.raises(ValueError, match=r"hurst must be in \[0, 1\]"):
+        contact.weierstrass((16, 16), 1e-3, np.array([0.5]))
+    with pytest.raises(ValueError, match=r"maxiter must be a positive integer"):
+        contact.solve(rough, 20e6, E, NU, maxiter=2.5)
