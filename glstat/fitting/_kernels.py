@@ -12,7 +12,8 @@ standardized GLD; location and scale then follow in closed form. ``kind`` select
 Seeds come from a table of the statistics on a grid of (a, b): every grid triangle whose image
 contains the target gives one seed (its barycentric pre-image), so each branch of the map that
 reaches the target is visited; the nearest grid node is the seed of last resort when no triangle
-contains the target. Newton's method
+contains the target. The degenerate RS origin, into which regions 3 and 4 both run, gets
+its own seed from the lambda -> 0 limit of the statistics (`build_limit_table`). Newton's method
 with the analytic Jacobian, a line search and a fraction-to-the-boundary rule (shapes keep the
 signs of their seed and stay where the statistics exist) polishes each seed; equal roots are
 merged.
@@ -450,6 +451,12 @@ _POS = np.array([0.002, 0.01, 0.03, 0.06, 0.1, 0.15, 0.2, 0.3, 0.4, 0.55, 0.75, 
 _NEG_FRAC = np.array([0.99, 0.95, 0.85, 0.7, 0.5, 0.3, 0.15, 0.07, 0.03, 0.01, 0.002])
 
 
+# geometric nodes towards 0 on both sides: near the origin the shape statistics depend mostly on
+# lambda3 / lambda4, and the RS origin itself is degenerate (NaN in the table), so without these
+# nodes no seed triangle reaches the small-|lambda| branch of the regions 3 and 4
+_SMALL = np.array([1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 4e-4, 1e-3])
+
+
 def grid_nodes(kind: int) -> np.ndarray:
     """Grid of shape values (the same for lambda3 and lambda4) for the seed table of ``kind``."""
     lo = lower_bound(kind)
@@ -458,7 +465,9 @@ def grid_nodes(kind: int) -> np.ndarray:
     else:
         neg = lo * _NEG_FRAC
         neg = neg[neg > lo]
-    return np.concatenate([neg, [0.0], _POS])
+    pos = np.union1d(_SMALL, _POS)
+    neg = np.union1d(-_SMALL, neg)
+    return np.concatenate([neg, [0.0], pos])
 
 
 @njit(cache=True)
@@ -474,6 +483,125 @@ def build_table(kind, fam, u, nodes, t1, t2):
             ok = shape_valid(fam, a, b) and equations(kind, fam, a, b, u, f, jac)
             t1[i, j] = f[0] if ok else math.nan
             t2[i, j] = f[1] if ok else math.nan
+
+
+NPHI = 129  # directions of the lambda -> 0 limit table
+_RHO_F = 1e-8  # |lambda| at which the limit statistics are evaluated
+_RHO_G = 1e-3  # |lambda| of the second point (slope of the statistics along the ray)
+_RHO_MAX = 5e-3  # limit seeds are tried for estimated |lambda| up to this
+
+
+@njit(cache=True)
+def build_limit_table(kind, fam, u, lim):
+    """Statistics of ``kind`` along rays through the RS origin (the lambda -> 0 limit).
+
+    For RS shapes (a, b) = r (sin phi, cos phi) with r of either sign (r > 0: region 3,
+    r < 0: region 4) the statistics tend to a function of phi alone as r -> 0 and are smooth
+    in r through 0: s = f(phi) + r g(phi) + O(r^2). ``lim[i]`` holds (f1, f2, g1, g2) at
+    phi_i = i / (NPHI - 1) * pi / 2 (g by a central difference; NaN where the statistics do
+    not exist). Unused (NaN) for FKML, whose origin is regular.
+    """
+    f = np.empty(2)
+    jac = np.empty((2, 2))
+    gp = np.empty(2)
+    for i in range(NPHI):
+        phi = 0.5 * math.pi * i / (NPHI - 1)
+        sa = math.sin(phi)
+        cb = math.cos(phi)
+        for c in range(4):
+            lim[i, c] = math.nan
+        if fam != RS:
+            continue
+        if not equations(kind, fam, _RHO_G * sa, _RHO_G * cb, u, f, jac):
+            continue
+        gp[0] = f[0]
+        gp[1] = f[1]
+        if not equations(kind, fam, -_RHO_G * sa, -_RHO_G * cb, u, f, jac):
+            continue
+        lim[i, 2] = (gp[0] - f[0]) / (2.0 * _RHO_G)
+        lim[i, 3] = (gp[1] - f[1]) / (2.0 * _RHO_G)
+        if not equations(kind, fam, _RHO_F * sa, _RHO_F * cb, u, f, jac):
+            lim[i, 2] = math.nan
+            continue
+        lim[i, 0] = f[0]
+        lim[i, 1] = f[1]
+
+
+@njit(cache=True)
+def _limit_interp(lim, phi):
+    """Limit table (f1, f2, g1, g2) interpolated linearly at direction ``phi``."""
+    x = min(max(phi, 0.0), 0.5 * math.pi) / (0.5 * math.pi) * (NPHI - 1)
+    i = min(int(x), NPHI - 2)
+    t = x - i
+    return (lim[i, 0] + t * (lim[i + 1, 0] - lim[i, 0]), lim[i, 1] + t * (lim[i + 1, 1] - lim[i, 1]),
+            lim[i, 2] + t * (lim[i + 1, 2] - lim[i, 2]), lim[i, 3] + t * (lim[i + 1, 3] - lim[i, 3]))
+
+
+@njit(cache=True)
+def _limit_seed(kind, fam, u, lim, s1, s2):
+    """Seed (a, b) on the lambda -> 0 branch (RS regions 3 and 4) for target (s1, s2).
+
+    The nearest point of the limit curve f(phi) gives the direction phi (in the limit the
+    statistics depend on lambda3 / lambda4 only) and the slope g(phi) the signed magnitude
+    r; a few Newton steps in (phi, r) on the exact statistics, with the dF/dr of the table,
+    then place the seed on the right side of the origin. Returns (a, b, ok); ok is False
+    when the target is not near the limit curve (|r| > _RHO_MAX).
+    """
+    best = math.inf
+    bphi = 0.0
+    for i in range(NPHI - 1):
+        x0 = lim[i, 0]
+        y0 = lim[i, 1]
+        x1 = lim[i + 1, 0]
+        y1 = lim[i + 1, 1]
+        if math.isnan(x0 + y0 + x1 + y1 + lim[i, 2] + lim[i + 1, 2]):
+            continue
+        dx = x1 - x0
+        dy = y1 - y0
+        ll = dx * dx + dy * dy
+        t = 0.0 if ll == 0.0 else ((s1 - x0) * dx + (s2 - y0) * dy) / ll
+        t = min(1.0, max(0.0, t))
+        d = (s1 - x0 - t * dx) ** 2 + (s2 - y0 - t * dy) ** 2
+        if d < best:
+            best = d
+            bphi = 0.5 * math.pi * (i + t) / (NPHI - 1)
+    if not (best < 16.0 * _RHO_MAX):
+        return 0.0, 0.0, False
+    f1, f2, g1, g2 = _limit_interp(lim, bphi)
+    gg = g1 * g1 + g2 * g2
+    if not (gg > 0.0 and math.isfinite(gg)):
+        return 0.0, 0.0, False
+    phi = bphi
+    r = ((s1 - f1) * g1 + (s2 - f2) * g2) / gg
+    f = np.empty(2)
+    jac = np.empty((2, 2))
+    for _ in range(8):
+        if abs(r) > 2.0 * _RHO_MAX:
+            return 0.0, 0.0, False
+        if abs(r) < 1e-12:
+            r = 1e-12 if r >= 0.0 else -1e-12
+        sa = math.sin(phi)
+        cb = math.cos(phi)
+        if not equations(kind, fam, r * sa, r * cb, u, f, jac):
+            return 0.0, 0.0, False
+        r0 = f[0] - s1
+        r1 = f[1] - s2
+        if max(abs(r0), abs(r1)) < 1e-10:
+            break
+        # dF/dphi from the analytic Jacobian, dF/dr from the limit table
+        p0 = r * (jac[0, 0] * cb - jac[0, 1] * sa)
+        p1 = r * (jac[1, 0] * cb - jac[1, 1] * sa)
+        _, _, g1, g2 = _limit_interp(lim, phi)
+        det = p0 * g2 - p1 * g1
+        if det == 0.0 or not math.isfinite(det):
+            break
+        dphi = -(g2 * r0 - g1 * r1) / det
+        dr = -(-p1 * r0 + p0 * r1) / det
+        phi = min(max(phi + max(-0.2, min(0.2, dphi)), 0.0), 0.5 * math.pi)
+        r += dr
+    if not (0.0 < abs(r) <= _RHO_MAX):
+        return 0.0, 0.0, False
+    return r * math.sin(phi), r * math.cos(phi), True
 
 
 # ---------------------------------------------------------------------------------------------
@@ -567,7 +695,7 @@ def _add_root(out, nroots, a, b, res, it):
 
 
 @njit(cache=True)
-def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, out):
+def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out):
     """Every root (a, b) of ``equations(kind, fam, a, b) == (s1, s2)``.
 
     Parameters
@@ -580,6 +708,9 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, out):
         Percentile probability (PERCENTILES only).
     nodes, t1, t2 : ndarray
         Seed grid and its table from `build_table`.
+    lim : ndarray, shape (NPHI, 4)
+        The lambda -> 0 limit table from `build_limit_table` (RS): seeds on the branches
+        into the degenerate RS origin, where no grid triangle reaches.
     out : ndarray, shape (MAXROOTS, NCOL)
         Receives the roots: a, b, max|F|, converged flag, Newton iterations.
 
@@ -638,6 +769,17 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, out):
                 ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, lo, 60)
                 if res <= _ACCEPT:
                     nroots = _add_root(out, nroots, ra, rb, res, it)
+    if fam == RS:
+        seen = False
+        for q in range(nroots):
+            if max(abs(out[q, R_A]), abs(out[q, R_B])) <= _RHO_MAX:
+                seen = True
+        if not seen:
+            a, b, ok = _limit_seed(kind, fam, u, lim, s1, s2)
+            if ok:
+                ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, lo, 60)
+                if res <= _ACCEPT:
+                    nroots = _add_root(out, nroots, ra, rb, res, it)
     if bi >= 0 and nroots == 0:
         ra, rb, res, it = _newton(kind, fam, u, s1, s2, nodes[bi], nodes[bj], lo, 100)
         if res <= _ACCEPT or nroots == 0:
@@ -646,7 +788,7 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, out):
 
 
 @njit(cache=True)
-def solve_many(kind, fam, stats, u, nodes, t1, t2, ref, out, status):
+def solve_many(kind, fam, stats, u, nodes, t1, t2, lim, ref, out, status):
     """Shape fits for many rows of target statistics (e.g. bootstrap resamples).
 
     For each row of ``stats`` (shape (B, 2), coordinates of ``kind``) every root is found and
@@ -655,7 +797,7 @@ def solve_many(kind, fam, stats, u, nodes, t1, t2, ref, out, status):
     """
     roots = np.empty((MAXROOTS, NCOL))
     for r in range(stats.shape[0]):
-        nr = solve_shape(kind, fam, stats[r, 0], stats[r, 1], u, nodes, t1, t2, roots)
+        nr = solve_shape(kind, fam, stats[r, 0], stats[r, 1], u, nodes, t1, t2, lim, roots)
         best = math.inf
         out[r, 0] = math.nan
         out[r, 1] = math.nan
@@ -696,7 +838,7 @@ def location_scale(kind, fam, a, b, loc_stat, scale_stat, u):
 
 
 @njit(cache=True)
-def fit_many(kind, fam, stats, u, nodes, t1, t2, ref, out, status):
+def fit_many(kind, fam, stats, u, nodes, t1, t2, lim, ref, out, status):
     """Full fits (lambda1..lambda4) for many rows of statistics - the bootstrap core.
 
     ``stats`` has shape (B, 4): location and scale statistics followed by the two shape
@@ -705,7 +847,7 @@ def fit_many(kind, fam, stats, u, nodes, t1, t2, ref, out, status):
     ``status`` the number of valid roots (0: NaN row).
     """
     shapes = np.empty((stats.shape[0], 2))
-    solve_many(kind, fam, stats[:, 2:], u, nodes, t1, t2, ref, shapes, status)
+    solve_many(kind, fam, stats[:, 2:], u, nodes, t1, t2, lim, ref, shapes, status)
     for r in range(stats.shape[0]):
         a = shapes[r, 0]
         b = shapes[r, 1]

@@ -115,15 +115,21 @@ def _check_param(param: str) -> str:
 
 
 @lru_cache(maxsize=32)
-def _table(kind: int, fam: int, u: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Seed table of the statistics of ``kind`` on the shape grid (computed once)."""
+def _table(kind: int, fam: int, u: float) -> tuple[np.ndarray, ...]:
+    """Seed tables of the statistics of ``kind`` (computed once).
+
+    Returns the shape grid, the two statistics on it, and the lambda -> 0 limit table of
+    :func:`glstat.fitting._kernels.build_limit_table`.
+    """
     nodes = K.grid_nodes(kind)
     t1 = np.empty((nodes.size, nodes.size))
     t2 = np.empty_like(t1)
     K.build_table(kind, fam, u, nodes, t1, t2)
-    for arr in (nodes, t1, t2):
+    lim = np.empty((K.NPHI, 4))
+    K.build_limit_table(kind, fam, u, lim)
+    for arr in (nodes, t1, t2, lim):
         arr.setflags(write=False)
-    return nodes, t1, t2
+    return nodes, t1, t2, lim
 
 
 def _check_u(u: float) -> float:
@@ -219,9 +225,9 @@ def _roots(method: str, param: str, stats, u: float) -> list[tuple]:
     kind = _KIND[method]
     fam = _FAM[param]
     loc, scale, s1, s2 = S.shape_targets(kind, stats)
-    nodes, t1, t2 = _table(kind, fam, u)
+    nodes, t1, t2, lim = _table(kind, fam, u)
     out = np.empty((K.MAXROOTS, K.NCOL))
-    nr = K.solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, out)
+    nr = K.solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out)
     res = []
     for k in range(nr):
         a, b = out[k, K.R_A], out[k, K.R_B]
@@ -425,11 +431,11 @@ def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0
         elif kind == K.PERCENTILES:
             st[:, 2] = np.log(st[:, 2])
     st[~np.isfinite(st)] = np.nan
-    nodes, t1, t2 = _table(kind, _FAM[param], u)
+    nodes, t1, t2, lim = _table(kind, _FAM[param], u)
     r = np.array([0.134912, 0.134912] if ref is None else ref, dtype=float)
     out = np.empty((st.shape[0], 4))
     status = np.zeros(st.shape[0], dtype=np.int64)
-    K.fit_many(kind, _FAM[param], st, u, nodes, t1, t2, r, out, status)
+    K.fit_many(kind, _FAM[param], st, u, nodes, t1, t2, lim, r, out, status)
     return out, status
 
 

@@ -261,3 +261,65 @@ def test_published_gld_quartile_and_density():
             assert float(h.pdf(0.028013)) == pytest.approx(43.04, abs=0.005)
             checked += 1
     assert checked >= 1
+
+
+# --- the branch into the degenerate RS origin (lambda3, lambda4 -> 0) ---------------------------
+def _ray_cases():
+    """Generating RS shapes on rays lambda3 = c * lambda4 into the origin, both regions."""
+    cases = []
+    for method in ("moments", "percentiles", "lmoments"):
+        for ratio in (0.1, 0.5, 1.0, 3.0):
+            for mag in (0.02, 2e-3, 1e-4, 1e-6):
+                for sign in (1.0, -1.0):
+                    cases.append((method, ratio, sign * mag))
+    return cases
+
+
+def _stats_of(g, method):
+    if method == "moments":
+        return _mvsk(g)
+    if method == "percentiles":
+        return _rho_of(g)
+    return tuple(g.lmoment_ratios(4))
+
+
+def _rho_of(g):
+    q = g.ppf([0.1, 0.25, 0.5, 0.75, 0.9])
+    return (q[2], q[4] - q[0], (q[2] - q[0]) / (q[4] - q[2]), (q[3] - q[1]) / (q[4] - q[0]))
+
+
+def test_small_shapes_recovered_on_both_sides_of_the_origin():
+    # region 3 (lambda > 0) and region 4 (lambda < 0) rays down to |lambda| = 1e-6: near the
+    # origin the statistics depend on lambda3 / lambda4 only, the grid triangles there have a
+    # degenerate corner, and the generating root used to be missed (a distant bounded root
+    # was returned instead, e.g. (5.01, 50.7) for (-0.0015, -0.005) by moments)
+    missed = []
+    for method, ratio, lam4 in _ray_cases():
+        g = GLD(0.0, lam4, ratio * lam4, lam4)
+        f = _FIT_FROM[method](_stats_of(g, method), "rs")
+        if not _has_root(f, g.lambdas, rtol=1e-4):
+            missed.append((method, ratio, lam4))
+    assert missed == []
+
+
+def test_small_shapes_reported_case():
+    g = GLD(0.0, -0.005, -0.0015, -0.005)
+    m, s, sk, ku = _mvsk(g)
+    f = fit_moments(0, 1, sk, ku)
+    g1 = GLD(*f.lambdas)
+    # the selected root is the generating one (same standardized distribution)
+    z = (g.ppf(P) - m) / s
+    np.testing.assert_allclose(g1.ppf(P), z, atol=1e-6)
+
+
+def test_small_shapes_in_fit_batch():
+    rows, truth = [], []
+    for ratio in (0.2, 0.7):
+        for lam4 in (-1e-5, -3e-3, 1e-5, 3e-3):
+            g = GLD(0.0, lam4, ratio * lam4, lam4)
+            rows.append(_mvsk(g))
+            truth.append((ratio * lam4, lam4))
+    lams, cnt = fit_batch(rows, "moments", "rs", ref=(0.0, 0.0))
+    assert (cnt >= 1).all()
+    for (l3, l4), row in zip(truth, lams, strict=True):
+        assert row[2] == pytest.approx(l3, rel=1e-5) and row[3] == pytest.approx(l4, rel=1e-5)
