@@ -7,8 +7,6 @@ load-controlled semi-analytical asperity contact model, with an elastic boundary
 solver (:func:`solve_bem`) as its reference.
 """
 
-from .bem import BEMConvergenceWarning, solve_bem, solve_bem_displacement
-from .bem_compare import compare_models
 from .errors import ContactWarning, TopographyFileError
 from .generators import self_affine, weierstrass
 from .io import read, write
@@ -36,3 +34,28 @@ __all__ = [
     "weierstrass",
     "write",
 ]
+
+# The boundary-element solver (numba kernels, compiled on first use) and the model
+# comparison are imported on first access, so that ``import contact`` stays light.
+_LAZY = {
+    "BEMConvergenceWarning": "bem",
+    "solve_bem": "bem",
+    "solve_bem_displacement": "bem",
+    "compare_models": "bem_compare",
+}
+
+
+def __getattr__(name: str):
+    """Import the boundary-element names of :data:`__all__` on first access."""
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'contact' has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

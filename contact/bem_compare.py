@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from .bem import solve_bem
 from .result import ContactResult
 from .solver import solve
 from .surface import Surface
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["compare_models"]
 
@@ -95,6 +98,8 @@ def compare_models(
 
 
 def _frame(asperity: ContactResult, bem: ContactResult) -> pd.DataFrame:
+    import pandas as pd
+
     a = np.array([getattr(asperity, m) for m in _METRICS], dtype=float)
     b = np.array([getattr(bem, m) for m in _METRICS], dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):

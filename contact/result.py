@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["ContactResult"]
 
@@ -101,6 +103,8 @@ class ContactResult:
     def summary(self) -> pd.Series:
         """Key figures: separation (m), force and target (N), force error, alpha, contact
         fraction, mean and maximal contact pressure (Pa), number of asperities in contact."""
+        import pandas as pd
+
         n = None if self.asperities is None else len(self.asperities)
         return pd.Series(
             {
@@ -122,6 +126,8 @@ class ContactResult:
 
     def to_frame(self) -> pd.DataFrame:
         """Tidy table of the grid points in contact: ``i``, ``j`` and ``pressure`` (Pa)."""
+        import pandas as pd
+
         ii, jj = np.nonzero(self.pressure > 0)
         return pd.DataFrame({"i": ii, "j": jj, "pressure": self.pressure[ii, jj]})
 

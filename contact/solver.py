@@ -13,7 +13,6 @@ import warnings
 from collections.abc import Sequence
 
 import numpy as np
-import pandas as pd
 
 from . import _kernels
 from ._validate import real_scalar
@@ -158,6 +157,8 @@ class _Model:
 
     def result(self, d, tables, weights, target, nominal_pressure, method, **extra):
         """Build the result from one state (weight 1), or a blend of two states at a jump."""
+        import pandas as pd
+
         pressure = np.zeros_like(self.h)
         for tab, w in zip(tables, weights, strict=True):
             if w > 0:

@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ._kernels import find_summits
 from .surface import Surface
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["Summits", "summits"]
 
@@ -53,6 +56,8 @@ class Summits:
 
     def to_frame(self) -> pd.DataFrame:
         """One row per summit: ``i``, ``j``, ``x`` (m), ``y`` (m), ``height`` (m)."""
+        import pandas as pd
+
         return pd.DataFrame(
             {"i": self.i, "j": self.j, "x": self.x, "y": self.y, "height": self.heights}
         )
