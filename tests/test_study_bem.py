@@ -24,6 +24,7 @@ from glstat.study import (
     compare_bem,
     run_bem,
     run_campaign,
+    run_study,
 )
 from glstat.study import bem as bem_mod
 from glstat.study.bem import bem_path, contact_record, findings
@@ -31,7 +32,8 @@ from glstat.study.bem import bem_path, contact_record, findings
 ARGS = ["study", "--surfaces", "2", "--grid", "64", "--rq", "5", "--bootstrap", "30", "--no-progress",
         "--workers", "1"]
 CASES = ["H = 0, 20 MPa", "H = 0.5, 20 MPa", "H = 1, 20 MPa"]
-TINY = CampaignSettings(n_surfaces=2, grid=64, rq=5e-6, n_terms=(6,), hurst=(0.0, 0.5, 1.0), n_examples=1)
+TINY = CampaignSettings(n_surfaces=2, grid=64, rq=5 * 1e-6,  # as the command computes it
+                         n_terms=(6,), hurst=(0.0, 0.5, 1.0), n_examples=1)
 
 
 def _bem_files(root: Path) -> dict[str, bytes]:
@@ -148,6 +150,19 @@ def test_resume_reuses_the_bem_solves(study, tmp_path, capsys, monkeypatch):
     sec = _section((out / "report.md").read_text())
     assert "*H = 0, 20 MPa: 2 surfaces, per-surface values" in sec
     assert "±" in sec
+    # the Python entry point reuses the same files and summarises both models
+    res = run_study(TINY, AnalysisSettings(n_resamples=30), out, executor=SerialExecutor(), progress=False,
+                    compare_bem=2)
+    assert res.bem_run.skipped == 6 and not res.bem_run.computed
+    summ = res.bem_summary()
+    assert len(summ) == 9 and list(summ["hurst"].unique()) == [0.0, 0.5, 1.0]
+    for ih, _ in res.bem:
+        z = [np.load(bem_path(out, TINY, ih, 0, i)) for i in range(2)]
+        ratios = [float(v["asperity_contact_fraction"] / v["bem_contact_fraction"]) for v in z]
+        row = summ[(summ["hurst"] == TINY.hurst[ih]) & (summ["quantity"] == "contact_fraction")].iloc[0]
+        assert row["ratio_mean"] == pytest.approx(np.mean(ratios))
+        assert row["ratio_min"] == pytest.approx(min(ratios))
+        assert row["ratio_max"] == pytest.approx(max(ratios))
     # other BEM settings are refused, as the campaign refuses other settings; force recomputes
     with pytest.raises(CampaignError, match=r"BEM solves with different settings \(tol: 1e-08 -> 1e-06\)"):
         run_bem(TINY, BEMSettings(n_compare=2, tol=1e-6), out, executor=SerialExecutor(), progress=False)

@@ -3,8 +3,10 @@ over surfaces × Hurst exponents × loads, the GLD analysis of the contact press
 validation of the predicted maximal pressure, and the report.
 
 The public entry point of the campaign is :func:`run_campaign`; :func:`run_study` adds the
-analysis and writes ``report.html`` / ``report.md``. The ``glstat study`` command calls
-:func:`run_study`. This package is not imported by ``import glstat``.
+analysis and writes ``report.html`` / ``report.md``; with ``compare_bem`` it also compares the
+asperity model with the elastic boundary-element solution (:mod:`glstat.study.bem`,
+:func:`compare_bem` for any surfaces). The ``glstat study`` command calls :func:`run_study`.
+This package is not imported by ``import glstat``.
 """
 
 from __future__ import annotations
