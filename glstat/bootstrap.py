@@ -25,8 +25,14 @@ Fitting
 -------
 For ``"moments"``, ``"percentiles"`` and ``"lmoments"`` the statistics of all resamples are
 computed in one compiled pass (:mod:`glstat._core.resample`) and turned into lambdas by one
-call to :func:`glstat.fit_batch`, which keeps, of several roots, the one closest to the
-full-sample fit's shapes (lambda3, lambda4). ``"mle"``, ``"mps"`` and ``"starship"`` call
+call to :func:`glstat.fit_batch`, which applies the rule of the full-sample fit: of the
+valid roots whose support covers the resample's range (its minimum and maximum come from
+the same compiled pass), the one closest to the full-sample fit's shapes (lambda3, lambda4).
+A resample with valid roots of which none covers its data fails with the reason "no root
+whose support covers the resample" - unless the full-sample fit does not cover the data
+either (percentile and L-moment fits of long-tailed data), in which case the nearest root
+is kept and a warning counts the resample fits that do not cover their data. ``"mle"``,
+``"mps"`` and ``"starship"`` call
 :func:`glstat.fit` per resample, optionally through a ``concurrent.futures.Executor``.
 A resample without a fit is kept, with NaN lambdas and its reason in
 :attr:`BootstrapFit.failed`, and a warning states the count.
@@ -220,14 +226,15 @@ def _fit_task(x, seeds, kind, lam, param, method, options):
     out = []
     for s in seeds:
         sample = _draw(x, np.random.default_rng(s), kind, lam, fam)
+        ext = (float(np.min(sample)), float(np.max(sample)))
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 f = fit(sample, param, method, **options)
-            out.append((f.lambdas, int(f.solutions["valid"].sum()), ""))
+            out.append((f.lambdas, int(f.solutions["valid"].sum()), "", ext))
         except (FitError, InvalidParameterError, FloatingPointError, ValueError,
                 ZeroDivisionError) as exc:
-            out.append(((math.nan,) * 4, 0, f"fit error ({type(exc).__name__}): {exc}"))
+            out.append(((math.nan,) * 4, 0, f"fit error ({type(exc).__name__}): {exc}", ext))
     return out
 
 
@@ -265,11 +272,25 @@ def _stat_failures(method: str, st: np.ndarray) -> list[str]:
     return reasons
 
 
-def _compiled_statistics(x, seeds, kind, lam, fam, method, u, loc, scale, bar) -> np.ndarray:
+def _covers_data(full: GLDFit) -> bool:
+    """True when the selected full-sample fit covers the data (or there are no data)."""
+    sol = full.solutions
+    if sol is None or len(sol) == 0 or "selected" not in sol:
+        return True
+    sel = sol[sol["selected"]]
+    if len(sel) == 0:
+        return True
+    cov = sel["covers_data"].iloc[0]
+    return cov is None or bool(cov)
+
+
+def _compiled_statistics(x, seeds, kind, lam, fam, method, u, loc, scale, bar):
+    """Statistics (B, 4) and extremes (B, 2: min, max) of the resamples, compiled."""
     code = _R.CODES[method]
     n = x.size
     B = len(seeds)
     st = np.empty((B, 4))
+    ext = np.empty((B, 2))
     rows = max(1, min(B, _CHUNK_VALUES // n))
     dtype = np.int32 if n < 2**31 else np.int64
     for s in range(0, B, rows):
@@ -278,15 +299,17 @@ def _compiled_statistics(x, seeds, kind, lam, fam, method, u, loc, scale, bar) -
             idx = np.empty((len(chunk), n), dtype=dtype)
             for j, seed in enumerate(chunk):
                 idx[j] = np.random.default_rng(seed).integers(0, n, size=n, dtype=np.int64)
-            _R.stats_from_indices(code, x, idx, u, loc, scale, st[s:s + len(chunk)])
+            _R.stats_from_indices(code, x, idx, u, loc, scale, st[s:s + len(chunk)],
+                                  ext[s:s + len(chunk)])
         else:
             samples = np.empty((len(chunk), n))
             for j, seed in enumerate(chunk):
                 samples[j] = _draw(x, np.random.default_rng(seed), kind, lam, fam)
-            _R.stats_from_sorted(code, samples, u, loc, scale, st[s:s + len(chunk)])
+            _R.stats_from_sorted(code, samples, u, loc, scale, st[s:s + len(chunk)],
+                                 ext[s:s + len(chunk)])
         if bar is not None:
             bar.update(len(chunk))
-    return st
+    return st, ext
 
 
 # ---------------------------------------------------------------------------------------------
@@ -346,12 +369,16 @@ class BootstrapFit:
         One row per resample (index ``resample``): ``lambda1..lambda4`` (NaN for a failed
         resample) and ``n_roots``, the number of valid roots or candidates found.
     statistics : pandas.DataFrame or None
-        The matched statistics of every resample (moments, rho or L-moments; None for the
-        data-based methods).
+        Per resample: the matched statistics (moments, rho or L-moments; not for the
+        data-based methods), the resample's ``min`` and ``max`` and, for the compiled
+        methods, ``covers`` (whether a root covering them exists). The support of every
+        fit covers its resample's range unless the full-sample fit does not cover the data
+        either (then a warning gives the count). None only for ``nan_policy="propagate"``
+        with non-finite data.
     failed : pandas.DataFrame
         The resamples without a fit: ``resample``, ``reason`` (``"statistics undefined"``,
-        ``"statistics out of range"``, ``"no root"``, ``"fit error (...)"``) and ``detail``
-        (the full message).
+        ``"statistics out of range"``, ``"no root"``, ``"no root whose support covers the
+        resample"``, ``"fit error (...)"``) and ``detail`` (the full message).
     n_resamples : int
         Number of resamples B.
     confidence_level : float
@@ -469,15 +496,16 @@ class BootstrapFit:
         group[perm] = np.arange(n) % groups
         if compiled:
             st = np.empty((groups, 4))
+            ext = np.empty((groups, 2))
             mean, std = float(np.mean(x)), float(np.std(x))
             _R.stats_delete_groups(_R.CODES[self.method], x, group, groups,
-                                   float(self.options.get("u", 0.1)), mean, std, st)
+                                   float(self.options.get("u", 0.1)), mean, std, st, ext)
             ok = np.array([r == "" for r in _stat_failures(self.method, st)])
             lam = np.full((groups, 4), np.nan)
             if ok.any():
                 lam[ok], _ = fit_batch(st[ok], self.method, self.param,
                                        u=float(self.options.get("u", 0.1)),
-                                       ref=self.fit.lambdas[2:])
+                                       ref=self.fit.lambdas[2:], extremes=ext[ok])
         else:
             lam = np.full((groups, 4), np.nan)
             for g in range(groups):
@@ -1091,19 +1119,43 @@ def bootstrap(
         if compiled:
             u = float(full.options.get("u", 0.1))
             mean, std = float(np.mean(x)), float(np.std(x))
-            st = _compiled_statistics(x, seeds, kind, full.lambdas, fam, method, u, mean, std, bar)
+            st, ext = _compiled_statistics(x, seeds, kind, full.lambdas, fam, method, u, mean, std,
+                                           bar)
             reasons = _stat_failures(method, st)
             ok = np.array([r == "" for r in reasons])
             lam = np.full((B, 4), np.nan)
             nroots = np.zeros(B, dtype=np.int64)
+            ncover = np.zeros(B, dtype=np.int64)
+            # the rule of the full-sample fit: a root covering the data first; when the
+            # full-sample fit itself covers the data, a resample without a covering root fails
+            require = _covers_data(full)
             if ok.any():
-                lam[ok], nroots[ok] = fit_batch(st[ok], method, param, u=u, ref=full.lambdas[2:])
-            for r in np.flatnonzero(ok & (nroots == 0)):
-                reasons[r] = (f"no root: no {param.upper()} GLD matches the {method} statistics "
-                              + ", ".join(f"{a}={b:.6g}" for a, b in zip(_STAT_NAMES[method], st[r],
-                                                                          strict=True)))
+                lam[ok], nroots[ok], ncover[ok] = fit_batch(
+                    st[ok], method, param, u=u, ref=full.lambdas[2:], extremes=ext[ok],
+                    require_cover=require, return_cover=True)
+            for r in np.flatnonzero(ok):
+                if nroots[r] == 0:
+                    reasons[r] = (f"no root: no {param.upper()} GLD matches the {method} statistics "
+                                  + ", ".join(f"{a}={b:.6g}" for a, b in
+                                              zip(_STAT_NAMES[method], st[r], strict=True)))
+                elif not np.all(np.isfinite(lam[r])):
+                    reasons[r] = (f"no root whose support covers the resample: {nroots[r]} valid "
+                                  f"{param.upper()} root(s), none covering its range "
+                                  f"[{ext[r, 0]:.6g}, {ext[r, 1]:.6g}]")
             stats_df = pd.DataFrame(st, columns=list(_STAT_NAMES[method]))
+            stats_df["min"] = ext[:, 0]
+            stats_df["max"] = ext[:, 1]
+            stats_df["covers"] = ncover > 0
             stats_df.index.name = "resample"
+            fitted = np.all(np.isfinite(lam), axis=1)
+            uncovered = int(np.sum(fitted & (ncover == 0)))
+            if uncovered:
+                warnings.warn(
+                    f"{uncovered} of {B} resample fits ({method}, {param}) have a support that does "
+                    "not cover their resample, as the full-sample fit does not cover the data "
+                    "(statistics['covers'] says which); their maxima and tail probabilities are "
+                    "unreliable: a method matching the tails (moments, 'mle') covers the data",
+                    BootstrapWarning, stacklevel=2)
         else:
             tasks = [seeds[s:s + _TASK_SIZE] for s in range(0, B, _TASK_SIZE)]
             args = (kind, full.lambdas, param, method, dict(options))
@@ -1122,7 +1174,8 @@ def bootstrap(
             lam = np.array([r[0] for r in results], dtype=float)
             nroots = np.array([r[1] for r in results], dtype=np.int64)
             reasons = [r[2] for r in results]
-            stats_df = None
+            stats_df = pd.DataFrame([r[3] for r in results], columns=["min", "max"])
+            stats_df.index.name = "resample"
     finally:
         if bar is not None:
             bar.close()

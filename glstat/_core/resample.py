@@ -178,7 +178,23 @@ def _lmoments(x, c, m, out):
 
 
 @njit(cache=True)
-def _row(kind, x, c, m, u, loc, scale, out):
+def _extremes(x, c, ext):
+    """Smallest and largest value of the resample with multiplicities ``c`` of sorted ``x``."""
+    ext[0] = math.nan
+    ext[1] = math.nan
+    for i in range(x.size):
+        if c[i] > 0:
+            ext[0] = x[i]
+            break
+    for i in range(x.size - 1, -1, -1):
+        if c[i] > 0:
+            ext[1] = x[i]
+            break
+
+
+@njit(cache=True)
+def _row(kind, x, c, m, u, loc, scale, out, ext):
+    _extremes(x, c, ext)
     if kind == MOMENTS:
         _moments(x, c, m, loc, scale, out)
     elif kind == PERCENTILES:
@@ -188,7 +204,7 @@ def _row(kind, x, c, m, u, loc, scale, out):
 
 
 @njit(cache=True)
-def stats_from_indices(kind, x, idx, u, loc, scale, out):
+def stats_from_indices(kind, x, idx, u, loc, scale, out, ext):
     """Statistics of the resamples ``x[idx[r]]`` of the sorted sample ``x``.
 
     Parameters
@@ -206,6 +222,9 @@ def stats_from_indices(kind, x, idx, u, loc, scale, out):
         moments are accumulated as power sums of ``(x - loc) / scale`` (MOMENTS only).
     out : ndarray, shape (R, 4)
         Receives the four statistics per resample.
+    ext : ndarray, shape (R, 2)
+        Receives the smallest and the largest value of each resample (a fit must have a
+        support covering them).
     """
     m = idx.shape[1]
     if kind == MOMENTS:
@@ -218,48 +237,62 @@ def stats_from_indices(kind, x, idx, u, loc, scale, out):
             s2 = 0.0
             s3 = 0.0
             s4 = 0.0
+            imin = x.size
+            imax = -1
             for j in range(m):
-                d = z[idx[r, j]]
+                k = idx[r, j]
+                imin = min(imin, k)
+                imax = max(imax, k)
+                d = z[k]
                 d2 = d * d
                 s1 += d
                 s2 += d2
                 s3 += d2 * d
                 s4 += d2 * d2
             _finish_moments(s1, s2, s3, s4, m, loc, scale, out[r])
+            ext[r, 0] = x[imin] if m > 0 else math.nan
+            ext[r, 1] = x[imax] if m > 0 else math.nan
         return
     c = np.zeros(x.size, dtype=np.int32)
     for r in range(idx.shape[0]):
         c[:] = 0
         for j in range(m):
             c[idx[r, j]] += 1
-        _row(kind, x, c, m, u, loc, scale, out[r])
+        _row(kind, x, c, m, u, loc, scale, out[r], ext[r])
 
 
 @njit(cache=True)
-def stats_from_counts(kind, x, counts, u, loc, scale, out):
-    """Statistics of the resamples with multiplicities ``counts[r]`` (shape (R, n))."""
+def stats_from_counts(kind, x, counts, u, loc, scale, out, ext):
+    """Statistics of the resamples with multiplicities ``counts[r]`` (shape (R, n)).
+
+    ``ext`` (R, 2) receives each resample's smallest and largest value.
+    """
     for r in range(counts.shape[0]):
         m = 0
         for i in range(x.size):
             m += counts[r, i]
-        _row(kind, x, counts[r], m, u, loc, scale, out[r])
+        _row(kind, x, counts[r], m, u, loc, scale, out[r], ext[r])
 
 
 @njit(cache=True)
-def stats_from_sorted(kind, samples, u, loc, scale, out):
-    """Statistics of each row of ``samples`` (shape (R, m)), every row sorted increasingly."""
+def stats_from_sorted(kind, samples, u, loc, scale, out, ext):
+    """Statistics of each row of ``samples`` (shape (R, m)), every row sorted increasingly.
+
+    ``ext`` (R, 2) receives each row's smallest and largest value.
+    """
     m = samples.shape[1]
     c = np.ones(m, dtype=np.int32)
     for r in range(samples.shape[0]):
-        _row(kind, samples[r], c, m, u, loc, scale, out[r])
+        _row(kind, samples[r], c, m, u, loc, scale, out[r], ext[r])
 
 
 @njit(cache=True)
-def stats_delete_groups(kind, x, group, n_groups, u, loc, scale, out):
+def stats_delete_groups(kind, x, group, n_groups, u, loc, scale, out, ext):
     """Delete-a-group jackknife: statistics of ``x`` without the points of each group.
 
     ``group[i]`` in [0, n_groups) is the group of ``x[i]``; ``out`` has shape (n_groups, 4).
-    With one point per group this is the delete-one jackknife.
+    With one point per group this is the delete-one jackknife. ``ext`` (n_groups, 2)
+    receives the smallest and largest value left in each jackknife sample.
     """
     c = np.ones(x.size, dtype=np.int32)
     sizes = np.zeros(n_groups, dtype=np.int64)
@@ -268,4 +301,4 @@ def stats_delete_groups(kind, x, group, n_groups, u, loc, scale, out):
     for g in range(n_groups):
         for i in range(x.size):
             c[i] = 0 if group[i] == g else 1
-        _row(kind, x, c, x.size - sizes[g], u, loc, scale, out[g])
+        _row(kind, x, c, x.size - sizes[g], u, loc, scale, out[g], ext[g])

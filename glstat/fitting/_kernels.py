@@ -788,35 +788,6 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out):
 
 
 @njit(cache=True)
-def solve_many(kind, fam, stats, u, nodes, t1, t2, lim, ref, out, status):
-    """Shape fits for many rows of target statistics (e.g. bootstrap resamples).
-
-    For each row of ``stats`` (shape (B, 2), coordinates of ``kind``) every root is found and
-    the valid converged root closest to ``ref`` = (a0, b0) (in asinh coordinates) is written
-    to ``out[row] = (a, b)``. ``status[row]`` is the number of valid roots (0: no fit, NaN out).
-    """
-    roots = np.empty((MAXROOTS, NCOL))
-    for r in range(stats.shape[0]):
-        nr = solve_shape(kind, fam, stats[r, 0], stats[r, 1], u, nodes, t1, t2, lim, roots)
-        best = math.inf
-        out[r, 0] = math.nan
-        out[r, 1] = math.nan
-        cnt = 0
-        for k in range(nr):
-            a = roots[k, R_A]
-            b = roots[k, R_B]
-            if roots[k, R_CONV] == 0.0 or not shape_valid(fam, a, b):
-                continue
-            cnt += 1
-            d = (math.asinh(a) - math.asinh(ref[0])) ** 2 + (math.asinh(b) - math.asinh(ref[1])) ** 2
-            if d < best:
-                best = d
-                out[r, 0] = a
-                out[r, 1] = b
-        status[r] = cnt
-
-
-@njit(cache=True)
 def location_scale(kind, fam, a, b, loc_stat, scale_stat, u):
     """lambda1 and lambda2 of the fit with shapes (a, b).
 
@@ -837,26 +808,66 @@ def location_scale(kind, fam, a, b, loc_stat, scale_stat, u):
     return l1, s / scale
 
 
+@njit(cache=True, error_model="numpy")
+def std_support(fam, a, b):
+    """End points of the support of the standardized GLD (as in `location_scale`)."""
+    return q_lower(fam, a, b, -math.inf, 0.0), -q_lower(fam, b, a, -math.inf, 0.0)
+
+
 @njit(cache=True)
-def fit_many(kind, fam, stats, u, nodes, t1, t2, lim, ref, out, status):
+def fit_many(kind, fam, stats, u, nodes, t1, t2, lim, ref, ext, require, out, status, ncover):
     """Full fits (lambda1..lambda4) for many rows of statistics - the bootstrap core.
 
     ``stats`` has shape (B, 4): location and scale statistics followed by the two shape
     statistics in the coordinates of ``kind`` (see `location_scale` and the module
-    docstring). ``out`` (B, 4) receives the lambdas of the valid root closest to ``ref``;
-    ``status`` the number of valid roots (0: NaN row).
+    docstring). ``ext`` (B, 2) holds each row's data minimum and maximum (NaN: no data to
+    cover). Of the valid converged roots whose support covers [min, max], the one closest to
+    ``ref`` = (a0, b0) (asinh coordinates) is written to ``out[row]`` (B, 4); when none
+    covers, the row is NaN if ``require``, else the closest valid root is written.
+    ``status[row]`` receives the number of valid roots and ``ncover[row]`` the number of
+    those covering the data.
     """
-    shapes = np.empty((stats.shape[0], 2))
-    solve_many(kind, fam, stats[:, 2:], u, nodes, t1, t2, lim, ref, shapes, status)
+    roots = np.empty((MAXROOTS, NCOL))
     for r in range(stats.shape[0]):
-        a = shapes[r, 0]
-        b = shapes[r, 1]
-        if status[r] == 0:
-            for k in range(4):
-                out[r, k] = math.nan
+        for k in range(4):
+            out[r, k] = math.nan
+        status[r] = 0
+        ncover[r] = 0
+        if math.isnan(stats[r, 2] + stats[r, 3]):
             continue
-        l1, l2 = location_scale(kind, fam, a, b, stats[r, 0], stats[r, 1], u)
-        out[r, 0] = l1
-        out[r, 1] = l2
-        out[r, 2] = a
-        out[r, 3] = b
+        nr = solve_shape(kind, fam, stats[r, 2], stats[r, 3], u, nodes, t1, t2, lim, roots)
+        check = not (math.isnan(ext[r, 0]) or math.isnan(ext[r, 1]))
+        best = math.inf
+        best_free = math.inf
+        free = np.full(4, math.nan)
+        for k in range(nr):
+            a = roots[k, R_A]
+            b = roots[k, R_B]
+            if roots[k, R_CONV] == 0.0 or not shape_valid(fam, a, b):
+                continue
+            status[r] += 1
+            l1, l2 = location_scale(kind, fam, a, b, stats[r, 0], stats[r, 1], u)
+            if not (math.isfinite(l1) and math.isfinite(l2) and l2 != 0.0):
+                continue
+            d = (math.asinh(a) - math.asinh(ref[0])) ** 2 + (math.asinh(b) - math.asinh(ref[1])) ** 2
+            if d < best_free:
+                best_free = d
+                free[0] = l1
+                free[1] = l2
+                free[2] = a
+                free[3] = b
+            if check:
+                lo, hi = std_support(fam, a, b)
+                scale = 1.0 / abs(l2)
+                if not (l1 + lo * scale <= ext[r, 0] and l1 + hi * scale >= ext[r, 1]):
+                    continue
+            ncover[r] += 1
+            if d < best:
+                best = d
+                out[r, 0] = l1
+                out[r, 1] = l2
+                out[r, 2] = a
+                out[r, 3] = b
+        if ncover[r] == 0 and not require:
+            for k in range(4):
+                out[r, k] = free[k]

@@ -393,7 +393,8 @@ def fit_lmoments(l1: float, l2: float, t3: float, t4: float, param: str = "rs") 
 
 
 def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0.1,
-              ref=None) -> tuple[np.ndarray, np.ndarray]:
+              ref=None, extremes=None, require_cover: bool = True,
+              return_cover: bool = False) -> tuple[np.ndarray, ...]:
     """Fits for many rows of statistics in one compiled call (the bootstrap core).
 
     Parameters
@@ -409,13 +410,25 @@ def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0
         Reference shapes (lambda3, lambda4), typically those of the full-sample fit: of
         several roots the one closest to ``ref`` is kept. Default: the shapes of the
         normal-like root (0.1349, 0.1349).
+    extremes : array_like, shape (B, 2), optional
+        Each row's data minimum and maximum. Roots whose support covers [min, max] come
+        first (the rule of the full-sample fit: valid, covering, then nearest to ``ref``).
+        A NaN row of ``extremes`` sets no constraint.
+    require_cover : bool
+        With ``extremes``: a row without a covering root gets NaN lambdas (although its
+        ``n_roots`` may be positive) when True, the nearest valid root when False.
+    return_cover : bool
+        Also return the number of covering roots per row.
 
     Returns
     -------
     lambdas : ndarray, shape (B, 4)
-        lambda1..lambda4 per row; NaN where no valid root exists.
+        lambda1..lambda4 per row; NaN where no valid (covering, if required) root exists.
     n_roots : ndarray of int, shape (B,)
-        Number of valid roots per row (0 = no fit).
+        Number of valid roots per row (0 = no fit), covering or not.
+    n_cover : ndarray of int, shape (B,)
+        Only with ``return_cover``: number of valid roots covering the row's extremes
+        (equal to ``n_roots`` without ``extremes``).
     """
     param = _check_param(param)
     if method not in _KIND:
@@ -425,6 +438,12 @@ def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0
     st = np.array(stats, dtype=float, copy=True, ndmin=2)
     if st.ndim != 2 or st.shape[1] != 4:
         raise ValueError(f"stats must have shape (B, 4), got {np.shape(stats)}")
+    if extremes is None:
+        ext = np.full((st.shape[0], 2), np.nan)
+    else:
+        ext = np.array(extremes, dtype=float, copy=True, ndmin=2)
+        if ext.shape != (st.shape[0], 2):
+            raise ValueError(f"extremes must have shape ({st.shape[0]}, 2), got {np.shape(extremes)}")
     with np.errstate(invalid="ignore", divide="ignore"):
         if kind == K.MOMENTS:
             st[:, 3] = np.log(st[:, 3] - st[:, 2] ** 2 - 1.0)
@@ -435,7 +454,11 @@ def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0
     r = np.array([0.134912, 0.134912] if ref is None else ref, dtype=float)
     out = np.empty((st.shape[0], 4))
     status = np.zeros(st.shape[0], dtype=np.int64)
-    K.fit_many(kind, _FAM[param], st, u, nodes, t1, t2, lim, r, out, status)
+    ncover = np.zeros(st.shape[0], dtype=np.int64)
+    K.fit_many(kind, _FAM[param], st, u, nodes, t1, t2, lim, r, ext, bool(require_cover), out, status,
+               ncover)
+    if return_cover:
+        return out, status, ncover
     return out, status
 
 

@@ -8,13 +8,16 @@ statistic computed the same way (mean of a GLD fitted by moments = the sample me
 from __future__ import annotations
 
 import importlib
+import math
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pytest
 import scipy.stats
+from scipy import stats
 
 import glstat
+from glstat import GLD, BootstrapWarning
 from glstat._core import resample as R
 from glstat.fitting import _stats as S
 
@@ -39,7 +42,9 @@ def test_compiled_statistics_equal_numpy_on_same_indices(kind, n):
     x = np.sort(np.round(GAMMA.rvs(size=n, random_state=rng), 1))  # rounding makes ties
     idx = rng.integers(0, n, size=(25, n)).astype(np.int32)
     out = np.empty((25, 4))
-    R.stats_from_indices(kind, x, idx, 0.15, float(x.mean()), float(x.std()), out)
+    ext = np.empty((25, 2))
+    R.stats_from_indices(kind, x, idx, 0.15, float(x.mean()), float(x.std()), out, ext)
+    np.testing.assert_array_equal(ext, np.stack([x[idx].min(axis=1), x[idx].max(axis=1)], axis=1))
     ref = np.array([_numpy_stats(kind, x[i], 0.15) for i in idx])
     good = np.all(np.isfinite(ref), axis=1)
     np.testing.assert_allclose(out[good], ref[good], rtol=1e-11, atol=1e-12 * x.std())
@@ -55,14 +60,21 @@ def test_counts_sorted_and_jackknife_kernels(kind):
     a = np.empty((6, 4))
     b = np.empty((6, 4))
     c = np.empty((6, 4))
-    R.stats_from_counts(kind, x, counts, 0.1, 10.0, 5.0, a)
-    R.stats_from_sorted(kind, np.sort(x[idx], axis=1), 0.1, 10.0, 5.0, b)
+    ea = np.empty((6, 2))
+    eb = np.empty((6, 2))
+    ec = np.empty((6, 2))
+    R.stats_from_counts(kind, x, counts, 0.1, 10.0, 5.0, a, ea)
+    R.stats_from_sorted(kind, np.sort(x[idx], axis=1), 0.1, 10.0, 5.0, b, eb)
+    rng_ext = np.stack([x[idx].min(axis=1), x[idx].max(axis=1)], axis=1)
+    np.testing.assert_array_equal(ea, rng_ext)
+    np.testing.assert_array_equal(eb, rng_ext)
     ref = np.array([_numpy_stats(kind, x[i]) for i in idx])
     np.testing.assert_allclose(a, ref, rtol=1e-11)
     np.testing.assert_allclose(b, ref, rtol=1e-11)
     group = np.arange(40) % 6
-    R.stats_delete_groups(kind, x, group, 6, 0.1, 10.0, 5.0, c)
+    R.stats_delete_groups(kind, x, group, 6, 0.1, 10.0, 5.0, c, ec)
     ref = np.array([_numpy_stats(kind, x[group != g]) for g in range(6)])
+    np.testing.assert_array_equal(ec, [[x[group != g].min(), x[group != g].max()] for g in range(6)])
     np.testing.assert_allclose(c, ref, rtol=1e-11)
 
 
@@ -71,7 +83,7 @@ def test_constant_resample_has_nan_statistics():
     idx = np.full((1, 5), 2, dtype=np.int32)
     for kind in (R.MOMENTS, R.PERCENTILES, R.LMOMENTS):
         out = np.empty((1, 4))
-        R.stats_from_indices(kind, x, idx, 0.1, 3.0, 1.0, out)
+        R.stats_from_indices(kind, x, idx, 0.1, 3.0, 1.0, out, np.empty((1, 2)))
         assert not np.all(np.isfinite(out))
 
 
@@ -97,6 +109,7 @@ def test_compiled_path_equals_per_resample_fits(sample):
 
 @pytest.mark.parametrize("method", ["moments", "percentiles", "lmoments"])
 @pytest.mark.parametrize("kind", ["nonparametric", "parametric"])
+@pytest.mark.filterwarnings("ignore::glstat.BootstrapWarning")
 def test_same_rng_same_result(sample, method, kind):
     a = glstat.bootstrap(sample, method=method, kind=kind, n_resamples=50, rng=1)
     b = glstat.bootstrap(sample, method=method, kind=kind, n_resamples=50,
@@ -104,7 +117,8 @@ def test_same_rng_same_result(sample, method, kind):
     c = glstat.bootstrap(sample, method=method, kind=kind, n_resamples=50, rng=2)
     np.testing.assert_array_equal(a.lambdas.to_numpy(), b.lambdas.to_numpy())
     assert not np.array_equal(a.lambdas.to_numpy(), c.lambdas.to_numpy())
-    assert a.n_failed == 0 and a.lambdas.shape == (50, 5)
+    assert a.n_failed == b.n_failed and a.lambdas.shape == (50, 5)
+    assert set(a.failed.reason) <= {"no root whose support covers the resample"}
     assert list(a.lambdas.columns) == ["lambda1", "lambda2", "lambda3", "lambda4", "n_roots"]
 
 
@@ -114,7 +128,8 @@ def test_executor_does_not_change_results():
     with ThreadPoolExecutor(max_workers=2) as ex:
         pooled = glstat.bootstrap(x, method="starship", n_resamples=10, rng=9, executor=ex)
     np.testing.assert_array_equal(serial.lambdas.to_numpy(), pooled.lambdas.to_numpy())
-    assert serial.statistics is None and serial.n_successful + serial.n_failed == 10
+    assert list(serial.statistics.columns) == ["min", "max"]
+    assert serial.n_successful + serial.n_failed == 10
 
 
 def test_parametric_resamples_come_from_the_fit(sample):
@@ -143,7 +158,8 @@ def test_all_failed_raises(sample, monkeypatch):
     gb = importlib.import_module("glstat.bootstrap")  # the package attribute is the function
 
     def no_roots(stats, *args, **kwargs):
-        return np.full((len(stats), 4), np.nan), np.zeros(len(stats), dtype=np.int64)
+        zero = np.zeros(len(stats), dtype=np.int64)
+        return np.full((len(stats), 4), np.nan), zero, zero
 
     monkeypatch.setattr(gb, "fit_batch", no_roots)
     with pytest.raises(glstat.FitError, match=r"all 5 bootstrap resamples failed .*5 x no root"):
@@ -205,7 +221,8 @@ def test_lambda_intervals_and_tables(sample):
     assert np.all(wide.low <= ci.low) and np.all(wide.high >= ci.high)
     bca = bf.confidence_interval("BCa")
     assert np.all(bca.low < bca.high)
-    assert bf.summary().shape[0] == 4 and bf.to_frame().shape == (100, 9)
+    # to_frame: lambdas, n_roots, the four statistics, min, max, covers
+    assert bf.summary().shape[0] == 4 and bf.to_frame().shape == (100, 12)
     assert len(bf.__glstat_distributions__()) == 100
 
 
@@ -248,3 +265,67 @@ def test_bad_interval_method(sample):
         bf.confidence_interval("studentized")
     with pytest.raises(ValueError, match="confidence_level"):
         bf.confidence_interval(confidence_level=1.5)
+
+
+# --------------------------------------------------------------------------------------------
+# every bootstrap fit covers its resample (the rule of the full-sample fit)
+# --------------------------------------------------------------------------------------------
+def _check_cover(b):
+    ext = b.statistics[["min", "max"]].to_numpy()
+    lam = b.lambdas[["lambda1", "lambda2", "lambda3", "lambda4"]].to_numpy()
+    good = np.all(np.isfinite(lam), axis=1)
+    assert good.sum() == b.n_successful
+    dists = b.dists()
+    assert len(dists) == good.sum()
+    for d, (lo, hi) in zip(dists, ext[good], strict=True):
+        s_lo, s_hi = d.support()
+        assert s_lo <= lo and s_hi >= hi
+
+
+@pytest.mark.parametrize(("method", "x"), [
+    ("moments", stats.gamma(5).rvs(size=200, random_state=3)),
+    ("percentiles", stats.beta(2, 5).rvs(size=300, random_state=2)),
+], ids=["gamma-moments", "beta-percentiles"])
+def test_bootstrap_fits_cover_their_resamples(method, x):
+    # the full-sample fit covers the data; for some resamples every root has a support
+    # ending inside the resample (those used to be kept silently)
+    assert glstat.fit(x, method=method).solutions.query("selected").covers_data.iloc[0]
+    with pytest.warns(BootstrapWarning, match="no root whose support covers the resample"):
+        b = glstat.bootstrap(x, method=method, n_resamples=300, rng=0)
+    _check_cover(b)
+    cover = b.failed[b.failed.reason == "no root whose support covers the resample"]
+    assert len(cover) >= 1
+    assert "none covering its range" in cover.detail.iloc[0]
+    assert not b.statistics["covers"].to_numpy()[cover["resample"].to_numpy()].any()
+
+
+def test_bootstrap_cover_on_the_reported_gamma_case():
+    x = stats.gamma(5, scale=300).rvs(size=2000, random_state=1)
+    b = glstat.bootstrap(x, n_resamples=300, rng=0)
+    assert b.n_failed == 0 and b.statistics.covers.all()
+    _check_cover(b)
+
+
+def test_bootstrap_reports_uncovered_fits_when_the_full_fit_does_not_cover():
+    # percentile fits of long-tailed data have bounded supports that miss the sample maximum,
+    # for the full sample as for the resamples: the fits are kept, counted and flagged
+    x = stats.gamma(5, scale=300).rvs(size=2000, random_state=1)
+    assert not glstat.fit(x, method="percentiles").solutions.query("selected").covers_data.iloc[0]
+    with pytest.warns(BootstrapWarning, match="do(es)? not cover"):
+        b = glstat.bootstrap(x, method="percentiles", n_resamples=200, rng=0)
+    assert b.n_failed == 0 and (~b.statistics.covers).sum() > 100
+
+
+def test_fit_batch_extremes_select_a_covering_root():
+    g = GLD(0.0, 0.2, 0.1, 0.2)
+    m, v, sk, ku = (float(t) for t in g.stats("mvsk"))
+    row = [[m, math.sqrt(v), sk, ku + 3.0]]
+    lam0, n0 = glstat.fit_batch(row, "moments", "rs")
+    lo, hi = g.support()
+    # data inside the support: the same root; data beyond it: no root covers them
+    lam1, _ = glstat.fit_batch(row, "moments", "rs", extremes=[[lo + 0.1, hi - 0.1]])
+    np.testing.assert_allclose(lam1, lam0)
+    lam2, n2 = glstat.fit_batch(row, "moments", "rs", extremes=[[lo - 100.0, hi + 100.0]])
+    assert n2[0] == n0[0] >= 1 and np.isnan(lam2).all()
+    with pytest.raises(ValueError, match="extremes"):
+        glstat.fit_batch(row, "moments", "rs", extremes=[[0.0, 1.0], [0.0, 1.0]])
