@@ -14,6 +14,7 @@ import numpy as np
 from .._core._gld import FKML, RS, median_std, q_lower, rs_sign
 from ..errors import ConvergenceWarning, FitError
 from . import _likelihood as L
+from ._stats import distinct_note
 
 _KIND = {"mle": L.MLE, "mps": L.MPS, "starship": L.STARSHIP}
 OPTIMIZERS = ("bfgs", "nelder-mead")
@@ -97,6 +98,25 @@ def _starting_points(x: np.ndarray, param: str, fam: int, med: float, iqr: float
     return starts
 
 
+def _no_start_hint(x: np.ndarray, param: str, med: float, iqr: float, z: np.ndarray) -> str:
+    """What can be done when ``param`` has no starting point (computed, not assumed)."""
+    from .core import fit
+
+    other = "fkml" if param == "rs" else "rs"
+    if _starting_points(x, other, RS if other == "rs" else FKML, med, iqr, z):
+        return f"param='{other}' has starting points for these data"
+    why = []
+    for meth in ("percentiles", "lmoments"):
+        try:
+            fit(x, param, meth)
+        except FitError as exc:
+            why.append(f"{meth}: {exc}")
+    hint = f"param='{other}' has none either"
+    if np.unique(x).size < max(5, x.size // 4):
+        return hint + "; " + distinct_note(x)
+    return hint + ("; " + " | ".join(why) if why else "")
+
+
 def _refine_nelder_mead(kind, fam, z, th0, w, maxiter, n):
     from scipy.optimize import minimize
 
@@ -171,7 +191,8 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     start_thetas = _starting_points(x, param, fam, med, iqr, z)
     if not start_thetas:
         raise FitError(f"no {param.upper()} starting point for {method!r}: neither the percentile nor "
-                       "the L-moment equations have a valid root for these data; try param='fkml'")
+                       f"the L-moment equations have a valid root for these data; "
+                       f"{_no_start_hint(x, param, med, iqr, z)}")
     scored = []
     for th in start_thetas:
         w = w0.copy()

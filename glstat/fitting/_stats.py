@@ -54,7 +54,25 @@ def sample_moments(x: np.ndarray) -> tuple[float, float, float, float]:
     m4 = float(np.mean(d**4))
     if not m2 > 0.0:
         raise FitError("the data have zero variance: no GLD matches them")
-    return m, math.sqrt(m2), m3 / m2**1.5, m4 / (m2 * m2)
+    skew = m3 / m2**1.5
+    kurt = m4 / (m2 * m2)
+    # Pearson's inequality kurt >= 1 + skew^2 holds for every sample, with equality exactly for
+    # two-valued data; rounding can push it a few ulps either way
+    if kurt - 1.0 - skew * skew <= 64 * 2.2e-16 * kurt:
+        raise FitError(
+            f"kurtosis {kurt:.6g} equals 1 + skew^2 = {1.0 + skew * skew:.6g} (Pearson's bound, "
+            f"reached only by two-valued data): {distinct_note(x)}"
+        )
+    return m, math.sqrt(m2), skew, kurt
+
+
+def distinct_note(x: np.ndarray) -> str:
+    """What to do about data with ties / too few distinct values (for error messages)."""
+    k = int(np.unique(x).size)
+    return (f"the {x.size} data points take only {k} distinct value(s) (ties); a continuous GLD "
+            "cannot describe them. Use data with more resolution or, if the ties come from "
+            "rounding, spread each value over its rounding interval (e.g. add uniform noise of "
+            "half the rounding step) before fitting")
 
 
 def sample_quantiles(x: np.ndarray, u: float) -> np.ndarray:

@@ -7,7 +7,7 @@ import pytest
 from scipy import optimize, stats
 
 import glstat
-from glstat import GLD, fit
+from glstat import GLD, FitError, fit
 
 P = np.linspace(0.05, 0.95, 19)
 
@@ -181,3 +181,40 @@ def test_fitstart_covers_data_and_feeds_generic_fit():
     # constant data: no percentile fit, scipy's default start with normal-like shapes
     start = glstat.gld_rs._fitstart(np.ones(10))
     assert start[:2] == (0.1349, 0.1349)
+
+
+# --- data with ties: clear errors, hints computed from the data ---------------------------------
+TWO_VALUED = np.r_[np.zeros(10), np.ones(10)]
+
+
+def test_two_valued_data_moments_raise_fit_error():
+    # kurtosis = 1 + skew^2 exactly (Pearson's bound): used to end in a math domain error
+    with pytest.raises(FitError, match=r"Pearson's bound.*2 distinct value\(s\).*rounding"):
+        fit(TWO_VALUED, method="moments")
+    with pytest.raises(FitError, match="2 distinct"):
+        fit(np.r_[np.full(7, 3.5), np.full(3, -1.0)], method="moments", param="fkml")
+
+
+@pytest.mark.parametrize("param", ["rs", "fkml"])
+def test_no_start_hint_names_no_unavailable_param(param):
+    other = "fkml" if param == "rs" else "rs"
+    with pytest.raises(FitError) as exc:
+        fit(TWO_VALUED, param=param, method="mle")
+    msg = str(exc.value)
+    assert f"try param='{param}'" not in msg
+    assert f"param='{other}' has none either" in msg and "2 distinct value(s)" in msg
+
+
+def test_no_start_hint_points_to_the_other_param_when_it_has_starts(monkeypatch):
+    from glstat.fitting import _data
+
+    real = _data._starting_points
+
+    def rs_has_none(x, param, *args):
+        return [] if param == "rs" else real(x, param, *args)
+
+    monkeypatch.setattr(_data, "_starting_points", rs_has_none)
+    x = GLD(2.0, 0.5, 0.15, 0.05, param="fkml").rvs(size=300, random_state=np.random.default_rng(2))
+    with pytest.raises(FitError, match="param='fkml' has starting points for these data"):
+        fit(x, param="rs", method="mle")
+    assert fit(x, param="fkml", method="mle").dist is not None
