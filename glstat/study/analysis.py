@@ -321,6 +321,9 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings) -> d
                 "n_asperities": float(np.mean([r["n_asperities"] for r in rs])),
                 "max_pressure": float(np.mean([r["max_pressure"] for r in rs])) / 1e6,
                 "force_error": float(np.max(np.abs([r["force_error"] for r in rs]))),
+                "n_in_jump": int(sum(int(r.get("in_jump", 0)) for r in rs)),
+                "max_force_jump": float(max(float(r.get("force_jump", 0.0)) for r in rs)),
+                "n_surfaces": len(rs),
             }
             out[(ih, il)] = {kind: analyse_sample(results, keys, kind, a, ih, il) for kind in SAMPLES}
             out[(ih, il)]["summary"] = summary

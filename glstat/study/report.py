@@ -204,6 +204,17 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
                "damage P (asperity)", f"coverage of {lvl} % interval (asperity)"], rows,
               f"Per-surface means; damage probability at {hard:g} MPa on one analysed area with its "
               f"{lvl} % bootstrap interval; coverage with its Wilson 95 % interval.")
+    jumps = [(_label(settings, ih, il), r["summary"]) for (ih, il), r in analysis.items()
+             if r["summary"].get("n_in_jump", 0)]
+    if jumps:
+        rep.paragraph(
+            "Load control: the asperity model's force jumps where a summit starts to touch or a "
+            "patch boundary passes a dip, so a requested load can fall inside a jump, where no "
+            "state of the model carries it exactly; such surfaces keep the nearest physical "
+            "state (docs/contact.md). " + "; ".join(
+                f"{lab}: {s['n_in_jump']} of {s['n_surfaces']} surfaces, largest jump "
+                f"{100 * s['max_force_jump']:.2g} % of the load, largest |force error| "
+                f"{100 * s['force_error']:.2g} %" for lab, s in jumps) + ".")
     calib = []
     for (ih, il), r in analysis.items():
         for kind in ("grid", "asperity"):
