@@ -131,13 +131,19 @@ def _refine_nelder_mead(kind, fam, z, th0, w, maxiter, n):
     return np.asarray(res.x, dtype=float), float(res.fun), bool(res.success)
 
 
+_CAP_MIN = 60  # iteration budget of the later starts: at least this ...
+_CAP_FACTOR = 3  # ... and this many times the iterations of the first (best) start
+
+
 def _refine_bfgs(kind, fam, z, th0, w, maxiter, unit):
     """BFGS from ``th0``; when support end points cut the last line search short (the optimum
     lies on the boundary of the feasible set, e.g. ML for a density that is positive at a
     finite end point), BFGS again with those end points pinned just outside the data, keeping
-    the better result."""
+    the better result. Returns (theta, objective, not stopped by maxiter, iterations of the
+    free run)."""
     th = th0.copy()
-    val, _, _, status, hit = L.minimize_bfgs(kind, fam, z, th, w, maxiter, unit, _GTOL, _FTOL, L.FREE, 0.0)
+    val, nit, _, status, hit = L.minimize_bfgs(kind, fam, z, th, w, maxiter, unit, _GTOL, _FTOL, L.FREE,
+                                               0.0)
     ok = status != L.MAXITER
     mode = L.FREE
     gap = _PIN_GAP * float(z[-1] - z[0])
@@ -154,7 +160,7 @@ def _refine_bfgs(kind, fam, z, th0, w, maxiter, unit):
         # a pinned run stopped by its iteration cap still improved on the free optimum
         th, val, ok = th2, val2, True
         w[:] = w2
-    return th, val, ok
+    return th, val, ok, nit
 
 
 def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | None = None,
@@ -214,14 +220,29 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     shift = n * math.log(iqr) if kind == L.MLE else 0.0
     rows = []
     flags = []
-    for _, th0, w in scored[:starts]:
+    best_val = math.inf
+    cap = maxiter
+    for i, (_, th0, w) in enumerate(scored[:starts]):
+        abandoned = False
         if optimizer == "bfgs":
-            th, val, ok = _refine_bfgs(kind, fam, z, th0, w, maxiter, unit)
+            # later starts get a few times the iterations of the first; one still worse than
+            # the best point found when its budget ends is abandoned (e.g. RS shapes creeping
+            # into the degenerate origin with a diverging scale)
+            th, val, ok, nit = _refine_bfgs(kind, fam, z, th0, w, cap, unit)
+            if i == 0:
+                cap = min(maxiter, max(_CAP_MIN, _CAP_FACTOR * nit))
+            elif not ok and cap < maxiter:
+                if val < best_val:
+                    th, val, ok, _ = _refine_bfgs(kind, fam, z, th, w, maxiter - cap, unit)
+                else:
+                    abandoned = True
+                    ok = True
         else:
             th, val, ok = _refine_nelder_mead(kind, fam, z, th0, w, maxiter, n)
+        best_val = min(best_val, val)
         lams = _to_lambdas(th, param, med, iqr)
         obj = float(val) + shift
-        rows.append(_candidate(lams, param, math.isfinite(obj), obj, x))
+        rows.append(_candidate(lams, param, math.isfinite(obj) and not abandoned, obj, x))
         flags.append(ok)
     sel = _select(rows, True, by_objective=True)
     if sel < 0:

@@ -451,10 +451,10 @@ _POS = np.array([0.002, 0.01, 0.03, 0.06, 0.1, 0.15, 0.2, 0.3, 0.4, 0.55, 0.75, 
 _NEG_FRAC = np.array([0.99, 0.95, 0.85, 0.7, 0.5, 0.3, 0.15, 0.07, 0.03, 0.01, 0.002])
 
 
-# geometric nodes towards 0 on both sides: near the origin the shape statistics depend mostly on
-# lambda3 / lambda4, and the RS origin itself is degenerate (NaN in the table), so without these
-# nodes no seed triangle reaches the small-|lambda| branch of the regions 3 and 4
-_SMALL = np.array([1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 4e-4, 1e-3])
+# extra nodes towards 0 on both sides: near the origin the shape statistics depend mostly on
+# lambda3 / lambda4 and the RS origin itself is degenerate (NaN in the table); below these nodes
+# the small-|lambda| branch of regions 3 and 4 is seeded from the limit table (`_limit_seed`)
+_SMALL = np.array([4e-4, 1e-3])
 
 
 def grid_nodes(kind: int) -> np.ndarray:

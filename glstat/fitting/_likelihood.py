@@ -36,6 +36,13 @@ FTOL = 1  # relative decrease below tolerance
 LSFAIL = 2  # no decrease along the search direction (noise floor or active support bound)
 MAXITER = 3  # iteration limit
 INFEASIBLE = 4  # the start is infeasible
+DEGENERATE = 5  # RS shapes ran into the degenerate origin (lambda3, lambda4 -> 0)
+
+# RS iterates with max(|lambda3|, |lambda4|) below this are heading into the origin, where the
+# RS family degenerates: the objective creeps towards its lambda -> 0 limit (the FKML
+# distributions with lambda3 = lambda4 = 0 and their ratio family) while the scale diverges,
+# which takes hundreds of iterations for a gain far below the tolerance; such a start is stopped
+_DEGEN_SHAPE = 1e-4
 
 _W_MAX = 740.0  # |logit u| beyond which u or 1 - u underflows
 
@@ -541,7 +548,9 @@ def minimize_bfgs(kind, fam, z, theta, w, maxiter, unit, gtol, ftol, mode, gap):
     nit, nfev : int
         Iterations and objective evaluations.
     status : int
-        GTOL, FTOL, LSFAIL, MAXITER or INFEASIBLE.
+        GTOL, FTOL, LSFAIL, MAXITER, INFEASIBLE or DEGENERATE (RS shapes below
+        ``_DEGEN_SHAPE`` in magnitude: the start heads into the degenerate origin and is
+        stopped there).
     hit : int
         Bit mask of the support end points (1 lower, 2 upper) that cut the last line search
         short: a constraint that is active at the minimiser.
@@ -693,6 +702,9 @@ def minimize_bfgs(kind, fam, z, theta, w, maxiter, unit, gtol, ftol, mode, gap):
             for j in range(4):
                 dw[i, j] = dwt[i, j]
         f = ft
+        if fam == RS and max(abs(theta[2]), abs(theta[3])) < _DEGEN_SHAPE:
+            status = DEGENERATE
+            break
         if decrease <= ftol * max(unit, abs(f)) and alpha == alpha0:
             # a full quasi-Newton step gains nothing
             status = FTOL

@@ -218,3 +218,32 @@ def test_no_start_hint_points_to_the_other_param_when_it_has_starts(monkeypatch)
     with pytest.raises(FitError, match="param='fkml' has starting points for these data"):
         fit(x, param="rs", method="mle")
     assert fit(x, param="fkml", method="mle").dist is not None
+
+
+def test_ml_start_heading_into_the_rs_origin_is_stopped():
+    # DESIGN gamma case: the percentile root near the RS origin, (-0.0061, -0.0174), starts a
+    # BFGS run whose shapes shrink towards 0 while the scale diverges; it used to run to
+    # maxiter (500 iterations, ~0.1 s) for an objective worse than that of the other start
+    from glstat.fitting import _data, _likelihood
+
+    x = np.sort(stats.gamma(5, scale=3).rvs(1000, random_state=1))
+    med = float(np.median(x))
+    q25, q75 = np.quantile(x, [0.25, 0.75])
+    iqr = float(q75 - q25)
+    z = (x - med) / iqr
+    starts = _data._starting_points(x, "rs", 0, med, iqr, z)
+    near = [th for th in starts if max(abs(th[2]), abs(th[3])) < 0.05 and th[3] < 0]
+    assert near
+    n = x.size
+    w = np.log((np.arange(n) + 0.5) / (n - np.arange(n) - 0.5))
+    th = near[0].copy()
+    _, nit, _, status, _ = _likelihood.minimize_bfgs(_likelihood.MLE, 0, z, th, w, 500, float(n),
+                                                     _data._GTOL, _data._FTOL, _likelihood.FREE, 0.0)
+    assert status == _likelihood.DEGENERATE and nit < 500
+    assert max(abs(th[2]), abs(th[3])) < 1e-4
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no ConvergenceWarning
+        f = fit(x, "rs", "mle")
+    np.testing.assert_allclose(f.lambdas, (10.184911, 0.0145928, 0.0239287, 0.1058462), rtol=1e-5)
+    sol = f.solutions
+    assert len(sol) == 2 and sol.objective[sol.selected].iloc[0] == sol.objective.min()
