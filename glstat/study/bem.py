@@ -34,10 +34,10 @@ from .campaign import (
     MANIFEST,
     CampaignError,
     CampaignSettings,
-    _npz_bytes,
+    _npz_has,
     atomic_write,
-    execute_tasks,
-    make_executor,
+    compute_and_save,
+    split_stored,
     surface_path,
 )
 
@@ -225,13 +225,7 @@ def _bem_task(settings: CampaignSettings, bsettings: BEMSettings, key: tuple[int
 
 
 def _bem_complete(path: Path) -> bool:
-    if not path.is_file():
-        return False
-    try:
-        with np.load(path) as z:
-            return "bem_samples" in z.files and "asperity_samples" in z.files
-    except Exception:
-        return False
+    return _npz_has(path, ("bem_samples", "asperity_samples"))
 
 
 # -- the study's comparison ------------------------------------------------------------------
@@ -339,35 +333,17 @@ def run_bem(
     keys = _keys(settings, bsettings)
     _prepare_bem(root, bsettings, force)
     run = BEMRun()
-    todo = []
-    for key in keys:
-        if _bem_complete(bem_path(root, settings, *key)):
-            run.skipped += 1
-        else:
-            todo.append(key)
+    def path_of(key):
+        return bem_path(root, settings, *key)
+
+    todo = split_stored(keys, path_of, _bem_complete, run)
     if not todo:
         run.wall_time = time.perf_counter() - t0
         return run
-    shutdown = None
-    if executor is None:
-        executor, shutdown = make_executor(workers)
-    from tqdm.auto import tqdm
-
-    bar = tqdm(total=len(keys), initial=run.skipped, desc="BEM comparison", unit="surface",
-               disable=not progress, leave=False)
-
-    def save(key, arrays, seconds):
-        atomic_write(bem_path(root, settings, *key), _npz_bytes(arrays))
-        run.computed.append(key)
-        run.task_times[key] = seconds
-
-    try:
-        exc = execute_tasks(executor, _bem_task, (settings, bsettings), todo, save,
-                            limit=max(4, 2 * (workers or os.cpu_count() or 1)), bar=bar)
-    finally:
-        bar.close()
-        if shutdown is not None:
-            shutdown()
+    exc = compute_and_save(_bem_task, (settings, bsettings), todo, path_of, run, total=len(keys),
+                           executor=executor, workers=workers,
+                           limit=max(4, 2 * (workers or os.cpu_count() or 1)),
+                           desc="BEM comparison", progress=progress)
     if exc is not None:
         n_saved = run.skipped + len(run.computed)
         raise CampaignError(

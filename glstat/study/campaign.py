@@ -267,14 +267,32 @@ def atomic_write(path: str | os.PathLike, data: bytes) -> None:
         raise
 
 
-def _is_complete(path: Path) -> bool:
+def _npz_has(path: Path, names: tuple[str, ...]) -> bool:
+    """Whether ``path`` is a readable .npz archive holding every array of ``names``.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The archive.
+    names : tuple of str
+        Array names (without ``.npy``).
+
+    Returns
+    -------
+    bool
+        False for a missing, truncated or unreadable file, or one without some of ``names``.
+    """
     if not path.is_file():
         return False
     try:
         with np.load(path) as z:
-            return "samples" in z.files and "max_pressure" in z.files
+            return all(name in z.files for name in names)
     except Exception:
         return False
+
+
+def _is_complete(path: Path) -> bool:
+    return _npz_has(path, ("samples", "max_pressure"))
 
 
 def _check_writable(root: Path) -> None:
@@ -465,36 +483,18 @@ def run_campaign(
     root = Path(out)
     _prepare_dir(root, settings, force)
     run = CampaignRun(out=root, settings=settings)
-    todo = []
-    for key in settings.tasks():
-        if _is_complete(surface_path(root, settings, *key)):
-            run.skipped += 1
-        else:
-            todo.append(key)
+    def path_of(key):
+        return surface_path(root, settings, *key)
+
+    todo = split_stored(settings.tasks(), path_of, _is_complete, run)
     if not todo:
         run.wall_time = time.perf_counter() - t0
         return run
-    shutdown = None
-    if executor is None:
-        executor, shutdown = make_executor(workers)
     n_workers = workers or os.cpu_count() or 1
-    limit = max_pending or max(8, 4 * n_workers)
-    from tqdm.auto import tqdm
-
-    bar = tqdm(total=len(settings.tasks()), initial=run.skipped, desc="surfaces", unit="surface",
-               disable=not progress, leave=False)
-
-    def save(key, arrays, seconds):
-        atomic_write(surface_path(root, settings, *key), _npz_bytes(arrays))
-        run.computed.append(key)
-        run.task_times[key] = seconds
-
-    try:
-        exc = execute_tasks(executor, _task, (settings,), todo, save, limit=limit, bar=bar)
-    finally:
-        bar.close()
-        if shutdown is not None:
-            shutdown()
+    exc = compute_and_save(_task, (settings,), todo, path_of, run, total=len(settings.tasks()),
+                           executor=executor, workers=workers,
+                           limit=max_pending or max(8, 4 * n_workers), desc="surfaces",
+                           progress=progress)
     if exc is not None:
         _record_times(root, run.task_times)
         n_saved = run.skipped + len(run.computed)
@@ -565,6 +565,91 @@ def execute_tasks(executor: Executor, fn: Callable, args: tuple, todo: Iterable,
             bar.update(1)
         fill()
     return None
+
+
+def split_stored(keys: Iterable, path_of: Callable, complete: Callable, run: Any) -> list:
+    """The keys whose result is not stored yet; the stored ones are counted in ``run.skipped``.
+
+    Parameters
+    ----------
+    keys : iterable of keys
+        All results of the run, in order.
+    path_of : callable
+        ``path_of(key)``, the file of one result.
+    complete : callable
+        ``complete(path)``, whether that file holds a finished result.
+    run : CampaignRun or BEMRun
+        The record of the call; its ``skipped`` is increased.
+
+    Returns
+    -------
+    list
+        The keys to compute, in the order of ``keys``.
+    """
+    todo = []
+    for key in keys:
+        if complete(path_of(key)):
+            run.skipped += 1
+        else:
+            todo.append(key)
+    return todo
+
+
+def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, run: Any, *,
+                     total: int, executor: Executor | None, workers: int | None, limit: int,
+                     desc: str, progress: bool) -> BaseException | None:
+    """Compute the results of ``todo`` with :func:`execute_tasks` and write each atomically.
+
+    Parameters
+    ----------
+    fn : callable
+        A picklable task ``fn(*args, key)`` returning ``(key, arrays, seconds)``.
+    args : tuple
+        Leading arguments of ``fn``.
+    todo : list of keys
+        The results to compute.
+    path_of : callable
+        ``path_of(key)``, the .npz file each result is written to.
+    run : CampaignRun or BEMRun
+        The record of the call: every saved key is appended to ``run.computed`` and its
+        seconds stored in ``run.task_times``.
+    total : int
+        All results of the run (stored ones included), the length of the progress bar.
+    executor : concurrent.futures.Executor or None
+        Where the tasks run; None for a local pool of ``workers`` processes, shut down on return.
+    workers : int or None
+        Processes of that local pool.
+    limit : int
+        Tasks in flight at once.
+    desc : str
+        Label of the progress bar.
+    progress : bool
+        Show a tqdm progress bar.
+
+    Returns
+    -------
+    Exception or None
+        The first failure of a task (results finished before and around it are saved).
+    """
+    shutdown = None
+    if executor is None:
+        executor, shutdown = make_executor(workers)
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=total, initial=run.skipped, desc=desc, unit="surface",
+               disable=not progress, leave=False)
+
+    def save(key, arrays, seconds):
+        atomic_write(path_of(key), _npz_bytes(arrays))
+        run.computed.append(key)
+        run.task_times[key] = seconds
+
+    try:
+        return execute_tasks(executor, fn, args, todo, save, limit=limit, bar=bar)
+    finally:
+        bar.close()
+        if shutdown is not None:
+            shutdown()
 
 
 def _record_times(root: Path, times: dict) -> None:
