@@ -19,9 +19,10 @@ import numpy as np
 
 from ._bem_core import PKOutcome, initial_pressure, polonsky_keer
 from ._bem_kernel import NonPeriodicOperator, PeriodicOperator
+from ._validate import finite_separation, positive_pressure
 from .result import ContactResult
 from .solver import effective_modulus
-from .surface import Surface
+from .surface import Surface, require_surface
 
 __all__ = ["BEMConvergenceWarning", "solve_bem", "solve_bem_displacement"]
 
@@ -31,11 +32,7 @@ class BEMConvergenceWarning(RuntimeWarning):
 
 
 def _check_surface(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
-    if not isinstance(surface, Surface):
-        raise TypeError(
-            f"surface must be a contact.Surface, got {type(surface).__name__}; "
-            "wrap a height array with contact.Surface(heights, dx)"
-        )
+    require_surface(surface)
     h = np.array(surface.heights, dtype=np.float64)
     if surface.mask is None:
         valid = np.ones(h.shape, dtype=np.bool_)
@@ -228,15 +225,7 @@ def solve_bem(
     I. A. Polonsky, L. M. Keer, Wear 231 (1999) 206-219. A. E. H. Love, Phil. Trans. R.
     Soc. A 228 (1929) 377-420. H. M. Stanley, T. Kato, J. Tribol. 119 (1997) 481-485.
     """
-    if not (
-        isinstance(nominal_pressure, numbers.Real)
-        and math.isfinite(nominal_pressure)
-        and nominal_pressure > 0
-    ):
-        raise ValueError(
-            f"nominal_pressure must be a positive finite pressure in pascals, got "
-            f"{nominal_pressure!r}; a compressive load is positive"
-        )
+    nominal_pressure = positive_pressure(nominal_pressure)
     h, valid = _check_surface(surface)
     e_star = effective_modulus(E, nu, counter_face)
     _check_options(tol, max_iter, workers)
@@ -304,8 +293,7 @@ def solve_bem_displacement(
     :func:`solve_bem`): on a periodic half-space the mean displacement under a non-zero
     mean pressure is unbounded, so a rigid-body approach has no absolute meaning there.
     """
-    if not (isinstance(separation, numbers.Real) and math.isfinite(separation)):
-        raise ValueError(f"separation must be a finite height in metres, got {separation!r}")
+    separation = finite_separation(separation)
     h, valid = _check_surface(surface)
     e_star = effective_modulus(E, nu, counter_face)
     _check_options(tol, max_iter, workers)

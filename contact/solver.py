@@ -15,10 +15,10 @@ from collections.abc import Sequence
 import numpy as np
 
 from . import _kernels
-from ._validate import real_scalar
+from ._validate import finite_separation, positive_pressure, real_scalar
 from .errors import ContactWarning
 from .result import ContactResult
-from .summits import valid_map
+from .summits import surface_arrays
 from .surface import Surface
 
 __all__ = ["effective_modulus", "solve", "solve_displacement"]
@@ -78,13 +78,7 @@ def effective_modulus(E: float, nu: float, counter_face: Sequence[float] | None 
 
 
 def _check_surface(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
-    if not isinstance(surface, Surface):
-        raise TypeError(
-            f"surface must be a contact.Surface, got {type(surface).__name__}; "
-            "wrap a height array with contact.Surface(heights, dx)"
-        )
-    h = np.ascontiguousarray(surface.heights, dtype=np.float64)
-    valid = valid_map(surface)
+    h, valid = surface_arrays(surface)
     if h.shape != valid.shape:
         raise ValueError(f"mask shape {valid.shape} does not match heights shape {h.shape}")
     known = h[valid]
@@ -373,13 +367,7 @@ def solve(
     """
     if jump not in ("nearest", "deeper", "blend"):
         raise ValueError(f"jump must be 'nearest', 'deeper' or 'blend', got {jump!r}")
-    p_nom = real_scalar(nominal_pressure)
-    if p_nom is None or not (math.isfinite(p_nom) and p_nom > 0):
-        raise ValueError(
-            f"nominal_pressure must be a positive finite pressure in pascals, got "
-            f"{nominal_pressure!r}; a compressive load is positive"
-        )
-    nominal_pressure = p_nom
+    nominal_pressure = positive_pressure(nominal_pressure)
     r = real_scalar(rtol)
     if r is None or not (0 < r < 1e-3):
         raise ValueError(f"rtol must be in (0, 1e-3), got {rtol!r}")
@@ -469,8 +457,6 @@ def solve_displacement(
     ContactResult
         As in :func:`solve`, with ``target_force`` None and ``force_error`` 0.
     """
-    d = real_scalar(separation)
-    if d is None or not math.isfinite(d):
-        raise ValueError(f"separation must be a finite height in metres, got {separation!r}")
+    d = finite_separation(separation)
     model = _Model(surface, E, nu, cone_factor, counter_face)
     return model.result(d, [model.table(d)], [1.0], None, None, "asperity-displacement")

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ._kernels import find_summits
-from .surface import Surface
+from .surface import Surface, require_surface
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -70,6 +70,30 @@ def valid_map(surface: Surface) -> np.ndarray:
     return ~np.asarray(surface.mask, dtype=np.bool_)
 
 
+def surface_arrays(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
+    """The heights and the measured-point map of a surface, as the kernels take them.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map.
+
+    Returns
+    -------
+    h : ndarray of float64, shape (nx, ny)
+        C-contiguous heights in metres (the surface's own array when it already is one).
+    valid : ndarray of bool, shape of the mask
+        :func:`valid_map` of the surface.
+
+    Raises
+    ------
+    TypeError
+        ``surface`` is not a :class:`Surface` (see :func:`require_surface`).
+    """
+    require_surface(surface)
+    return np.ascontiguousarray(surface.heights, dtype=np.float64), valid_map(surface)
+
+
 def summits(surface: Surface) -> Summits:
     """Find the summits of a surface: points strictly higher than their 8 neighbours.
 
@@ -91,12 +115,6 @@ def summits(surface: Surface) -> Summits:
     holds no summit. Summit counts depend on this definition and on the sampling interval
     (a finer grid resolves more, smaller summits).
     """
-    if not isinstance(surface, Surface):
-        raise TypeError(
-            f"surface must be a contact.Surface, got {type(surface).__name__}; "
-            "wrap a height array with contact.Surface(heights, dx)"
-        )
-    h = np.ascontiguousarray(surface.heights, dtype=np.float64)
-    valid = valid_map(surface)
+    h, valid = surface_arrays(surface)
     ii, jj = find_summits(h, valid)
     return Summits(i=ii, j=jj, heights=h[ii, jj].copy(), dx=surface.dx, dy=surface.dy)

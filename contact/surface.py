@@ -172,3 +172,29 @@ class Surface:
             f"Surface(shape={self.shape}, size=({lx:.4g} m, {ly:.4g} m), "
             f"masked={0 if self.mask is None else int(self.mask.sum())})"
         )
+
+
+def require_surface(obj) -> Surface:
+    """``obj`` itself when it is a :class:`Surface`.
+
+    Parameters
+    ----------
+    obj : object
+        What a caller passed as the surface.
+
+    Returns
+    -------
+    Surface
+        ``obj``.
+
+    Raises
+    ------
+    TypeError
+        ``obj`` is not a :class:`Surface`; the message says how to make one from heights.
+    """
+    if not isinstance(obj, Surface):
+        raise TypeError(
+            f"surface must be a contact.Surface, got {type(obj).__name__}; "
+            "wrap a height array with contact.Surface(heights, dx)"
+        )
+    return obj

@@ -157,6 +157,14 @@ def test_zero_dimensional_arrays_are_scalars():
 def test_non_scalar_pressure_is_rejected(rough, value):
     with pytest.raises(ValueError, match=r"nominal_pressure must be a positive finite"):
         contact.solve(rough, value, E, NU)
+    with pytest.raises(ValueError, match=r"nominal_pressure must be a positive finite"):
+        contact.solve_bem(rough, value, E, NU)
+
+
+@pytest.mark.parametrize("value", [np.array([0.0]), "0", True, np.nan])
+def test_bem_separation_is_one_finite_number(rough, value):
+    with pytest.raises(ValueError, match=r"separation must be a finite height"):
+        contact.solve_bem_displacement(rough, value, E, NU)
 
 
 @pytest.mark.parametrize("value", [np.array([E]), "210e9", np.array(E + 0j)])
