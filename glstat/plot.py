@@ -177,6 +177,44 @@ def _hazen(n: int) -> np.ndarray:
     return (np.arange(1, n + 1) - 0.5) / n
 
 
+def _probability_plot(caller: str, data, fits_or_dists, names, ax):
+    """The sample, the named models, the axes and the plotting positions of a Q–Q or P–P plot.
+
+    Parameters
+    ----------
+    caller : str
+        Name of the plotting function, for the error message.
+    data : array_like
+        The sample (flattened; non-finite values are left out).
+    fits_or_dists : tuple
+        The models as passed by the caller.
+    names : sequence of str or None
+        Legend labels of the models.
+    ax : matplotlib.axes.Axes or None
+        Axes to draw on (None: a new figure).
+
+    Returns
+    -------
+    x : ndarray
+        The sorted finite sample.
+    models : list of (str, distribution)
+        As :func:`_named_dists` returns them.
+    ax : matplotlib.axes.Axes
+    p : ndarray
+        Hazen plotting positions (i − 0.5)/n.
+
+    Raises
+    ------
+    ValueError
+        No model given.
+    """
+    if not fits_or_dists:
+        raise ValueError(f"{caller} needs at least one fit or distribution")
+    x = _sample(data)
+    models = _named_dists(fits_or_dists, names)
+    return x, models, _axes(ax), _hazen(x.size)
+
+
 def plot_qq(data, *fits_or_dists, names=None, ax=None) -> Any:
     """Quantile–quantile plot: sorted data against each model's quantiles.
 
@@ -198,12 +236,7 @@ def plot_qq(data, *fits_or_dists, names=None, ax=None) -> Any:
         (i − 0.5)/n, y: the i-th smallest data value, both in data units), then the
         reference line y = x (label ``"y = x"``).
     """
-    if not fits_or_dists:
-        raise ValueError("plot_qq needs at least one fit or distribution")
-    x = _sample(data)
-    models = _named_dists(fits_or_dists, names)
-    ax = _axes(ax)
-    p = _hazen(x.size)
+    x, models, ax, p = _probability_plot("plot_qq", data, fits_or_dists, names, ax)
     lo, hi = x[0], x[-1]
     for j, (name, dist) in enumerate(models):
         q = np.asarray(dist.ppf(p), dtype=float)
@@ -238,12 +271,7 @@ def plot_pp(data, *fits_or_dists, names=None, ax=None) -> Any:
         One marker line per model (x: empirical probability (i − 0.5)/n, y: F(x_(i)), both
         dimensionless), then the diagonal (label ``"y = x"``).
     """
-    if not fits_or_dists:
-        raise ValueError("plot_pp needs at least one fit or distribution")
-    x = _sample(data)
-    models = _named_dists(fits_or_dists, names)
-    ax = _axes(ax)
-    p = _hazen(x.size)
+    x, models, ax, p = _probability_plot("plot_pp", data, fits_or_dists, names, ax)
     for j, (name, dist) in enumerate(models):
         with np.errstate(all="ignore"):
             f = np.asarray(dist.cdf(x), dtype=float)
