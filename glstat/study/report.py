@@ -146,6 +146,47 @@ def _label(settings, ih: int, il: int) -> str:
     return f"H = {settings.hurst[ih]:g}, {settings.pressures[il] / 1e6:g} MPa"
 
 
+def _kind_panels(plt) -> tuple[Any, list[tuple[Any, str]]]:
+    """A figure with one panel per sample kind, side by side.
+
+    Parameters
+    ----------
+    plt : module
+        :mod:`matplotlib.pyplot`.
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    panels : list of (matplotlib.axes.Axes, str)
+        The axes of the grid-point and of the per-asperity sample, with the kind.
+    """
+    fig, axes = plt.subplots(1, 2, figsize=(11, 3.8), squeeze=False, layout="constrained")
+    return fig, [(axes[0, col], kind) for col, kind in enumerate(("grid", "asperity"))]
+
+
+def _fitted(analysis: dict, kind: str):
+    """The cases whose sample of one kind got a GLD.
+
+    Parameters
+    ----------
+    analysis : dict
+        ``(ih, il) -> {kind: SampleAnalysis, ...}``.
+    kind : str
+        ``"grid"`` or ``"asperity"``.
+
+    Yields
+    ------
+    ih, il : int
+        The case.
+    sa : SampleAnalysis
+        Its analysis of that sample, with ``sa.ok``.
+    """
+    for (ih, il), r in analysis.items():
+        sa = r[kind]
+        if sa.ok:
+            yield ih, il, sa
+
+
 def build_report(settings, asettings, results: dict, analysis: dict, info: dict) -> Report:
     """Assemble the study report.
 
@@ -364,10 +405,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
                "(top) and per-asperity peak pressures (bottom).")
 
     rep.heading("Bootstrap densities of the λ parameters")
-    for (ih, il), r in analysis.items():
-        sa = r["grid"]
-        if not sa.ok:
-            continue
+    for ih, il, sa in _fitted(analysis, "grid"):
         fig = plot_lambda_densities(sa.boot.lambdas, true=sa.boot.fit.lambdas)
         fig.suptitle(f"{_label(settings, ih, il)}: {SAMPLE_LABELS['grid']}, B = {asettings.n_resamples}")
         rep.figure(f"lambdas_{ih}_{il}", fig, f"Kernel densities of the bootstrapped λ1..λ4 "
@@ -381,14 +419,10 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         "surface (grid sample) or of asperities in contact per surface (asperity sample): the "
         "α δ(p) part of PR(p) carries no pressure, so the maximum over all N grid points is the "
         "maximum over the (1 − α) N points in contact.")
-    fig, axes = plt.subplots(1, 2, figsize=(11, 3.8), squeeze=False, layout="constrained")
+    fig, panels = _kind_panels(plt)
     rows = []
-    for col, kind in enumerate(("grid", "asperity")):
-        ax = axes[0, col]
-        for (ih, il), r in analysis.items():
-            sa = r[kind]
-            if not sa.ok:
-                continue
+    for ax, kind in panels:
+        for ih, il, sa in _fitted(analysis, kind):
             bm = sa.maximum
             lo, hi = bm.mixture_interval()
             span = hi - lo
@@ -485,14 +519,10 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
               f"({settings.length * 1e3:g} × {settings.length * 1e3:g} mm²).")
 
     rep.heading("Integrity against area")
-    fig, axes = plt.subplots(1, 2, figsize=(11, 3.8), squeeze=False, layout="constrained")
+    fig, panels = _kind_panels(plt)
     grows = []
-    for col, kind in enumerate(("grid", "asperity")):
-        ax = axes[0, col]
-        for (ih, il), r in analysis.items():
-            sa = r[kind]
-            if not sa.ok:
-                continue
+    for ax, kind in panels:
+        for ih, il, sa in _fitted(analysis, kind):
             it = sa.integrity
             line, = ax.semilogx(it.area_factor, it.estimate, label=_label(settings, ih, il))
             ax.fill_between(it.area_factor, it.low, it.high, color=line.get_color(), alpha=0.15)
