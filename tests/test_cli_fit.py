@@ -225,7 +225,9 @@ def test_hardness_outside_the_fitted_support(tmp_path, capsys):
         dmg = _section(out, "damage probability")
         table = np.array([[float(v) for v in r.split()] for r in dmg[1:3]])
         np.testing.assert_array_equal(table[:, 2], 1 - value)
-        np.testing.assert_array_equal(table[:, 3:], value)
+        np.testing.assert_array_equal(table[:, 3], value)  # the full-sample fit: exact
+        # the bootstrap interval: a resample's fit may reach a little past the hardness
+        np.testing.assert_allclose(table[:, 4:], value, atol=1e-12)
         assert words in out and f"damage probability is {value:g}" in out
         doc = json.loads((tmp_path / "o" / "fit.json").read_text())
         assert doc["damage"]["estimate"] == [value, value] and words in doc["damage"]["reason"]
