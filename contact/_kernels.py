@@ -104,12 +104,22 @@ def _geometry(h, valid, i, j, d, dx, dy):
 
 
 @nb.njit(cache=True)
-def _patch_sum(valid, i, j, a, b, dx, dy):
-    """Sum over valid grid points inside the ellipse of sqrt(1 - (x/a)^2 - (y/b)^2)."""
+def _patch(valid, i, j, a, b, dx, dy, pressure, p0):
+    """Sum over valid grid points inside the ellipse of sqrt(1 - (x/a)^2 - (y/b)^2).
+
+    Unless ``pressure`` is None, ``p0`` times each term is also added to ``pressure`` at its
+    grid point (with None numba compiles the sum alone: the branches are pruned). A
+    degenerate ellipse (``a`` or ``b`` not positive) counts as its centre alone, with
+    weight 1 when the centre is valid.
+    """
     nx, ny = valid.shape
     s = 0.0
     if a <= 0.0 or b <= 0.0:
-        return 1.0 if valid[i, j] else 0.0
+        if not valid[i, j]:
+            return 0.0
+        if pressure is not None:
+            pressure[i, j] += p0
+        return 1.0
     ka = math.floor(a / dx)
     for p in range(max(0, i - ka), min(nx, i + ka + 1)):
         u = (p - i) * dx / a
@@ -123,8 +133,17 @@ def _patch_sum(valid, i, j, a, b, dx, dy):
             v = (q - j) * dy / b
             w = rem - v * v
             if w > 0.0:
-                s += math.sqrt(w)
+                r = math.sqrt(w)
+                s += r
+                if pressure is not None:
+                    pressure[p, q] += p0 * r
     return s
+
+
+@nb.njit(cache=True)
+def _patch_sum(valid, i, j, a, b, dx, dy):
+    """Sum over valid grid points inside the ellipse of sqrt(1 - (x/a)^2 - (y/b)^2)."""
+    return _patch(valid, i, j, a, b, dx, dy, None, 0.0)
 
 
 @nb.njit(cache=True)
@@ -176,28 +195,10 @@ def paint_pressure(pressure, valid, si, sj, table, dx, dy, weight):
     ``table`` is the output of :func:`asperity_state`; overlapping patches add up, so the
     grid sum of the map times the cell area equals the sum of the asperity forces.
     """
-    nx, ny = pressure.shape
     for k in range(table.shape[0]):
         i = si[k]
         j = sj[k]
         a = table[k, 1]
         b = table[k, 2]
         p0 = 1.5 * table[k, 4] * weight
-        if a <= 0.0 or b <= 0.0:
-            if valid[i, j]:
-                pressure[i, j] += p0
-            continue
-        ka = math.floor(a / dx)
-        for p in range(max(0, i - ka), min(nx, i + ka + 1)):
-            u = (p - i) * dx / a
-            rem = 1.0 - u * u
-            if rem <= 0.0:
-                continue
-            kb = math.floor(b * math.sqrt(rem) / dy)
-            for q in range(max(0, j - kb), min(ny, j + kb + 1)):
-                if not valid[p, q]:
-                    continue
-                v = (q - j) * dy / b
-                w = rem - v * v
-                if w > 0.0:
-                    pressure[p, q] += p0 * math.sqrt(w)
+        _patch(valid, i, j, a, b, dx, dy, pressure, p0)
