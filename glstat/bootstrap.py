@@ -63,6 +63,7 @@ from .extremes import maximum as _maximum
 from .fitting import GLDFit, fit, fit_batch
 from .fitting import _stats as _S
 from .gld import GLD
+from .regions import rs_region
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -96,10 +97,14 @@ _TASK_SIZE = 8
 _JACKKNIFE_GROUPS = {"compiled": 1000, "data": 100}
 # the progress bar appears by default above this much work (values resampled x fits)
 _PROGRESS_WORK = {"compiled": 3e8, "data": 2e5}
+# a resample jumped to another root branch when its lambda3 or lambda4 lies farther from the
+# full-sample fit's than this many robust standard deviations (1.4826 MAD) of the resamples'
+_JUMP_SPREADS = 12.0
+_MAD_SCALE = 1.482602218505602
 
 
 class BootstrapWarning(RuntimeWarning):
-    """Some bootstrap resamples had no fit, or an interval could not be formed."""
+    """Some resamples had no fit, their lambdas lie on several branches, or no interval exists."""
 
 
 # ---------------------------------------------------------------------------------------------
@@ -284,6 +289,62 @@ def _covers_data(full: GLDFit) -> bool:
     return cov is None or bool(cov)
 
 
+def _branches(lam: np.ndarray, ref, param: str) -> tuple[np.ndarray, np.ndarray]:
+    """RS region and branch jump of every row of ``lam`` (shape (B, 4), NaN rows = failed).
+
+    Returns
+    -------
+    region : ndarray of int, shape (B,)
+        RS region (1-6) of (lambda3, lambda4); 0 for a failed row and for FKML.
+    jump : ndarray of bool, shape (B,)
+        True where lambda3 or lambda4 lies more than ``_JUMP_SPREADS`` robust standard
+        deviations (1.4826 times the median absolute deviation over the successful rows;
+        their standard deviation when that is 0) from ``ref``, the full-sample shapes.
+    """
+    B = lam.shape[0]
+    ok = np.all(np.isfinite(lam), axis=1)
+    region = np.zeros(B, dtype=np.int64)
+    if param == "rs" and ok.any():
+        region[ok] = rs_region(lam[ok, 2], lam[ok, 3])
+    jump = np.zeros(B, dtype=bool)
+    ref = np.asarray(ref, dtype=float)
+    if ok.sum() >= 2 and np.all(np.isfinite(ref)):
+        sh = lam[ok, 2:]
+        spread = _MAD_SCALE * np.median(np.abs(sh - np.median(sh, axis=0)), axis=0)
+        spread = np.where(spread > 0, spread, np.std(sh, axis=0))
+        dev = np.abs(sh - ref)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z = np.where(dev > 0, dev / spread, 0.0)
+        jump[ok] = np.max(z, axis=1) > _JUMP_SPREADS
+    return region, jump
+
+
+def _branch_note(region: np.ndarray, jump: np.ndarray, param: str, full_region) -> str:
+    """Why percentile intervals of the lambdas are not meaningful ("" when they are).
+
+    ``region`` and ``jump`` cover the successful resamples only.
+    """
+    parts = []
+    if param == "rs":
+        regs, counts = np.unique(region, return_counts=True)
+        if regs.size > 1:
+            per = ", ".join(f"region {r}: {c}" for r, c in zip(regs, counts, strict=True))
+            parts.append(f"the resample fits fall in {regs.size} RS regions ({per}; full-sample fit: "
+                         f"region {full_region})")
+    nj = int(np.sum(jump))
+    if nj:
+        parts.append(f"{nj} of {jump.size} resample fits jumped to another root branch (lambda3 or "
+                     f"lambda4 more than {_JUMP_SPREADS:g} robust standard deviations, 1.4826 MAD of the "
+                     "resamples, from the full-sample fit's)")
+    if not parts:
+        return ""
+    per_region = " (summary() also gives them per region)" if len(parts) > 1 or not nj else ""
+    return ("; ".join(parts) + ". Percentile intervals, standard errors and means of the lambdas mix "
+            f"different parameterisations of similar distributions and are not meaningful{per_region}; "
+            "intervals of quantiles, moments or probabilities, confidence_interval(statistic=...), do "
+            "not depend on the parameterisation")
+
+
 def _compiled_statistics(x, seeds, kind, lam, fam, method, u, loc, scale, bar):
     """Statistics (B, 4) and extremes (B, 2: min, max) of the resamples, compiled."""
     code = _R.CODES[method]
@@ -335,6 +396,9 @@ class BootstrapInterval:
         Nominal coverage.
     n_used : int
         Number of bootstrap values the interval rests on.
+    note : str
+        Why the interval is not meaningful, or "" (for the lambdas: resample fits in several
+        RS regions or on several root branches, see :attr:`BootstrapFit.branch_note`).
     """
 
     estimate: np.ndarray
@@ -345,14 +409,16 @@ class BootstrapInterval:
     method: str
     confidence_level: float
     n_used: int
+    note: str = ""
 
     def to_frame(self) -> pd.DataFrame:
-        """One row per quantity: estimate, low, high, standard_error."""
+        """One row per quantity: estimate, low, high, standard_error, note."""
         import pandas as pd
 
         return pd.DataFrame(
             {"estimate": np.ravel(self.estimate), "low": np.ravel(self.low),
-             "high": np.ravel(self.high), "standard_error": np.ravel(self.standard_error)},
+             "high": np.ravel(self.high), "standard_error": np.ravel(self.standard_error),
+             "note": self.note},
             index=pd.Index(self.names, name="quantity"),
         )
 
@@ -367,7 +433,13 @@ class BootstrapFit:
         Fit of the full sample (the point estimate).
     lambdas : pandas.DataFrame
         One row per resample (index ``resample``): ``lambda1..lambda4`` (NaN for a failed
-        resample) and ``n_roots``, the number of valid roots or candidates found.
+        resample); ``n_roots``, the number of valid roots or candidates found; ``region``,
+        the RS region (1-6) of the fit (0 for a failed resample and for FKML, which has no
+        regions); ``branch_jump``, True when the fit's lambda3 or lambda4 lies more than 12
+        robust standard deviations (1.4826 times the median absolute deviation of the
+        successful resamples' values) from the full-sample fit's: a root of another branch.
+        Resamples in several regions or on several branches make the percentile intervals
+        of the lambdas meaningless (see :attr:`branch_note`).
     statistics : pandas.DataFrame or None
         Per resample: the matched statistics (moments, rho or L-moments; not for the
         data-based methods), the resample's ``min`` and ``max`` and, for the compiled
@@ -451,12 +523,48 @@ class BootstrapFit:
         """
         return _batch(self._lam(), self.param)
 
+    def _regions(self) -> np.ndarray:
+        """RS region of every successful resample (0 for FKML)."""
+        lam = self.lambdas[list(_LAMBDA_NAMES)].to_numpy(dtype=float)
+        return self.lambdas["region"].to_numpy()[np.all(np.isfinite(lam), axis=1)]
+
+    @property
+    def branch_note(self) -> str:
+        """Why the percentile intervals of the lambdas are not meaningful; "" when they are.
+
+        Non-empty when the successful resample fits fall in more than one RS region (lambda2
+        changes sign and lambda3, lambda4 cross 0: e.g. near-logistic data, whose moment fits
+        have lambda3, lambda4 near 0) or when some jumped to another root branch
+        (``lambdas["branch_jump"]``). The distributions may then be nearly identical while
+        their lambdas are not comparable; intervals of quantiles, moments or probabilities
+        (:meth:`confidence_interval` with ``statistic``) are unaffected.
+        """
+        if "note" not in self._cache:
+            lam = self.lambdas[list(_LAMBDA_NAMES)].to_numpy(dtype=float)
+            ok = np.all(np.isfinite(lam), axis=1)
+            self._cache["note"] = _branch_note(self.lambdas["region"].to_numpy()[ok],
+                                               self.lambdas["branch_jump"].to_numpy()[ok],
+                                               self.param, self.fit.region)
+        return self._cache["note"]
+
     def standard_error(self) -> pd.Series:
-        """Bootstrap standard errors of lambda1..lambda4 (divisor B - 1, successful resamples)."""
+        """Bootstrap standard errors of lambda1..lambda4 (divisor B - 1, successful resamples).
+
+        Warns
+        -----
+        BootstrapWarning
+            When :attr:`branch_note` is not empty (the note is also in the Series'
+            ``attrs["note"]``); :meth:`summary` then gives the standard errors per region.
+        """
         import pandas as pd
 
-        return pd.Series(np.std(self._lam(), axis=0, ddof=1), index=list(_LAMBDA_NAMES),
-                         name="standard_error")
+        se = pd.Series(np.std(self._lam(), axis=0, ddof=1), index=list(_LAMBDA_NAMES),
+                       name="standard_error")
+        se.attrs["note"] = self.branch_note
+        if self.branch_note:
+            warnings.warn(f"standard errors of the lambdas: {self.branch_note}", BootstrapWarning,
+                          stacklevel=2)
+        return se
 
     # -- statistics of the resamples --------------------------------------------------------
     def _values(self, statistic, vectorized, lam) -> np.ndarray:
@@ -566,12 +674,24 @@ class BootstrapFit:
         ------
         ValueError
             Unknown method or confidence_level outside (0, 1).
+
+        Warns
+        -----
+        BootstrapWarning
+            For the lambdas (no ``statistic``) when :attr:`branch_note` is not empty: the
+            resample fits lie in several RS regions or on several root branches. The note is
+            also the interval's ``note``.
         """
+        note = self.branch_note if statistic is None else ""
+        if note:
+            warnings.warn(f"interval of the lambdas: {note}", BootstrapWarning, stacklevel=2)
+        return self._interval(method, confidence_level, statistic, vectorized, names, self._lam(), note)
+
+    def _interval(self, method, confidence_level, statistic, vectorized, names, lam, note):
         m = str(method).lower()
         if m not in CI_METHODS:
             raise ValueError(f"method must be 'percentile', 'basic' or 'BCa', got {method!r}")
         level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
-        lam = self._lam()
         if lam.shape[0] < 2:
             raise FitError(f"only {lam.shape[0]} of {self.n_resamples} resamples have a fit: no "
                            "bootstrap interval")
@@ -606,6 +726,7 @@ class BootstrapFit:
             estimate=est.reshape(shape), low=np.asarray(lo).reshape(shape),
             high=np.asarray(hi).reshape(shape), standard_error=se.reshape(shape), names=nm,
             method={"bca": "BCa"}.get(m, m), confidence_level=level, n_used=theta.shape[0],
+            note=note,
         )
 
     # -- maximum and damage -----------------------------------------------------------------
@@ -699,14 +820,50 @@ class BootstrapFit:
         return df
 
     def summary(self) -> pd.DataFrame:
-        """One row per lambda: full-sample estimate, bootstrap mean, standard error, interval."""
-        ci = self.confidence_interval("percentile").to_frame()
-        ci.insert(1, "bootstrap_mean", np.mean(self._lam(), axis=0))
-        ci["method"] = self.method
-        ci["kind"] = self.kind
-        ci["n_resamples"] = self.n_resamples
-        ci["n_failed"] = self.n_failed
-        return ci
+        """Full-sample estimate, bootstrap mean, standard error and percentile interval per lambda.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Index ``quantity``. Rows ``lambda1..lambda4`` over all successful resamples
+            (``region`` ``"all"``), with ``note`` = :attr:`branch_note`; when the resample
+            fits fall in several RS regions, four more rows per region holding at least two
+            of them, ``"lambda1 [region 4]"`` ..., over that region's resamples only
+            (``estimate`` is the full-sample value when the full-sample fit lies in that
+            region, NaN otherwise). Columns: ``estimate``, ``bootstrap_mean``, ``low``,
+            ``high``, ``standard_error``, ``note``, ``region``, ``n_used``, ``method``,
+            ``kind``, ``n_resamples``, ``n_failed``.
+        """
+        import pandas as pd
+
+        lam = self._lam()
+        note = self.branch_note
+        ci = self._interval("percentile", None, None, False, None, lam, note).to_frame()
+        ci.insert(1, "bootstrap_mean", np.mean(lam, axis=0))
+        ci["region"] = "all"
+        ci["n_used"] = lam.shape[0]
+        frames = [ci]
+        reg = self._regions()
+        if self.param == "rs" and np.unique(reg).size > 1:
+            for r in np.unique(reg):
+                sub = lam[reg == r]
+                if sub.shape[0] < 2:
+                    continue
+                part = self._interval("percentile", None, None, False, None, sub,
+                                      f"resample fits in RS region {r} only").to_frame()
+                if self.fit.region != r:
+                    part["estimate"] = np.nan
+                part.insert(1, "bootstrap_mean", np.mean(sub, axis=0))
+                part["region"] = int(r)
+                part["n_used"] = sub.shape[0]
+                part.index = pd.Index([f"{q} [region {r}]" for q in _LAMBDA_NAMES], name="quantity")
+                frames.append(part)
+        out = pd.concat(frames) if len(frames) > 1 else ci
+        out["method"] = self.method
+        out["kind"] = self.kind
+        out["n_resamples"] = self.n_resamples
+        out["n_failed"] = self.n_failed
+        return out
 
     def __repr__(self) -> str:
         return (f"BootstrapFit(method={self.method!r}, param={self.param!r}, kind={self.kind!r}, "
@@ -1189,6 +1346,9 @@ def _result(full, lam, nroots, stats_df, reasons, B, level, kind, method, param,
 
     frame = pd.DataFrame(lam, columns=list(_LAMBDA_NAMES))
     frame["n_roots"] = nroots
+    region, jump = _branches(lam, full.lambdas[2:], param)
+    frame["region"] = region
+    frame["branch_jump"] = jump
     frame.index.name = "resample"
     bad = [r for r in range(B) if not np.all(np.isfinite(lam[r]))]
     detail = [reasons[r] or "no fit: invalid lambdas" for r in bad]
@@ -1205,6 +1365,10 @@ def _result(full, lam, nroots, stats_df, reasons, B, level, kind, method, param,
         warnings.warn(f"{loud}bootstrap fits failed: {len(bad)} of {B} resamples have no {method} fit "
                       f"(listed in .failed; intervals use the other {B - len(bad)}). Reasons: {why}",
                       BootstrapWarning, stacklevel=3)
+    ok = np.all(np.isfinite(lam), axis=1)
+    note = _branch_note(region[ok], jump[ok], param, full.region)
+    if warn and note:
+        warnings.warn(f"bootstrap lambdas on several branches: {note}", BootstrapWarning, stacklevel=3)
     return BootstrapFit(fit=full, lambdas=frame, statistics=stats_df, failed=failed, n_resamples=B,
                         confidence_level=level, kind=kind, method=method, param=param,
                         options=dict(full.options) if full.options else dict(options), _data=x,

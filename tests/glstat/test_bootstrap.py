@@ -12,6 +12,7 @@ import math
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
+import pandas as pd
 import pytest
 import scipy.stats
 from scipy import stats
@@ -121,11 +122,12 @@ def test_same_rng_same_result(sample, method, kind):
     b = glstat.bootstrap(sample, method=method, kind=kind, n_resamples=50,
                          rng=np.random.default_rng(1))
     c = glstat.bootstrap(sample, method=method, kind=kind, n_resamples=50, rng=2)
-    np.testing.assert_array_equal(a.lambdas.to_numpy(), b.lambdas.to_numpy())
-    assert not np.array_equal(a.lambdas.to_numpy(), c.lambdas.to_numpy())
-    assert a.n_failed == b.n_failed and a.lambdas.shape == (50, 5)
+    pd.testing.assert_frame_equal(a.lambdas, b.lambdas)
+    assert not a.lambdas.equals(c.lambdas)
+    assert a.n_failed == b.n_failed and a.lambdas.shape == (50, 7)
     assert set(a.failed.reason) <= {"no root whose support covers the resample"}
-    assert list(a.lambdas.columns) == ["lambda1", "lambda2", "lambda3", "lambda4", "n_roots"]
+    assert list(a.lambdas.columns) == ["lambda1", "lambda2", "lambda3", "lambda4", "n_roots", "region",
+                                       "branch_jump"]
 
 
 def test_executor_does_not_change_results():
@@ -133,7 +135,7 @@ def test_executor_does_not_change_results():
     serial = glstat.bootstrap(x, method="starship", n_resamples=10, rng=9)
     with ThreadPoolExecutor(max_workers=2) as ex:
         pooled = glstat.bootstrap(x, method="starship", n_resamples=10, rng=9, executor=ex)
-    np.testing.assert_array_equal(serial.lambdas.to_numpy(), pooled.lambdas.to_numpy())
+    pd.testing.assert_frame_equal(serial.lambdas, pooled.lambdas)
     assert list(serial.statistics.columns) == ["min", "max"]
     assert serial.n_successful + serial.n_failed == 10
 
@@ -227,8 +229,8 @@ def test_lambda_intervals_and_tables(sample):
     assert np.all(wide.low <= ci.low) and np.all(wide.high >= ci.high)
     bca = bf.confidence_interval("BCa")
     assert np.all(bca.low < bca.high)
-    # to_frame: lambdas, n_roots, the four statistics, min, max, covers
-    assert bf.summary().shape[0] == 4 and bf.to_frame().shape == (100, 12)
+    # to_frame: lambdas, n_roots, region, branch_jump, the four statistics, min, max, covers
+    assert bf.summary().shape[0] == 4 and bf.to_frame().shape == (100, 14)
     assert len(bf.__glstat_distributions__()) == 100
 
 
