@@ -29,7 +29,7 @@ for method in ("percentile", "basic", "BCa"):
 
 # step 6: maximum of n draws for every bootstrap GLD
 bm = bf.maximum(n)
-lo, hi = bm.interval
+lo, hi = bm.interval()
 mlo, mhi = bm.mixture_interval()
 print(f"maximal pressure: mean of one draw per bootstrap GLD {bm.mean:.0f} MPa, 90 % interval "
       f"[{lo:.0f}, {hi:.0f}]; pooled mixture [{mlo:.0f}, {mhi:.0f}]; observed max "

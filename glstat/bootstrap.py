@@ -1062,7 +1062,7 @@ class BootstrapMaximum:
     means : ndarray, shape (B_ok,)
         Mean of each bootstrap GLD's maximum (NaN where it does not exist).
     confidence_level : float
-        Coverage of :attr:`interval`, :attr:`median_interval` and :meth:`mixture_interval`.
+        Default coverage of :meth:`interval`, :meth:`median_interval` and :meth:`mixture_interval`.
     mixture : MaximumMixture
         The pooled distribution (1/B) sum_b F_b(x)^n: the density of the maximal value
         combining parameter uncertainty and the randomness of the maximum itself.
@@ -1085,23 +1085,42 @@ class BootstrapMaximum:
         """Mean of the per-GLD draws (units of the data)."""
         return float(np.mean(self.draws))
 
-    @property
-    def interval(self) -> tuple[float, float]:
-        """Equal-tailed interval of the per-GLD draws at :attr:`confidence_level`."""
-        a = 1.0 - self.confidence_level
+    def _level(self, confidence_level):
+        return self.confidence_level if confidence_level is None else _check_level(confidence_level)
+
+    def interval(self, confidence_level: float | None = None) -> tuple[float, float]:
+        """Equal-tailed interval of the per-GLD draws (units of the data).
+
+        Parameters
+        ----------
+        confidence_level : float, optional
+            Coverage of the interval; default :attr:`confidence_level`.
+        """
+        a = 1.0 - self._level(confidence_level)
         lo, hi = np.quantile(self.draws, [a / 2, 1 - a / 2])
         return float(lo), float(hi)
 
-    @property
-    def median_interval(self) -> tuple[float, float]:
-        """Percentile interval of the per-GLD medians: the parameter uncertainty of the median."""
-        a = 1.0 - self.confidence_level
+    def median_interval(self, confidence_level: float | None = None) -> tuple[float, float]:
+        """Percentile interval of the per-GLD medians: the parameter uncertainty of the median.
+
+        Parameters
+        ----------
+        confidence_level : float, optional
+            Coverage of the interval; default :attr:`confidence_level`.
+        """
+        a = 1.0 - self._level(confidence_level)
         lo, hi = np.quantile(self.medians, [a / 2, 1 - a / 2])
         return float(lo), float(hi)
 
-    def mixture_interval(self) -> tuple[float, float]:
-        """Equal-tailed interval of :attr:`mixture` (the limit of :attr:`interval` for many draws)."""
-        a = 1.0 - self.confidence_level
+    def mixture_interval(self, confidence_level: float | None = None) -> tuple[float, float]:
+        """Equal-tailed interval of :attr:`mixture` (the limit of :meth:`interval` for many draws).
+
+        Parameters
+        ----------
+        confidence_level : float, optional
+            Coverage of the interval; default :attr:`confidence_level`.
+        """
+        a = 1.0 - self._level(confidence_level)
         return float(self.mixture.ppf(a / 2)), float(self.mixture.isf(a / 2))
 
     def components(self) -> list[MaximumDistribution]:
@@ -1118,9 +1137,9 @@ class BootstrapMaximum:
         """Mean and interval of the draws, the mixture and the medians (one row each)."""
         import pandas as pd
 
-        lo, hi = self.interval
+        lo, hi = self.interval()
         mlo, mhi = self.mixture_interval()
-        dlo, dhi = self.median_interval
+        dlo, dhi = self.median_interval()
         return pd.DataFrame(
             [{"quantity": "draws", "center": self.mean, "low": lo, "high": hi},
              {"quantity": "mixture", "center": float(self.mixture.median()), "low": mlo, "high": mhi},

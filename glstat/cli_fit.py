@@ -528,7 +528,7 @@ def _maximum(res: FitResults, n_max: float, level: float) -> dict[str, Any]:
                            "dist": full}
     if res.boot is not None:
         bm = res.boot.maximum(n_max, level)
-        lo, hi = bm.interval
+        lo, hi = bm.interval()
         mlo, mhi = bm.mixture_interval()
         out.update(mean=bm.mean, low=lo, high=hi, mixture_low=mlo, mixture_high=mhi,
                    table=bm.summary(), dist=bm.mixture)

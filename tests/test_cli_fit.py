@@ -126,7 +126,7 @@ def test_csv_full_run_tables_files_and_damage(tmp_path, capsys):
     assert doc["damage"]["estimate"] == pytest.approx(list(want.estimate), rel=1e-12)
     assert doc["damage"]["low"] == pytest.approx(list(want.low), rel=1e-12, abs=1e-300)
     assert doc["gof"]["ks"] == pytest.approx(float(gof["ks"].iloc[0]), rel=1e-12)
-    assert doc["maximum"]["low"] == pytest.approx(bm.interval[0], rel=1e-12)
+    assert doc["maximum"]["low"] == pytest.approx(bm.interval()[0], rel=1e-12)
     summary = pd.read_csv(out_dir / "summary.csv")
     assert list(summary["quantity"][:4]) == ["lambda1", "lambda2", "lambda3", "lambda4"]
     np.testing.assert_array_equal(summary["estimate"][:4], ref.lambdas)

@@ -36,7 +36,7 @@ def test_per_resample_values_equal_glstat_maximum(bf, bm):
     np.testing.assert_allclose(bm.draws, [c.ppf(vi) for c, vi in zip(comps, v, strict=True)],
                                rtol=1e-13)
     assert bm.mean == pytest.approx(bm.draws.mean())
-    lo, hi = bm.interval
+    lo, hi = bm.interval()
     assert (lo, hi) == pytest.approx(tuple(np.quantile(bm.draws, [0.05, 0.95])))
     assert bm.full.n == 1e6 and bm.to_frame().shape == (len(comps), 3)
     assert list(bm.summary()["quantity"]) == ["draws", "mixture", "medians", "full_fit"]

@@ -1,8 +1,8 @@
-"""Coverage of ``BootstrapFit.maximum(n).interval`` against simulated maxima.
+"""Coverage of ``BootstrapFit.maximum(n).interval()`` against simulated maxima.
 
 What is covered: a future maximum. Each trial draws a sample of n_data = 500 points from the
 true RS GLD (10.7621, 0.014452, 0.0251988, 0.093884) (the published moment fit of Gamma(5,
-scale 3)), bootstraps B = 200 moment fits, and takes ``bf.maximum(1000).interval``: the
+scale 3)), bootstraps B = 200 moment fits, and takes ``bf.maximum(1000).interval()``: the
 equal-tailed 90 % interval of one random maximum of 1000 draws per bootstrap GLD. That interval
 is a prediction interval: it mixes the parameter uncertainty (the spread of the bootstrap GLDs)
 with the maximum's own randomness (one draw from each GLD's maximum). The trial then draws
@@ -54,9 +54,9 @@ def outcomes():
             bf = glstat.bootstrap(x, n_resamples=B, confidence_level=LEVEL, rng=rng)
             bm = bf.maximum(N_MAX, rng=rng)
             fresh = float(np.max(TRUE.ppf(rng.random(N_MAX))))
-            lo, hi = bm.interval
+            lo, hi = bm.interval()
             hits += lo <= fresh <= hi
-            mlo, mhi = bm.median_interval
+            mlo, mhi = bm.median_interval()
             median_hits += mlo <= fresh <= mhi
     return hits / TRIALS, median_hits / TRIALS
 
