@@ -23,8 +23,15 @@ Moments integrate the order statistic's own quantile function over its uniform v
 and of unit width in ``z`` whatever n is (the concentration of ``Q(v^(1/n))`` near ``v = 1``
 lives inside ``Q_X``, which is evaluated with the tail-accurate formulas above), so the
 trapezoidal rule on ``z in [-700, 700]`` with step 1/4 converges geometrically and gives
-double-precision moments for n = 1 as for n = 1e12. A moment is NaN when it does not exist,
-or when the tails are too heavy for the truncation at ``|z| = 700`` (tail index above ~0.95).
+double-precision moments for n = 1 as for n = 1e12. Nodes where the parent's quantile is not
+finite or not monotone (scipy's ``t`` returns ``+inf`` for ``ppf(1e-300)``) are dropped by
+shrinking the range outwards from the median; the result stands only if the terms at the
+ends of the range that is kept are below 1e-15 of the total. A moment is NaN when it does
+not exist, or when the tails are too heavy for the truncation (tail index above ~0.95 at
+``|z| = 700``). The order statistics' quantiles invert the regularized incomplete beta with
+``betaincinv`` and, in the deep tail where it returns NaN (p below ~1e-100 for small
+parameters), with the leading term ``I_x(a, b) ~ x^a / (a B(a, b))`` refined by Newton's
+method in ``log x``.
 """
 
 from __future__ import annotations
@@ -210,7 +217,7 @@ def _flat(method):
     return wrapper
 
 
-def _check_n(n, name="n") -> float:
+def _check_n(n, name="n", what="a number of draws") -> float:
     if isinstance(n, (bool, np.bool_)) or not isinstance(n, (numbers.Real, np.ndarray)):
         raise TypeError(f"{name} must be a real number, got {type(n).__name__}")
     arr = np.asarray(n, dtype=float)
@@ -220,7 +227,7 @@ def _check_n(n, name="n") -> float:
     if not math.isfinite(value):
         raise ValueError(f"{name} must be finite, got {value}")
     if value < 1:
-        raise ValueError(f"{name} must be >= 1 (a number of draws), got {value}")
+        raise ValueError(f"{name} must be >= 1 ({what}), got {value}")
     return value
 
 
@@ -228,11 +235,108 @@ def _scalar_out(out):
     return out[()] if out.ndim == 0 else out
 
 
+def _log_betainc_small(a, b, x):
+    """log I_x(a, b) for small x, from ``x^a (1-x)^b 2F1(a+b, 1; a+1; x) / (a B(a, b))``.
+
+    The hypergeometric factor is summed as its power series ``sum_j c_j x^j`` with
+    ``c_(j+1) / c_j = (a+b+j) / (a+1+j)``; where that series converges slowly
+    (``x (a+b) / (a+1) > 1/2``) the log of ``scipy.special.betainc`` is used instead.
+    """
+    x = np.asarray(x, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+        term = np.ones_like(x)
+        series = np.ones_like(x)
+        for j in range(60):
+            term = term * x * ((a + b + j) / (a + 1.0 + j))
+            series = series + term
+        out = (
+            a * np.log(x) + b * np.log1p(-x) - math.log(a) - special.betaln(a, b)
+            + np.log(series)
+        )
+        slow = x * (a + b) / (a + 1.0) > 0.5
+        if slow.any():
+            out[slow] = np.log(special.betainc(a, b, x[slow]))
+    return out
+
+
+def _betaincinv_tail(a, b, logp):
+    """x with ``I_x(a, b) = exp(logp)`` in the deep lower tail (``exp(logp)`` tiny).
+
+    Starts from the leading term ``I_x ~ x^a / (a B(a, b))``, i.e.
+    ``x0 = exp((log p + log a + B(a, b)) / a)`` with ``B = betaln``, and refines it by Newton's
+    method on ``log I_x(a, b) - log p`` in ``y = log x``, whose derivative is
+    ``x f(x) / I_x = x^a (1-x)^(b-1) / (B(a, b) I_x)``.
+    """
+    logp = np.asarray(logp, dtype=float)
+    lbeta = special.betaln(a, b)
+    y0 = np.minimum((logp + math.log(a) + lbeta) / a, 0.0)
+    y = y0
+    with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
+        for _ in range(8):
+            x = np.exp(y)
+            logi = _log_betainc_small(a, b, x)
+            slope = np.exp(a * y + (b - 1.0) * np.log1p(-x) - lbeta - logi)
+            step = (logi - logp) / slope
+            y = np.minimum(y - step, 0.0)
+        # where x underflows (or Newton has nothing to work on) the leading term stands
+        y = np.where(np.isfinite(y), y, y0)
+        return np.exp(y)
+
+
+def _betaincinv(a, b, p, logp):
+    """x with ``I_x(a, b) = p`` (``logp = log p``), finite down to the smallest p.
+
+    ``scipy.special.betaincinv`` returns NaN (or 0) below p ~ 1e-100 for some (a, b); there
+    the deep-tail inverse :func:`_betaincinv_tail` is used.
+    """
+    p, logp = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(logp, dtype=float))
+    with np.errstate(invalid="ignore"):
+        x = np.asarray(special.betaincinv(a, b, p), dtype=float)
+    bad = (p > 0) & (p < 1e-20) & (~np.isfinite(x) | (x <= 0))
+    bad |= np.isnan(x) & ~np.isnan(p) & (p > 0) & (p <= 0.5)
+    if bad.any():
+        x = np.array(x, copy=True)
+        x[bad] = _betaincinv_tail(a, b, logp[bad])
+    return x
+
+
+def _betainccinv(a, b, q, logq):
+    """x with ``1 - I_x(a, b) = q`` (``logq = log q``), finite down to the smallest q."""
+    q, logq = np.broadcast_arrays(np.asarray(q, dtype=float), np.asarray(logq, dtype=float))
+    with np.errstate(invalid="ignore"):
+        x = np.asarray(special.betainccinv(a, b, q), dtype=float)
+    bad = (q > 0) & (q <= 0.5) & (~np.isfinite(x) | (x >= 1))
+    if bad.any():
+        x = np.array(x, copy=True)
+        x[bad] = 1.0 - _betaincinv(b, a, q[bad], logq[bad])
+    return x
+
+
 def _log1mexp(y):
     """log(1 - exp(y)) for y <= 0, accurate for all y."""
     y = np.asarray(y, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(y > -_LN2, np.log(-np.expm1(y)), np.log1p(-np.exp(y)))
+
+
+def _valid_range(g):
+    """Largest index range ``[lo, hi)`` around the middle node where g is usable.
+
+    g holds quantiles at increasing probabilities; the range grows outwards from the middle
+    while the values are finite and non-decreasing up to a relative 1e-10.
+    """
+    mid = g.size // 2
+    if not np.isfinite(g[mid]):
+        return mid, mid
+    with np.errstate(invalid="ignore", over="ignore"):
+        tol = 1e-10 * np.maximum(np.abs(g[1:]), np.abs(g[:-1]))
+        step_ok = np.isfinite(g[1:]) & np.isfinite(g[:-1]) & (g[1:] >= g[:-1] - tol)
+    # step_ok[i] refers to the pair (i, i + 1)
+    up = np.flatnonzero(~step_ok[mid:])
+    hi = g.size if up.size == 0 else mid + int(up[0]) + 1
+    down = np.flatnonzero(~step_ok[:mid])
+    lo = 0 if down.size == 0 else int(down[-1]) + 1
+    return lo, hi
 
 
 # ------------------------------------------------------------------------------------------
@@ -290,24 +394,46 @@ class _ExtremeGen(rv_continuous):
 
     # moments by quadrature over the order statistic's own uniform variable ------------------
     def _quad_values(self):
+        """Quantiles at the quadrature nodes and the range ``[lo, hi)`` where they are valid.
+
+        Parents evaluated at tail probabilities near ``exp(-700)`` may return values that
+        are infinite, NaN, of the wrong sign or saturated (scipy's ``t.ppf(1e-300)`` is
+        ``+inf``). Starting from the median node, the range extends outwards while the
+        quantiles are finite and non-decreasing (to a relative 1e-10, which allows rounding
+        noise), so every node outside it is dropped. Whether the dropped tails matter is
+        decided by :meth:`_quad_expect`.
+        """
         if self._moment_cache is None:
-            g = self._quantile_vq(
-                np.exp(_QUAD_LOGV), np.exp(_QUAD_LOG1MV), _QUAD_LOGV, _QUAD_LOG1MV
+            g = np.asarray(
+                self._quantile_vq(
+                    np.exp(_QUAD_LOGV), np.exp(_QUAD_LOG1MV), _QUAD_LOGV, _QUAD_LOG1MV
+                ),
+                dtype=float,
             )
-            self._moment_cache = g
+            self._moment_cache = (g, *_valid_range(g))
         return self._moment_cache
 
     def _quad_expect(self, h):
-        g = self._quad_values()
+        """``E[h(X)]`` by the trapezoidal rule in ``z = logit(v)``; NaN if it does not exist.
+
+        The sum runs over the valid nodes (:meth:`_quad_values`). It is accepted only when
+        the terms at both ends of that range are below 1e-15 of the sum of magnitudes, so
+        that the neglected tails (whose weight falls geometrically beyond the ends) do not
+        change the result: a moment that does not exist has terms that do not decay, and
+        gives NaN.
+        """
+        g, lo, hi = self._quad_values()
+        if hi - lo < 32:
+            return np.nan
         with np.errstate(over="ignore", invalid="ignore"):
-            terms = h(g) * _QUAD_W
+            terms = h(g[lo:hi]) * _QUAD_W[lo:hi]
         if not np.all(np.isfinite(terms)):
             return np.nan
         total = math.fsum(terms)
         scale = math.fsum(np.abs(terms))
         ends = max(abs(terms[:8]).max(), abs(terms[-8:]).max())
         if ends > 1e-15 * scale:
-            return np.nan  # the moment does not exist or its tail reaches |z| = 700
+            return np.nan  # the moment does not exist, or its tail reaches past the range
         return total
 
     def _stats(self):
@@ -561,11 +687,19 @@ class _OrderStatisticGen(_ExtremeGen):
 
     def _quantile_vq(self, v, q, logv, logq):
         k, m = self._km()
-        v, q = np.broadcast_arrays(np.asarray(v, float), np.asarray(q, float))
-        with np.errstate(invalid="ignore"):
-            # u = F at the quantile, s = 1 - u; each from the better-conditioned inverse
-            u = np.where(v <= 0.5, special.betaincinv(k, m, v), special.betainccinv(k, m, q))
-            s = np.where(q <= 0.5, special.betaincinv(m, k, q), special.betainccinv(m, k, v))
+        v, q, logv, logq = np.broadcast_arrays(
+            np.asarray(v, float), np.asarray(q, float), np.asarray(logv, float),
+            np.asarray(logq, float),
+        )
+        # u = F at the quantile, s = 1 - u; each from the better-conditioned inverse
+        u = np.full(v.shape, np.nan)
+        s = np.full(v.shape, np.nan)
+        low = v <= 0.5
+        u[low] = _betaincinv(k, m, v[low], logv[low])
+        u[~low] = _betainccinv(k, m, q[~low], logq[~low])
+        high = q <= 0.5
+        s[high] = _betaincinv(m, k, q[high], logq[high])
+        s[~high] = _betainccinv(m, k, v[~high], logv[~high])
         return self._parent.quantile(u, s)
 
 
@@ -586,8 +720,8 @@ class OrderStatisticDistribution(_ExtremeFrozen):
         return f"order_statistic({self.parent!r}, k={self.k}, n={self.n})"
 
 
-def _check_integer(value, name) -> float:
-    v = _check_n(value, name)
+def _check_integer(value, name, what) -> float:
+    v = _check_n(value, name, what)
     if v != math.floor(v):
         raise ValueError(f"{name} must be a whole number, got {v}")
     return v
@@ -622,8 +756,8 @@ def order_statistic(dist, k: int, n: int) -> OrderStatisticDistribution:
         ``dist`` is not a continuous distribution.
     """
     parent = _Parent(dist)
-    n = _check_integer(n, "n")
-    k = _check_integer(k, "k")
+    n = _check_integer(n, "n", "a number of draws")
+    k = _check_integer(k, "k", "a rank, 1 for the minimum")
     if k > n:
         raise ValueError(f"k must be between 1 and n = {n:g}, got k = {k:g}")
     return OrderStatisticDistribution(_OrderStatisticGen(parent, (k, n), name="order_statistic"))

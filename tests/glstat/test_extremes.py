@@ -342,3 +342,105 @@ def test_public_names():
     assert glstat.maximum is maximum and glstat.order_statistic is order_statistic
     assert isinstance(maximum(st.norm(), 3), glstat.MaximumDistribution)
     assert isinstance(order_statistic(st.norm(), 2, 3), glstat.OrderStatisticDistribution)
+
+
+# ------------------------------------------------------------------------------------------
+# deep-tail inverse of the incomplete beta; moments with parents that fail in the far tails
+# ------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("a, b", [(3.0, 3.0), (2.0, 4.0), (4.0, 2.0), (3.0, 1e6), (2.0, 1e9)])
+@pytest.mark.parametrize("p", [1e-90, 1e-160, 1e-250, 1e-300])
+def test_betaincinv_deep_tail_vs_mpmath(a, b, p):
+    from glstat.extremes import _betainccinv, _betaincinv
+
+    x = float(_betaincinv(a, b, np.array([p]), np.array([math.log(p)]))[0])
+    assert 0 < x < 1
+    with mp.workdps(40):
+        back = mp.betainc(a, b, 0, mp.mpf(x), regularized=True)
+    assert float(back / p - 1) == pytest.approx(0, abs=1e-9)
+    # the complementary inverse: 1 - I_y(b, a) = p at y = 1 - x
+    y = float(_betainccinv(b, a, np.array([p]), np.array([math.log(p)]))[0])
+    assert 1 - y == pytest.approx(x, rel=1e-9) or (y == 1.0 and x < 1e-16)
+
+
+def _normal_order_moments_mp(k, n):
+    """Mean and variance of the k-th of n standard normals by mpmath quadrature."""
+    with mp.workdps(30):
+        c = mp.factorial(n) / (mp.factorial(k - 1) * mp.factorial(n - k))
+
+        def dens(x):
+            return c * mp.ncdf(x) ** (k - 1) * mp.ncdf(-x) ** (n - k) * mp.npdf(x)
+
+        mean = mp.quad(lambda x: x * dens(x), [-mp.inf, 0, mp.inf])
+        var = mp.quad(lambda x: (x - mean) ** 2 * dens(x), [-mp.inf, 0, mp.inf])
+        return float(mean), float(var)
+
+
+@pytest.mark.parametrize("k", [1, 2, 3, 4, 5])
+def test_order_statistic_normal_moments_every_rank(k):
+    o = order_statistic(st.norm(), k, 5)
+    mean, var = _normal_order_moments_mp(k, 5)
+    assert o.mean() == pytest.approx(mean, rel=1e-12, abs=1e-14)
+    assert o.var() == pytest.approx(var, rel=1e-11)
+
+
+def test_order_statistic_normal_published_values():
+    # expected normal order statistics for n = 5 (Teichroew 1956; Harter 1961):
+    # 1.16296, 0.49502, 0 for ranks 5, 4, 3
+    assert order_statistic(st.norm(), 3, 5).mean() == pytest.approx(0.0, abs=1e-14)
+    assert order_statistic(st.norm(), 2, 5).mean() == pytest.approx(-0.49502, abs=5e-6)
+    assert order_statistic(st.norm(), 4, 5).mean() == pytest.approx(0.49502, abs=5e-6)
+    assert order_statistic(st.norm(), 5, 5).mean() == pytest.approx(1.16296, abs=5e-6)
+
+
+@pytest.mark.parametrize("v", [1e-120, 1e-200, 1e-300])
+def test_order_statistic_interior_rank_quantile_deep_tails(v):
+    o = order_statistic(st.norm(), 3, 5)
+    lo, hi = float(o.ppf(v)), float(o.isf(v))
+    assert np.isfinite(lo) and lo == pytest.approx(-hi, rel=1e-12)
+    with mp.workdps(40):
+        back = mp.betainc(3, 3, 0, mp.ncdf(lo), regularized=True)
+    assert float(back / v - 1) == pytest.approx(0, abs=1e-9)
+
+
+def _t_max_mean_mp(nu, n):
+    """Mean of the maximum of n Student t(nu) draws, ``int x n F^(n-1) f dx`` in mpmath."""
+    with mp.workdps(30):
+        nu_ = mp.mpf(nu)
+        const = mp.gamma((nu_ + 1) / 2) / (mp.sqrt(nu_ * mp.pi) * mp.gamma(nu_ / 2))
+
+        def pdf(x):
+            return const * (1 + x**2 / nu_) ** (-(nu_ + 1) / 2)
+
+        def cdf(x):
+            half = mp.betainc(nu_ / 2, mp.mpf(1) / 2, 0, nu_ / (x**2 + nu_), regularized=True) / 2
+            return 1 - half if x > 0 else half
+
+        pts = [-mp.inf, -10, 0, 10, mp.inf]
+        return float(mp.quad(lambda x: x * n * cdf(x) ** (n - 1) * pdf(x), pts))
+
+
+@pytest.mark.parametrize("nu, n", [(10.0, 2), (1.5, 10)])
+def test_maximum_mean_scipy_t_parent_vs_mpmath(nu, n):
+    # scipy's t is wrong near tail probability 1e-300 (t(10).ppf(1e-300) = +inf); those nodes
+    # are dropped and the mean, which exists (tail index 1/nu < 1), is still accurate
+    assert maximum(st.t(nu), n).mean() == pytest.approx(_t_max_mean_mp(nu, n), rel=1e-12)
+
+
+def test_maximum_scipy_t_moments_exist_or_nan():
+    m = maximum(st.t(3), 1)
+    assert m.mean() == pytest.approx(0.0, abs=1e-14)
+    assert m.var() == pytest.approx(3.0, rel=1e-12)  # nu / (nu - 2)
+    assert math.isnan(float(m.stats("s")))  # the third moment of t(3) does not exist
+    m = maximum(st.t(1.5), 10)
+    assert np.isfinite(m.mean())
+    assert math.isnan(m.var())  # the second moment of t(1.5) does not exist
+    assert math.isnan(maximum(st.t(1.0), 4).mean())
+    assert maximum(st.t(10), 2).var() > 0
+
+
+def test_order_statistic_rank_error_names_a_rank():
+    with pytest.raises(ValueError, match="k must be >= 1") as info:
+        order_statistic(st.norm(), 0, 5)
+    assert "rank" in str(info.value) and "draws" not in str(info.value)
+    with pytest.raises(ValueError, match="a number of draws"):
+        order_statistic(st.norm(), 1, 0)
