@@ -8,6 +8,7 @@ docstrings and is checked by tests/test_docs_api.py.
 
 import re
 import sys
+import warnings
 from pathlib import Path
 
 import pytest
@@ -51,7 +52,23 @@ def test_snippet_runs(block, tmp_path, monkeypatch):
     monkeypatch.setenv("MPLBACKEND", "Agg")
     compiled = compile(code, f"{path.relative_to(ROOT)}:{line}", "exec")
     try:
-        exec(compiled, {"__name__": "__main__"})
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            exec(compiled, {"__name__": "__main__"})
     finally:
         if "matplotlib.pyplot" in sys.modules:
             sys.modules["matplotlib.pyplot"].close("all")
+    # a warning the snippet gives must be explained on its page, not left for the reader to find
+    text = path.read_text(encoding="utf-8")
+    undocumented = sorted({w.category.__name__ for w in caught} - _words(text))
+    assert not undocumented, f"warnings not mentioned in {path.name}: {undocumented}"
+    if path.name == "README.md" and "glstat.bootstrap(" in code:
+        # the tour's text describes exactly two BootstrapWarnings (failed resamples, branch jumps)
+        messages = [str(w.message) for w in caught if w.category.__name__ == "BootstrapWarning"]
+        assert len(messages) == 2, messages
+        assert any("have no moments fit" in m for m in messages), messages
+        assert any("jumped to another root branch" in m for m in messages), messages
+
+
+def _words(text):
+    return set(re.findall(r"\w+", text))
