@@ -605,7 +605,7 @@ class BootstrapFit:
         if compiled:
             st = np.empty((groups, 4))
             ext = np.empty((groups, 2))
-            mean, std = float(np.mean(x)), float(np.std(x))
+            mean, std = _S.location_spread(x)
             _R.stats_delete_groups(_R.CODES[self.method], x, group, groups,
                                    float(self.options.get("u", 0.1)), mean, std, st, ext)
             ok = np.array([r == "" for r in _stat_failures(self.method, st)])
@@ -1294,7 +1294,7 @@ def bootstrap(
     try:
         if compiled:
             u = float(full.options.get("u", 0.1))
-            mean, std = float(np.mean(x)), float(np.std(x))
+            mean, std = _S.location_spread(x)
             st, ext = _compiled_statistics(x, seeds, kind, full.lambdas, fam, method, u, mean, std,
                                            bar)
             reasons = _stat_failures(method, st)

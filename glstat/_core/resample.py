@@ -33,7 +33,7 @@ LMOMENTS = 2
 CODES = {"moments": MOMENTS, "percentiles": PERCENTILES, "lmoments": LMOMENTS}
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _finish_moments(s1, s2, s3, s4, m, loc, scale, out):
     """Moments from the power sums of ``(x - loc) / scale`` over m values."""
     a = s1 / m
@@ -55,7 +55,7 @@ def _finish_moments(s1, s2, s3, s4, m, loc, scale, out):
         out[3] = math.nan
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _moments(x, c, m, loc, scale, out):
     s1 = 0.0
     s2 = 0.0
@@ -73,7 +73,7 @@ def _moments(x, c, m, loc, scale, out):
     _finish_moments(s1, s2, s3, s4, m, loc, scale, out)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _lerp(a, b, t):
     # numpy.quantile's interpolation (numpy/lib/_function_base_impl.py, _lerp)
     d = b - a
@@ -82,7 +82,7 @@ def _lerp(a, b, t):
     return a + d * t
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _percentiles(x, c, m, u, out):
     probs = np.array([u, 0.25, 0.5, 0.75, 1.0 - u])
     ranks = np.empty(10, dtype=np.int64)
@@ -131,7 +131,7 @@ def _percentiles(x, c, m, u, out):
         out[3] = math.nan
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _lmoments(x, c, m, out):
     b0 = 0.0
     b1 = 0.0
@@ -177,7 +177,7 @@ def _lmoments(x, c, m, out):
         out[3] = math.nan
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _extremes(x, c, ext):
     """Smallest and largest value of the resample with multiplicities ``c`` of sorted ``x``."""
     ext[0] = math.nan
@@ -192,7 +192,7 @@ def _extremes(x, c, ext):
             break
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _row(kind, x, c, m, u, loc, scale, out, ext):
     _extremes(x, c, ext)
     if kind == MOMENTS:
@@ -203,7 +203,7 @@ def _row(kind, x, c, m, u, loc, scale, out, ext):
         _lmoments(x, c, m, out)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def stats_from_indices(kind, x, idx, u, loc, scale, out, ext):
     """Statistics of the resamples ``x[idx[r]]`` of the sorted sample ``x``.
 
@@ -218,8 +218,10 @@ def stats_from_indices(kind, x, idx, u, loc, scale, out, ext):
     u : float
         Percentile probability (PERCENTILES only).
     loc, scale : float
-        Centre and spread of ``x`` (e.g. its mean and standard deviation, scale > 0): the
-        moments are accumulated as power sums of ``(x - loc) / scale`` (MOMENTS only).
+        Centre and spread of ``x`` (its mean and largest absolute deviation from it, scale >
+        0, as from ``glstat.fitting._stats.location_spread``): the moments are accumulated as
+        power sums of ``(x - loc) / scale`` (MOMENTS only), which then lie in [-1, 1] whatever
+        the scale of the data, so they neither underflow nor overflow.
     out : ndarray, shape (R, 4)
         Receives the four statistics per resample.
     ext : ndarray, shape (R, 2)
@@ -261,7 +263,7 @@ def stats_from_indices(kind, x, idx, u, loc, scale, out, ext):
         _row(kind, x, c, m, u, loc, scale, out[r], ext[r])
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def stats_from_counts(kind, x, counts, u, loc, scale, out, ext):
     """Statistics of the resamples with multiplicities ``counts[r]`` (shape (R, n)).
 
@@ -274,7 +276,7 @@ def stats_from_counts(kind, x, counts, u, loc, scale, out, ext):
         _row(kind, x, counts[r], m, u, loc, scale, out[r], ext[r])
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def stats_from_sorted(kind, samples, u, loc, scale, out, ext):
     """Statistics of each row of ``samples`` (shape (R, m)), every row sorted increasingly.
 
@@ -286,7 +288,7 @@ def stats_from_sorted(kind, samples, u, loc, scale, out, ext):
         _row(kind, samples[r], c, m, u, loc, scale, out[r], ext[r])
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def stats_delete_groups(kind, x, group, n_groups, u, loc, scale, out, ext):
     """Delete-a-group jackknife: statistics of ``x`` without the points of each group.
 

@@ -46,9 +46,22 @@ def prepare_data(data, nan_policy: str = "raise") -> tuple[np.ndarray | None, in
 
 
 def sample_moments(x: np.ndarray) -> tuple[float, float, float, float]:
-    """Mean, standard deviation, skewness and (Pearson) kurtosis, all with divisor n."""
+    """Mean, standard deviation, skewness and (Pearson) kurtosis, all with divisor n.
+
+    The deviations from the mean are divided by their largest magnitude before the powers are
+    taken, so that neither ``d**4`` underflows (data of order 1e-80 and below) nor overflows
+    (data of order 1e77 and above): the results scale exactly with the data.
+    """
     m = float(np.mean(x))
+    if not math.isfinite(m):
+        # the sum overflowed: take the mean of the data scaled by their largest magnitude
+        big = float(np.max(np.abs(x)))
+        m = big * float(np.mean(x / big))
     d = x - m
+    spread = float(np.max(np.abs(d)))
+    if not (spread > 0.0 and math.isfinite(spread)):
+        raise FitError("the data have zero variance: no GLD matches them")
+    d = d / spread
     m2 = float(np.mean(d * d))
     m3 = float(np.mean(d**3))
     m4 = float(np.mean(d**4))
@@ -63,7 +76,23 @@ def sample_moments(x: np.ndarray) -> tuple[float, float, float, float]:
             f"kurtosis {kurt:.6g} equals 1 + skew^2 = {1.0 + skew * skew:.6g} (Pearson's bound, "
             f"reached only by two-valued data): {distinct_note(x)}"
         )
-    return m, math.sqrt(m2), skew, kurt
+    return m, spread * math.sqrt(m2), skew, kurt
+
+
+def location_spread(x: np.ndarray) -> tuple[float, float]:
+    """Mean of ``x`` and the largest distance of a value from it (> 0 unless x is constant).
+
+    The centre and scale about which the compiled resample statistics take their power sums
+    (:mod:`glstat._core.resample`): dividing by the largest deviation rather than by the
+    standard deviation keeps every power in [0, 1], whatever the scale of the data, and never
+    divides by a standard deviation that underflowed to zero.
+    """
+    m = float(np.mean(x))
+    if not math.isfinite(m):
+        big = float(np.max(np.abs(x)))
+        m = big * float(np.mean(x / big))
+    spread = float(np.max(np.abs(x - m)))
+    return m, spread if spread > 0.0 else 1.0
 
 
 def distinct_note(x: np.ndarray) -> str:

@@ -337,3 +337,32 @@ def test_fit_batch_extremes_select_a_covering_root():
     assert n2[0] == n0[0] >= 1 and np.isnan(lam2).all()
     with pytest.raises(ValueError, match="extremes"):
         glstat.fit_batch(row, "moments", "rs", extremes=[[0.0, 1.0], [0.0, 1.0]])
+
+
+@pytest.mark.filterwarnings("ignore::glstat.BootstrapWarning")
+@pytest.mark.parametrize("kind", ["nonparametric", "parametric"])
+@pytest.mark.parametrize("method", ["moments", "lmoments"])
+@pytest.mark.parametrize("scale", [1e-160, 1e-100, 1e100, 1e150])
+def test_bootstrap_is_scale_invariant(kind, method, scale):
+    z = np.random.default_rng(0).gamma(3.0, size=500)
+    ref = glstat.bootstrap(z, method=method, n_resamples=20, rng=1, kind=kind)
+    got = glstat.bootstrap(z * scale, method=method, n_resamples=20, rng=1, kind=kind)
+    lr, lg = ref._lam(), got._lam()
+    assert np.isfinite(lr).all()
+    np.testing.assert_allclose(lg[:, 2:], lr[:, 2:], rtol=1e-8, atol=1e-11)
+    np.testing.assert_allclose(lg[:, 0] / scale, lr[:, 0], rtol=1e-10)
+    np.testing.assert_allclose(lg[:, 1] * scale, lr[:, 1], rtol=1e-8)
+
+
+def test_compiled_moments_tiny_and_huge_data():
+    z = np.sort(np.random.default_rng(3).gamma(3.0, size=200))
+    idx = np.random.default_rng(4).integers(0, z.size, size=(5, z.size))
+    ref = np.empty((5, 4))
+    ext = np.empty((5, 2))
+    R.stats_from_indices(R.MOMENTS, z, idx, 0.1, *S.location_spread(z), ref, ext)
+    for scale in (1e-170, 1e170):
+        out = np.empty((5, 4))
+        R.stats_from_indices(R.MOMENTS, z * scale, idx, 0.1, *S.location_spread(z * scale), out,
+                             ext)
+        np.testing.assert_allclose(out[:, :2] / scale, ref[:, :2], rtol=1e-12)
+        np.testing.assert_allclose(out[:, 2:], ref[:, 2:], rtol=1e-11)
