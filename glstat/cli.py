@@ -170,10 +170,12 @@ def study_main(argv: list[str]) -> int:
     table = res.summary()
     for _, r in table.iterrows():
         print(f"H = {r['hurst']:g}, {r['pressure_MPa']:g} MPa: mean contact pressure "
-              f"{r['mean_pressure']:.4g} MPa, 1 - alpha {r['contact_fraction']:.3g}, damage P at "
-              f"{args.hardness:g} MPa {r['damage_grid']:.4g} [{r['damage_grid_low']:.4g}, "
-              f"{r['damage_grid_high']:.4g}] (grid) {r['damage_asperity']:.4g} (asperity); coverage "
-              f"grid {100 * r['coverage_grid']:.0f} %, asperity {100 * r['coverage_asperity']:.0f} %")
+              f"{_num(r['mean_pressure'], '.4g')} MPa, 1 - alpha {_num(r['contact_fraction'], '.3g')}, "
+              f"damage P at {args.hardness:g} MPa {_num(r['damage_grid'], '.4g')} "
+              f"[{_num(r['damage_grid_low'], '.4g')}, {_num(r['damage_grid_high'], '.4g')}] (grid) "
+              f"{_num(r['damage_asperity'], '.4g')} (asperity); coverage grid "
+              f"{_num(r['coverage_grid'], '.0f', 100, ' %')}, asperity "
+              f"{_num(r['coverage_asperity'], '.0f', 100, ' %')}")
     if res.bem:
         run = res.bem_run
         print(f"BEM comparison: {len(run.computed)} surfaces solved, {run.skipped} reused")
@@ -181,11 +183,39 @@ def study_main(argv: list[str]) -> int:
             r = c.summary().set_index("quantity")["ratio_mean"]
             fits = c.fit_frame().set_index("model")["damage"]
             print(f"H = {settings.hurst[ih]:g}, {settings.pressures[il] / 1e6:g} MPa: asperity / BEM "
-                  f"contact fraction {r['contact_fraction']:.3g}, mean pressure "
-                  f"{r['mean_pressure_MPa']:.3g}, max pressure {r['max_pressure_MPa']:.3g}; damage P "
-                  f"{fits['asperity']:.4g} (asperity) vs {fits['bem']:.4g} (BEM)")
+                  f"contact fraction {_num(r['contact_fraction'], '.3g')}, mean pressure "
+                  f"{_num(r['mean_pressure_MPa'], '.3g')}, max pressure "
+                  f"{_num(r['max_pressure_MPa'], '.3g')}; damage P {_num(fits['asperity'], '.4g')} "
+                  f"(asperity) vs {_num(fits['bem'], '.4g')} (BEM)")
     print(f"report: {res.report_html}  (and {res.report_md})")
     return 0
+
+
+def _num(value, spec: str, factor: float = 1.0, unit: str = "") -> str:
+    """``value * factor`` formatted with ``spec`` and followed by ``unit``; "—" when missing.
+
+    Parameters
+    ----------
+    value : float or None
+        The number; None, NaN and values that are not numbers are missing.
+    spec : str
+        Format specification, e.g. ``".4g"``.
+    factor : float
+        Multiplier applied before formatting (e.g. 100 for a percentage).
+    unit : str
+        Text appended to a formatted number (not to "—").
+
+    Returns
+    -------
+    str
+    """
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return "—"
+    if math.isnan(v):
+        return "—"
+    return f"{v * factor:{spec}}{unit}"
 
 
 def main(argv: list[str] | None = None) -> int:

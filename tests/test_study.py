@@ -254,3 +254,122 @@ def test_wilson_interval_against_statsmodels():
         lo, hi = wilson_interval(k, n)
         slo, shi = proportion_confint(k, n, alpha=0.05, method="wilson")
         assert lo == pytest.approx(slo, abs=1e-12) and hi == pytest.approx(shi, abs=1e-12)
+
+
+# ---- report text computed from the run ----------------------------------------------------------
+def _fake_analysis(values):
+    """Analysis dict with the given (estimate, low, high) or None per case and sample kind."""
+    from types import SimpleNamespace
+
+    out = {}
+    for i, (grid, asperity) in enumerate(values):
+        out[(i, 0)] = {kind: SimpleNamespace(damage=None if v is None else SimpleNamespace(
+            estimate=v[0], low=v[1], high=v[2])) for kind, v in (("grid", grid), ("asperity", asperity))}
+    return out
+
+
+def test_damage_sentence_is_computed():
+    from glstat.study.report import damage_sentence
+
+    settings = CampaignSettings(hurst=(0.0, 1.0), n_terms=(6,))
+    certain = damage_sentence(settings, _fake_analysis([((1.0, 1.0, 1.0), (1.0, 1.0, 1.0))] * 2),
+                              2050, 90)
+    assert "certain" in certain and "H = 0, 20 MPa: 1 [1, 1]" in certain
+    near = damage_sentence(settings, _fake_analysis([((1.0, 1.0, 1.0), (0.9983, 0.9964, 1.0))] * 2),
+                           2050, 90)
+    assert "certain" not in near and "0.9983 [0.9964, 1]" in near
+    none = damage_sentence(settings, _fake_analysis([((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))] * 2),
+                           2e5, 90)
+    assert "certain" not in none and "negligible" in none and "200000 MPa" in none
+    partial = damage_sentence(settings, _fake_analysis([((0.0, 0.0, 0.0), None)] * 2), 2e5, 90)
+    assert "—" in partial and "negligible" not in partial and "certain" not in partial
+
+
+def test_truncation_paragraph_only_on_the_reference_settings():
+    from glstat.study import TRUNCATION_REFERENCE, TRUNCATION_TABLE
+    from glstat.study.report import truncation_caption, truncation_paragraphs
+
+    rows = [[r[0], r[1], r[2], r[3], r[5], r[6]] for r in TRUNCATION_TABLE]
+    info = {"truncation": rows, "truncation_reference": TRUNCATION_REFERENCE}
+    ref = CampaignSettings(grid=1024, length=1e-3, rq=50e-6, n_terms=(6,))
+    general, text = truncation_paragraphs(ref, info)
+    assert "truncated to 6 (H = 0), 6 (H = 0.5), 6 (H = 1) terms per axis" in general
+    # the numbers come from the stored rows: most terms per H and the fewest terms
+    assert "~77.38 GPa (H = 1, 16 terms)" in text and "~3379 GPa (H = 0, 16 terms)" in text
+    assert "~3.175 GPa" in text and "no truncation in it reaches" in text
+    assert "certain" not in text
+    assert "does not describe" not in truncation_caption(ref, TRUNCATION_REFERENCE)
+    for other in (CampaignSettings(grid=128, length=1e-3, rq=50e-6, n_terms=(6,)),
+                  CampaignSettings(grid=1024, length=1e-3, rq=5e-6, n_terms=(6,)),
+                  CampaignSettings(grid=1024, length=2e-3, rq=50e-6, n_terms=(6,))):
+        (general,) = truncation_paragraphs(other, info)
+        assert "GPa" not in general and "Nyquist" in general
+        caption = truncation_caption(other, TRUNCATION_REFERENCE)
+        assert "Stored reference measurement" in caption and "does not describe" in caption
+
+
+def test_report_with_hardness_far_above_the_pressures(tmp_path, capsys):
+    out = tmp_path / "hard"
+    rc = main(["study", "--surfaces", "6", "--grid", "64", "--bootstrap", "40", "--hardness", "200000",
+               "--hurst", "1", "--n-terms", "5", "--out", str(out), "--workers", "1", "--no-progress"])
+    assert rc == 0
+    printed = capsys.readouterr().out
+    assert "H = 1, 20 MPa: mean contact pressure" in printed
+    # three test surfaces are too few for the per-asperity coverage: printed as "—", as in the
+    # report, never as "nan"
+    assert not re.search(r"\bnan\b", printed, flags=re.IGNORECASE)
+    assert re.search(r"coverage grid (\d+ %|—), asperity —", printed)
+    md = (out / "report.md").read_text()
+    assert "certain" not in md
+    assert "77 GPa" not in md and "3.4 TPa" not in md
+    assert "Damage probability at the hardness 200000 MPa" in md
+    dmg = [r[3] for r in _md_table(md, "case | sample | n | damage probability") if r[3] != "—"]
+    assert dmg and all(float(v) < 1e-3 for v in dmg)
+    assert "Stored reference measurement" in md and "does not describe" in md
+
+
+def test_cli_number_format():
+    from glstat.cli import _num
+
+    assert _num(0.99834, ".4g") == "0.9983"
+    assert _num(0.8, ".0f", 100, " %") == "80 %"
+    assert _num(float("nan"), ".4g") == "—"
+    assert _num(np.nan, ".0f", 100, " %") == "—"
+    assert _num(None, ".4g") == "—"
+
+
+def test_calibration_verdict_needs_coverage_and_centring():
+    from types import SimpleNamespace
+
+    from glstat.study.report import calibration_verdict
+
+    def v(lo, hi, reject):
+        return SimpleNamespace(coverage_interval=(lo, hi), reject=reject)
+
+    ok = calibration_verdict(v(0.8, 0.95, False), 0.9)
+    assert ok.startswith("calibrated") and "90 %" in ok
+    biased = calibration_verdict(v(0.8, 0.95, True), 0.9)
+    assert biased.startswith("not calibrated")
+    assert "coverage consistent with 90 %, but biased (centring test rejects)" in biased
+    low = calibration_verdict(v(0.3, 0.6, False), 0.9)
+    assert low.startswith("not calibrated") and "incompatible with 90 %" in low
+    both = calibration_verdict(v(0.3, 0.6, True), 0.9)
+    assert both.startswith("not calibrated") and "incompatible" in both and "biased" in both
+
+
+def test_report_calibration_sentence_matches_the_validation_table(tiny_study):
+    md = (tiny_study / "report.md").read_text()
+    para = next(ln for ln in md.splitlines() if ln.startswith("Calibration of the predicted maximum"))
+    rows = _md_table(md, "case | sample | surfaces")
+    assert rows
+    for r in rows:
+        if r[3] == "—":
+            continue
+        lo, hi = (float(t) / 100 for t in r[4].strip("[] %").split(","))
+        cov_ok = lo <= 0.9 <= hi
+        calibrated = cov_ok and r[8] == "not rejected"
+        start = para.index(f"{r[0]}, {r[1]}: ")
+        verdict = para[start + len(r[0]) + len(r[1]) + 4:].split(";")[0]
+        assert verdict.startswith("calibrated") == calibrated, (r, verdict)
+        if cov_ok and not calibrated:
+            assert "but biased (centring test rejects)" in verdict

@@ -61,6 +61,14 @@ __all__ = [
     "wilson_interval",
 ]
 
+#: Settings of the stored measurement :data:`TRUNCATION_TABLE` (lengths in m, pressure in Pa).
+TRUNCATION_REFERENCE: dict[str, float] = {
+    "grid": 1024, "length": 1e-3, "rq": 50e-6, "pressure": 20e6, "n_surfaces": 20,
+    "seed": 2019, "E": 210e9, "nu": 0.3, "cone_factor": 0.2,
+}
+
+#: Stored reference measurement, not recomputed by a study run (settings in
+#: :data:`TRUNCATION_REFERENCE`).
 #: Measured with :func:`truncation_table` (20 surfaces per row, 1024², 1 mm², Rq = 50 µm,
 #: 20 MPa, E = 210 GPa, ν = 0.3, c = 0.2, seed 2019; the same 20 seeds for every row): rows
 #: (H, n_terms, highest frequency in 1/mm, mean contact pressure in GPa, its standard error in
@@ -313,6 +321,7 @@ def run_study(
             "BEM comparison: GLD fits and bootstrap": bem_analysis})
     info = {"versions": _versions(), "timings": timings, "truncation": TRUNCATION_TABLE and [
                 [r[0], r[1], r[2], r[3], r[5], r[6]] for r in TRUNCATION_TABLE],
+            "truncation_reference": TRUNCATION_REFERENCE,
             "command": command or " ".join(sys.argv),
             "workers": workers_label or (type(executor).__name__ if executor is not None
                                          else f"{workers or os.cpu_count()} local processes")}

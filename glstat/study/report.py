@@ -187,6 +187,183 @@ def _fitted(analysis: dict, kind: str):
             yield ih, il, sa
 
 
+#: Mean contact pressures reported by Bigerelle et al. (2019), in MPa.
+PAPER_PRESSURES = (1100.0, 1700.0)
+
+
+def _fmt_interval(d) -> str:
+    """``estimate [low, high]`` of a bootstrap probability, or "—"."""
+    if d is None:
+        return "—"
+    return f"{_fmt(float(d.estimate))} [{_fmt(float(d.low))}, {_fmt(float(d.high))}]"
+
+
+def damage_sentence(settings, analysis: dict, hardness: float, level: int) -> str:
+    """The damage probabilities of this run in words, computed from the analysis.
+
+    Parameters
+    ----------
+    settings : CampaignSettings
+        Campaign settings (for the case labels).
+    analysis : dict
+        Output of :func:`glstat.study.analysis.analyse`: per case, ``"grid"`` and
+        ``"asperity"`` sample analyses whose ``damage`` is a bootstrap probability or None.
+    hardness : float
+        Hardness in MPa.
+    level : int
+        Interval level in percent.
+
+    Returns
+    -------
+    str
+        One paragraph: the estimate and interval per case and sample, and a verdict only when
+        it holds for every case: "certain" when every estimate and lower bound is 1 to four
+        digits (>= 0.99995), "negligible" when every upper bound is below 5e-5 (and no verdict
+        when a case has no estimate).
+    """
+    parts = []
+    lows, highs, ests = [], [], []
+    for (ih, il), r in analysis.items():
+        cells = []
+        for kind in ("grid", "asperity"):
+            d = r[kind].damage
+            cells.append(f"{_fmt_interval(d)} ({SAMPLE_LABELS[kind]})")
+            if d is not None:
+                ests.append(float(d.estimate))
+                lows.append(float(d.low))
+                highs.append(float(d.high))
+        parts.append(f"{_label(settings, ih, il)}: " + ", ".join(cells))
+    text = (f"Damage probability at the hardness {hardness:g} MPa on one analysed area (estimate "
+            f"[{level} % bootstrap interval]): " + "; ".join(parts) + ".")
+    complete = len(ests) == 2 * len(parts)
+    if complete and np.isfinite(ests + lows + highs).all():
+        if min(ests) >= 0.99995 and min(lows) >= 0.99995:
+            text += f" Damage at {hardness:g} MPa is certain (1 to four digits) in every case."
+        elif max(highs) < 5e-5:
+            text += f" Damage at {hardness:g} MPa is negligible (below 5e-5) in every case."
+    return text
+
+
+def truncation_matches(settings, reference: dict | None) -> bool:
+    """True when the run has the grid, size and Rq of the stored truncation measurement."""
+    if not reference:
+        return False
+    return (int(settings.grid) == int(reference["grid"])
+            and math.isclose(settings.length, reference["length"], rel_tol=1e-9)
+            and math.isclose(settings.rq, reference["rq"], rel_tol=1e-9))
+
+
+def _reference_label(reference: dict) -> str:
+    return (f"{reference['grid']}², {reference['length'] * 1e3:g} × {reference['length'] * 1e3:g} "
+            f"mm², Rq = {reference['rq'] * 1e6:g} µm, {reference['pressure'] / 1e6:g} MPa, "
+            f"{reference['n_surfaces']} surfaces per row, seed {reference['seed']}")
+
+
+def truncation_caption(settings, reference: dict | None) -> str:
+    """Caption of the stored truncation table: what it is, its settings, whether they apply."""
+    if not reference:
+        return "Stored reference measurement (glstat.study.TRUNCATION_TABLE); means over surfaces."
+    text = ("Stored reference measurement (glstat.study.TRUNCATION_TABLE, from "
+            f"glstat.study.truncation_table() on {_reference_label(reference)}), not computed in "
+            "this run; means over surfaces.")
+    if not truncation_matches(settings, reference):
+        text += (f" This run's settings ({settings.grid}², {settings.length * 1e3:g} × "
+                 f"{settings.length * 1e3:g} mm², Rq = "
+                 f"{settings.rq * 1e6:g} µm) differ, so the table does not describe it.")
+    return text
+
+
+def truncation_paragraphs(settings, info: dict) -> list[str]:
+    """The paragraphs on the Weierstrass truncation of this run.
+
+    The first states the run's truncation (terms per H, or none). The second quotes the
+    stored reference measurement (``info["truncation"]``, rows (H, n_terms, highest
+    frequency, mean pressure in GPa, 1 − α, asperities); settings in
+    ``info["truncation_reference"]``) and is given only when this run has the reference's
+    grid, size and Rq; every number in it comes from the stored rows.
+
+    Parameters
+    ----------
+    settings : CampaignSettings
+        Campaign settings of the run.
+    info : dict
+        Report information (see :func:`build_report`).
+
+    Returns
+    -------
+    list of str
+        One or two paragraphs.
+    """
+    rows = info.get("truncation")
+    reference = info.get("truncation_reference")
+    cut = [(h, n) for h, n in zip(settings.hurst, settings.n_terms, strict=True) if n is not None]
+    if cut:
+        kept = ", ".join(f"{n} (H = {h:g})" for h, n in cut)
+        general = ("**Truncation of the Weierstrass series.** The series is truncated to "
+                   f"{kept} terms per axis instead of carrying every frequency up to the grid's "
+                   "Nyquist limit (DESIGN §3.1; the `--n-terms` setting above).")
+    else:
+        general = ("**Truncation of the Weierstrass series.** None: the surfaces carry every "
+                   "frequency up to the grid's Nyquist limit (DESIGN §3.1).")
+    if not rows or not truncation_matches(settings, reference):
+        return [general]
+    by_h: dict[float, list] = {}
+    for r in rows:
+        by_h.setdefault(float(r[0]), []).append(r)
+    finest = {h: max(rs, key=lambda r: r[1]) for h, rs in by_h.items()}
+    coarsest = min(rows, key=lambda r: (r[1], r[3]))
+    lowest = min(float(r[3]) for r in rows)
+    span = ", ".join(f"~{_fmt(float(r[3]))} GPa (H = {h:g}, {int(r[1])} terms)"
+                     for h, r in sorted(finest.items()))
+    lo, hi = (p / 1e3 for p in PAPER_PRESSURES)
+    reach = ("no truncation in it reaches" if lowest > hi else "some truncations reach")
+    return [
+        general,
+        "Without truncation the surfaces carry every frequency up to the grid's Nyquist limit. "
+        f"In the stored reference measurement on these settings ({_reference_label(reference)}) "
+        "the asperity model's "
+        f"mean contact pressure with the most terms is {span}; Bigerelle et al. (2019) report "
+        f"{lo:g}–{hi:g} GPa, and {reach} that range (the fewest terms, {int(coarsest[1])}, give "
+        f"~{_fmt(float(coarsest[3]))} GPa). docs/study.md discusses the choice of truncation."
+    ]
+
+
+def calibration_verdict(validation, level: float) -> str:
+    """Whether the predicted maximum of one sample is calibrated, in words.
+
+    Parameters
+    ----------
+    validation : object
+        Validation of the sample with ``coverage_interval`` (Wilson interval of the coverage,
+        fractions) and ``reject`` (True when the centring t-test rejects "mean of (predicted −
+        observed) is 0").
+    level : float
+        Nominal level of the predicted intervals, e.g. 0.9.
+
+    Returns
+    -------
+    str
+        "calibrated (…)" only when the coverage is consistent with ``level`` (the level lies
+        in the Wilson interval) and the centring test does not reject; otherwise the failed
+        check(s), e.g. "coverage consistent with 90 %, but biased (centring test rejects)".
+    """
+    lvl = f"{100 * level:g} %"
+    lo, hi = validation.coverage_interval
+    cov_ok = bool(lo <= level <= hi)
+    biased = bool(validation.reject)
+    if cov_ok and not biased:
+        return (f"calibrated (coverage consistent with {lvl}, mean (predicted − observed) "
+                "compatible with 0)")
+    if cov_ok:
+        return (f"not calibrated: coverage consistent with {lvl}, but biased (centring test "
+                "rejects)")
+    if not biased:
+        return (f"not calibrated: coverage incompatible with {lvl} (mean (predicted − observed) "
+                "compatible with 0)")
+    return (f"not calibrated: coverage incompatible with {lvl} and biased (centring test "
+            "rejects)")
+
+
 def build_report(settings, asettings, results: dict, analysis: dict, info: dict) -> Report:
     """Assemble the study report.
 
@@ -200,7 +377,9 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         Output of :func:`glstat.study.analysis.analyse`.
     info : dict
         ``versions`` (dict), ``timings`` (dict of seconds), ``truncation`` (rows of the
-        truncation table or None), ``command`` (str), ``workers`` (str).
+        stored truncation table or None), ``truncation_reference`` (its settings: ``grid``,
+        ``length``, ``rq``, ``pressure``, ``n_surfaces``, ``seed``), ``command`` (str),
+        ``workers`` (str).
     """
     import matplotlib
 
@@ -245,6 +424,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
                "damage P (asperity)", f"coverage of {lvl} % interval (asperity)"], rows,
               f"Per-surface means; damage probability at {hard:g} MPa on one analysed area with its "
               f"{lvl} % bootstrap interval; coverage with its Wilson 95 % interval.")
+    rep.paragraph(damage_sentence(settings, analysis, hard, lvl))
     jumps = [(_label(settings, ih, il), r["summary"]) for (ih, il), r in analysis.items()
              if r["summary"].get("n_in_jump", 0)]
     if jumps:
@@ -261,15 +441,13 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         for kind in ("grid", "asperity"):
             v = r[kind].validation
             if v.table is not None:
-                lo, hi = v.coverage_interval
-                cov_ok = lo <= asettings.confidence_level <= hi
-                centre = "≠ 0 (t-test rejects)" if v.reject else "compatible with 0"
-                calib.append(f"{_label(settings, ih, il)}, {SAMPLE_LABELS[kind]}: coverage "
-                             f"{'consistent with' if cov_ok else 'incompatible with'} {lvl} %, "
-                             f"mean (predicted − observed) {centre}")
+                calib.append(f"{_label(settings, ih, il)}, {SAMPLE_LABELS[kind]}: "
+                             + calibration_verdict(v, asettings.confidence_level))
     if calib:
-        rep.paragraph("Calibration of the predicted maximum (coverage: the nominal level inside the "
-                      "Wilson interval; centring: t-test at the test level): " + "; ".join(calib) + ".")
+        rep.paragraph("Calibration of the predicted maximum (calibrated = coverage consistent with "
+                      "the nominal level, i.e. the level inside the Wilson interval, and the "
+                      "centring t-test at the test level not rejecting; DESIGN §1 step 9): "
+                      + "; ".join(calib) + ".")
 
     # ---- settings ---------------------------------------------------------------------------
     rep.heading("Settings, versions and timings")
@@ -299,21 +477,12 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
                       f"{b.n_compare}, {'periodic' if b.periodic else 'isolated patch'}, {b.tol:g}, "
                       f"{b.max_iter}"])
     rep.table(["setting", "value"], [[a, _fmt(b)] for a, b in srows])
-    rep.paragraph(
-        "**Truncation of the Weierstrass series.** With every frequency up to the grid's Nyquist "
-        "limit (DESIGN §3.1), these surfaces have grid-scale slopes of order 1–10 and the asperity "
-        "model gives mean contact pressures of ~77 GPa (H = 1) to ~3.4 TPa (H = 0) carried by a "
-        "handful of asperities; Bigerelle et al. (2019) report 1.1–1.7 GPa. The study therefore "
-        "truncates the series (the `--n-terms` setting above). The measured dependence of the "
-        "pressures on the truncation, and why the default is what it is, are in docs/study.md; "
-        "no truncation reaches the paper's 1.1–1.7 GPa at Rq = 50 µm on 1 mm² (a single term gives "
-        "~3 GPa), so the pressures here are above the paper's and damage at its hardness is "
-        "certain for every H.")
+    for text in truncation_paragraphs(settings, info):
+        rep.paragraph(text)
     if info.get("truncation"):
         rep.table(["H", "n_terms", "highest frequency (1/mm)", "mean pressure (GPa)", "1 − α",
                    "asperities in contact"], info["truncation"],
-                  "Measured on the paper's other settings (1024², 1 mm², Rq = 50 µm, 20 MPa); "
-                  "means over surfaces.")
+                  truncation_caption(settings, info.get("truncation_reference")))
     rep.table(["package", "version"], [[k, v] for k, v in info.get("versions", {}).items()])
     rep.table(["stage", "seconds"], [[k, v] for k, v in info.get("timings", {}).items()],
               f"Workers: {info.get('workers', '?')}. Command: `{info.get('command', '')}`")
