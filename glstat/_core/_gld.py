@@ -36,6 +36,7 @@ _FPOS = 6  # FKML, a>0: finite lower end -1/a
 _FINF = 7  # FKML, a<=0: infinite lower tail
 _R3D = 8  # residual only: RS region 3 in the direct form Q(p) - y
 _FPD = 9  # residual only: FKML a>0 in the direct form Q(p) - y
+_R3U = 10  # residual only: RS region 3 near the upper end point +1, in 1 - Q(p)
 
 MAXIT = 200
 
@@ -94,6 +95,9 @@ def q_lower(fam, a, b, t, l1):
     """Standardized Q(p) from t = log(p) and l1 = log1p(-p)."""
     if fam == RS:
         s = rs_sign(a, b)
+        if a * t < -LN2 and b * l1 < -LN2:
+            # both powers below 1/2 (region 3, large shapes): the expm1 forms would cancel
+            return s * (math.exp(a * t) - math.exp(b * l1))
         return s * (_xm1(a, t) - _xm1(b, l1))
     return _em(a, t) - _em(b, l1)
 
@@ -171,7 +175,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         r = (d - z_hi) - z_lo
         dh = b * p * math.exp((b - 1.0) * l1)
         da = a * pa
-        k = dh / da if pa >= h else da / dh
+        k = min(dh / da, da / dh)
         return r, da + dh, EPS * (d + abs(z_hi)), k
     if case == _RMX:
         c = -b
@@ -188,14 +192,33 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         da = -a * math.exp(a * t)
         db = -b * p * math.exp((b - 1.0) * l1)
         return r, da + db, EPS * (abs(emb) + abs(ema) + abs(y)), abs(db) / da
+    if case == _R3U:
+        # 1 - Q(p) = -expm1(a t) + (1-p)^b, both terms >= 0, against 1 - y (exact here)
+        ema = math.expm1(a * t)
+        pb = math.exp(b * l1)
+        r = ((1.0 - y) - y_lo) - (pb - ema)
+        pa = ema + 1.0
+        dh = b * p * math.exp((b - 1.0) * l1)
+        da = a * pa
+        k = min(dh / da, da / dh)
+        return r, da + dh, EPS * (pb - ema + (1.0 - y)), k
     if case == _R3D:
         ema = math.expm1(a * t)
         h = -math.expm1(b * l1) if b != 0.0 else 0.0
+        if a * t < -LN2 and b * l1 < -LN2:
+            # both powers below 1/2: difference of the powers themselves, no cancellation
+            pa = math.exp(a * t)
+            pb = math.exp(b * l1)
+            r = ((pa - pb) - y) - y_lo
+            dh = b * p * math.exp((b - 1.0) * l1)
+            da = a * pa
+            k = min(dh / da, da / dh)
+            return r, da + dh, EPS * (pa + pb + abs(y)), k
         r = ((ema + h) - y) - y_lo
         pa = ema + 1.0
         dh = b * p * math.exp((b - 1.0) * l1)
         da = a * pa
-        k = dh / da if pa >= h else da / dh
+        k = min(dh / da, da / dh)
         return r, da + dh, EPS * (abs(ema) + h + abs(y)), k
     if case == _FPD:
         g = math.expm1(a * t) / a
@@ -203,7 +226,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         r = ((g + h) - y) - y_lo
         pa = math.exp(a * t)
         dh = p * math.exp((b - 1.0) * l1)
-        k = dh / pa if pa / a >= h else pa / dh
+        k = min(dh / pa, pa / dh)
         return r, pa + dh, EPS * (abs(g) + h + abs(y)), k
     if case == _FPOS:
         pa = math.exp(a * t)
@@ -211,7 +234,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         d = pa / a + h
         r = (d - z_hi) - z_lo
         dh = p * math.exp((b - 1.0) * l1)
-        k = dh / pa if pa / a >= h else pa / dh
+        k = min(dh / pa, pa / dh)
         return r, pa + dh, EPS * (d + abs(z_hi)), k
     # _FINF
     g = _em(a, t)
@@ -241,13 +264,47 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     if case == _R3A:
         pa = math.exp(a * t)
         h = -math.expm1(b * l1) if b != 0.0 else 0.0
-        if pa >= h or b == 0.0:
-            s1, e1 = two_sum(z_hi, -h)
+        # invert the term that carries the dependence on p (the larger derivative)
+        if b == 0.0 or a * pa >= b * p * math.exp((b - 1.0) * l1):
+            if z_hi >= 0.5 and b * l1 < -LN2:
+                # (1-p)^b < 1/2: p^a = y + (1-p)^b exactly (z - h, with h = 1 - (1-p)^b,
+                # would lose (1-p)^b below ulp(1)); otherwise h is the small, accurate term
+                s1, e1 = two_sum(y, math.exp(b * l1))
+                e1 += y_lo
+            else:
+                s1, e1 = two_sum(z_hi, -h)
+                e1 += z_lo
             if s1 <= 0.0:
                 return 0.0, -math.inf
-            return dd_root(s1, e1 + z_lo, a)
-        w = (z_hi - pa) + z_lo
+            return dd_root(s1, e1, a)
+        if y > 0.5:
+            # next to the upper end point: (1-p)^b = (1 - y) + expm1(a t), 1 - y exact
+            v = ((1.0 - y) - y_lo) + math.expm1(a * t)
+            if not v > 0.0:
+                return math.nan, math.nan
+            return _from_p(-math.expm1(math.log(v) / b))
+        if z_hi >= 0.5:
+            # z - p^a = (z - 1) - expm1(a t): z - 1 is exact here, and expm1 keeps the
+            # digits that 1 - exp(a t) would lose for small a
+            w = ((z_hi - 1.0) - math.expm1(a * t)) + z_lo
+        else:
+            w = (z_hi - pa) + z_lo
         return _from_p(-math.expm1(math.log1p(-w) / b))
+    if case == _R3D:
+        # direct form Q = p^a - (1-p)^b (region 3, far from the lower end point): invert
+        # whichever power dominates, with the other moved to the target side
+        pa = math.exp(a * t)
+        pb = math.exp(b * l1)
+        if b == 0.0 or a * pa >= b * p * math.exp((b - 1.0) * l1):
+            s1, e1 = two_sum(y, pb)
+            e1 += y_lo
+            if s1 <= 0.0:
+                return 0.0, -math.inf
+            return dd_root(s1, e1, a)
+        w = (pa - y) - y_lo
+        if not (w > 0.0 and w < 1.0):
+            return math.nan, math.nan
+        return _from_p(-math.expm1(math.log(w) / b))
     if case == _RMX:
         c = -b
         pa = math.exp(a * t)
@@ -264,7 +321,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     if case == _FPOS:
         pa = math.exp(a * t)
         h = -math.expm1(b * l1) / b if b != 0.0 else -l1
-        if pa / a >= h:
+        if pa >= p * math.exp((b - 1.0) * l1):
             s1, e1 = two_sum(z_hi, -h)
             e1 += z_lo
             m_hi, m_lo = two_prod(a, s1)
@@ -272,7 +329,11 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
             if m_hi <= 0.0:
                 return 0.0, -math.inf
             return dd_root(m_hi, m_lo, a)
-        w = (z_hi - pa / a) + z_lo
+        if z_hi * a >= 0.5:
+            # far from the lower end point: H = y - G with G = expm1(a t)/a, no 1/a offsets
+            w = (y - math.expm1(a * t) / a) + y_lo
+        else:
+            w = (z_hi - pa / a) + z_lo
         if b != 0.0:
             return _from_p(-math.expm1(math.log1p(-b * w) / b))
         return _from_p(-math.expm1(-w))
@@ -311,6 +372,35 @@ def _initial_guess(case, a, b, y, z_hi, z_lo):
 
 
 @njit(cache=True, error_model="numpy")
+def _root_of_zero_r3(a, b):
+    """F(0) in region 3 (a, b > 0): the p with a log p = b log(1 - p), in logs, so that it is
+    exact even where both powers underflow. Returns (p, log p, status)."""
+    t_lo = -1e300
+    t_hi = -LN2
+    t = math.log(0.5)
+    g_hi = a * t_hi - b * math.log1p(-math.exp(t_hi))
+    if g_hi <= 0.0:
+        return 0.5, -LN2, OK
+    for _ in range(MAXIT):
+        p = math.exp(t)
+        g = a * t - b * math.log1p(-p)
+        if g == 0.0:
+            return p, t, OK
+        if g < 0.0:
+            t_lo = t
+        else:
+            t_hi = t
+        dg = a + b * p / (1.0 - p)
+        t_new = t - g / dg
+        if not (t_new > t_lo and t_new < t_hi):
+            t_new = 0.5 * (t_lo + t_hi) if t_lo > -1e300 else t_hi - max(2.0 * (t_hi - t), 1.0)
+        if abs(t_new - t) <= 4.0 * EPS * max(1.0, abs(t)):
+            return math.exp(t_new), t_new, OK
+        t = t_new
+    return math.exp(t), t, NOCONV
+
+
+@njit(cache=True, error_model="numpy")
 def solve_lower(fam, a, b, y, y_lo=0.0):
     """Lower-tail inversion: p in (0, 1/2] with Q(p) = y, for y <= median.
 
@@ -337,12 +427,26 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
     # it (z above half the end point's magnitude) the direct residual Q(p) - y is the
     # accurate one (for tiny lambda3 the end point -1/lambda3 is huge).
     rcase = case
-    if case == _R3A and z_hi > 0.5:
+    if case == _R3A and b > 0.0 and y > 0.5:
+        rcase = _R3U
+    elif case == _R3A and z_hi > 0.5:
         rcase = _R3D
+        # far from the lower end point the two powers bound p directly:
+        # y < 0: (1-p)^b >= -y, so p <= 1 - (-y)^(1/b); y > 0: p^a >= y, so p >= y^(1/a)
+        if y < 0.0 and b > 0.0:
+            t_b = math.log(-math.expm1(math.log(-y) / b))
+            if t_b < -LN2:
+                t = t_b
+        elif y > 0.0:
+            t_a = math.log(y) / a
+            if t_a < -LN2:
+                t = max(t, t_a)
     elif case == _FPOS and z_hi * a > 0.5:
         rcase = _FPD
     status = NOCONV
     k = 1.0
+    creep = 0
+    last_sign = 0.0
     for _ in range(MAXIT):
         r, dr, noise, k = _residual(rcase, a, b, y, z_hi, z_lo, t, y_lo)
         if r == 0.0:
@@ -354,13 +458,25 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
             t_hi = t
         step = r / dr
         t_new = t - step
-        if not (t_new > t_lo and t_new < t_hi):
+        newton = t_new > t_lo and t_new < t_hi
+        # a Newton iteration creeping along an exponential (same side of the root, step small
+        # against the distance already travelled) is replaced by a bisection / expansion step
+        sign = 1.0 if r > 0.0 else -1.0
+        creep = creep + 1 if (sign == last_sign and newton) else 0
+        last_sign = sign
+        if creep >= 6 and abs(step) > 4.0 * EPS * max(1.0, abs(t)):
+            newton = False
+            creep = 0
+        if not newton:
             if t_lo == -math.inf:
                 t_new = t_hi - max(2.0 * (t_hi - t), 1.0) if r > 0.0 else 0.5 * (t + t_hi)
             else:
                 t_new = 0.5 * (t_lo + t_hi)
-        tol = 2.0 * noise / dr + 4.0 * EPS * max(1.0, abs(t))
-        if abs(t_new - t) <= tol or (t_hi - t_lo) <= tol:
+        # converged: an accepted Newton step below the root's rounding uncertainty at this
+        # point (noise/dr is meaningful only for a Newton step, which is near the root), or
+        # a bracket that has collapsed to a few ulps
+        floor = 4.0 * EPS * max(1.0, abs(t))
+        if (newton and abs(step) <= 2.0 * noise / dr + floor) or (t_hi - t_lo) <= floor:
             t = t_new
             status = OK
             break
@@ -374,8 +490,13 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
         if abs(step) < 1e-8:
             p = p * (1.0 - step)
     if status == OK and k < 0.5:
+        # the direct-form step only where both powers are below 1/2 (where the offset form
+        # cancels); elsewhere the offset form with its double-double end point is accurate
+        pcase = case
+        if rcase == _R3D and a * t < -LN2 and b * math.log1p(-p) < -LN2:
+            pcase = _R3D
         for _ in range(3):
-            p_new, t_new = _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo)
+            p_new, t_new = _fixed_point(pcase, a, b, y, z_hi, z_lo, t, y_lo)
             if not (t_new == t_new) or t_new > -LN2 + 1e-12:
                 break
             done = abs(t_new - t) <= 2.0 * EPS * max(1.0, abs(t))
@@ -395,6 +516,14 @@ def median_std(fam, a, b):
 @njit(cache=True, error_model="numpy")
 def _invert(fam, a, b, y, y_lo=0.0):
     """Return (tail prob, log tail prob, upper?, status, a_eff, b_eff) for one point."""
+    if fam == RS and a > 0.0 and b > 0.0 and y == 0.0 and y_lo == 0.0:
+        # F(0) in region 3 from a log p = b log(1 - p), exact even where both powers (and the
+        # median) underflow; the root lies below 1/2 exactly when a <= b
+        if a <= b:
+            p, lp, st = _root_of_zero_r3(a, b)
+            return p, lp, False, st, a, b
+        q, lq, st = _root_of_zero_r3(b, a)
+        return q, lq, True, st, b, a
     med = median_std(fam, a, b)
     if y <= med:
         p, lp, st = solve_lower(fam, a, b, y, y_lo)

@@ -190,7 +190,9 @@ def _lookup(y, ys, payload):
             lo = mid
         else:
             hi = mid
-    if payload[lo, 3] == 0.0:
+    if payload[lo, 3] == 0.0 or not (ys[lo] <= y and y <= ys[hi]):
+        # unverified interval, or keys made non-monotone by rounding (extreme shapes): the
+        # search did not bracket y, so the exact solver takes the point
         return math.nan
     return _hermite5(y, ys[lo], ys[hi], payload[lo, 0], payload[hi, 0], payload[lo, 1],
                      payload[hi, 1], payload[lo, 2], payload[hi, 2])

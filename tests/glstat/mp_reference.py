@@ -16,6 +16,10 @@ def q_mp(fam, a, b, t, l1):
     b = mp.mpf(b)
     if fam == 0:
         s = 1 if (a >= 0 and b >= 0) else -1
+        if a > 0 and b > 0:
+            # region 3: the powers themselves (mpmath has the exponent range), no cancellation
+            # even where both are tiny (large shapes)
+            return s * (mp.exp(a * t) - mp.exp(b * l1))
         return s * (mp.expm1(a * t) - mp.expm1(b * l1))
     ea = mp.expm1(a * t) / a if a != 0 else t
     eb = mp.expm1(b * l1) / b if b != 0 else l1

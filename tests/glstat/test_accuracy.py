@@ -38,6 +38,14 @@ SHAPES = [
     (FKML, 5.0, 2.0),
     (FKML, -5.0, -5.0),
     (FKML, -1e-12, 5.0),
+    # large and strongly unequal shapes: both powers tiny in the body, or one term carrying
+    # all the dependence on p while the other sits next to 1
+    (RS, 30.0, 5000.0),
+    (RS, 4211.0846308028695, 106.28277857655814),
+    (RS, 50.0, 50.0),
+    (RS, 1.0778190431438197e-06, 1624.584621881454),
+    (RS, -0.0004635098925165891, -123.88176244384005),
+    (FKML, -162.11165971174083, -6.3114511918668105e-06),
 ]
 TAILS = [1e-300, 1e-200, 1e-100, 1e-30, 1e-12, 1e-5, 1e-2, 0.2, 0.45]
 
@@ -245,3 +253,44 @@ def test_extreme_shape_with_underflowing_terms():
             p, upper = tail_probability(FKML, a, b, y)
         got = g.sf(x) if upper else g.cdf(x)
         assert abs(got - p) <= 1e-13 * p, (x, got, float(p))
+
+
+def test_random_shapes_over_twelve_decades_against_mpmath():
+    """A seeded sweep: RS regions 3 and 4 and FKML with |lambda| log-uniform in
+    [1e-10, 1e4] (RS region 4 within (-1, 0)), four tail probabilities each from 1e-200 to
+    1 - 1e-7; the smaller tail probability at x = Q(u) must match mpmath to 1e-13. Also
+    F(0) in region 3 where every power underflows (lambda ~ 1e4): the log-space root."""
+    rng = np.random.default_rng(20261121)
+    checked = 0
+
+    def magnitude():
+        return 10.0 ** rng.uniform(-10, 4)
+
+    for _ in range(70):
+        kind = rng.integers(0, 3)
+        if kind == 0:
+            fam, a, b, l2 = RS, magnitude(), magnitude(), 1.0
+        elif kind == 1:
+            fam, a, b, l2 = RS, -0.999e-4 * magnitude(), -0.999e-4 * magnitude(), -1.0
+        else:
+            fam, a, b, l2 = FKML, rng.choice([-1, 1]) * magnitude() / 1e3, \
+                rng.choice([-1, 1]) * magnitude() / 1e3, 1.0
+        g = glstat.GLD(0.0, l2, a, b, param="rs" if fam == RS else "fkml")
+        for u in rng.choice([1e-200, 1e-50, 1e-9, 0.01, 0.2, 0.45, 0.6, 0.9, 1 - 1e-7], 4,
+                            replace=False):
+            x = g.ppf(u)
+            if not np.isfinite(x):
+                continue
+            p, upper = tail_probability(fam, a, b, x * abs(l2))
+            if p == 0 or p < 1e-305:
+                continue
+            got = g.sf(x) if upper else g.cdf(x)
+            assert abs(got - p) <= 1e-13 * p, (fam, a, b, u, got, float(p))
+            checked += 1
+    assert checked > 200
+    # region 3 with underflowing powers: F(0) solves a log p = b log(1 - p)
+    a, b = 9788.874589664785, 2364.446565455394
+    with mp.workdps(40):
+        q = mp.findroot(lambda q: b * mp.log(q) - a * mp.log(1 - q), 0.27)
+    assert glstat.gld_rs.sf(0.0, a, b) == pytest.approx(float(q), rel=1e-14)
+    assert glstat.gld_rs.cdf(0.0, b, a) == pytest.approx(float(q), rel=1e-14)
