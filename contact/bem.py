@@ -78,6 +78,7 @@ def _operator(surface: Surface, e_star: float, periodic: bool, workers: int | No
 def _result(
     out: PKOutcome,
     surface: Surface,
+    valid: np.ndarray,
     nominal_pressure: float | None,
     method: str,
     info: dict,
@@ -100,7 +101,8 @@ def _result(
         target = None
         force_error = 0.0
     else:
-        target = float(nominal_pressure) * surface.area
+        # the nominal area is the measured one: masked points are no part of it
+        target = float(nominal_pressure) * cell_area * int(valid.sum())
         force_error = (force - target) / target
     last = float(out.history[-1]) if out.history.size else float("nan")
     if not out.converged:
@@ -134,6 +136,7 @@ def _result(
         history=out.history,
         method=method,
         info=info,
+        mask=None if surface.mask is None else ~valid,
     )
 
 
@@ -159,9 +162,11 @@ def solve_bem(
     ----------
     surface : Surface
         The rough surface (heights in metres, grid spacing ``dx``, ``dy`` in metres).
-        Masked points carry no pressure.
+        Masked points carry no pressure and are no part of the nominal area.
     nominal_pressure : float
-        Imposed nominal pressure in pascals (force / nominal area), > 0.
+        Imposed nominal pressure in pascals (force / nominal area), > 0. The nominal
+        area is that of the measured (unmasked) points, ``dx * dy`` times their number,
+        as in :func:`contact.solve`; the target force is ``nominal_pressure`` times it.
     E : float
         Young's modulus of the rough body in pascals, > 0.
     nu : float
@@ -213,12 +218,12 @@ def solve_bem(
     -----
     With ``u = K p`` the elastic displacement and ``g = u - h + d`` the gap to the flat at
     height ``d``, the solution satisfies ``p >= 0``, ``g >= 0``, ``p g = 0`` and
-    ``sum(p) dx dy = nominal_pressure * area``. The iteration minimises the complementary
-    energy ``p K p / 2 - p h`` over non-negative pressures of the given total, conjugate
-    gradient on the current contact set, with the mean gap removed there (the Lagrange
-    multiplier of the load, ``-d``), projection onto ``p >= 0``, interpenetrating points
-    added to the contact set (and a restart to steepest descent when that happens), and
-    rescaling to the load. See ``docs/bem.md``.
+    ``sum(p) dx dy = nominal_pressure * A0`` with ``A0`` the measured area. The
+    iteration minimises the complementary energy ``p K p / 2 - p h`` over non-negative
+    pressures of the given total, conjugate gradient on the current contact set, with
+    the mean gap removed there (the Lagrange multiplier of the load, ``-d``), projection
+    onto ``p >= 0``, interpenetrating points added to the contact set (and a restart to
+    steepest descent when that happens), and rescaling to the load. See ``docs/bem.md``.
 
     References
     ----------
@@ -235,13 +240,13 @@ def solve_bem(
         op,
         h,
         valid,
-        total_pressure=float(nominal_pressure) * h.size,
+        total_pressure=float(nominal_pressure) * int(valid.sum()),
         tol=float(tol),
         max_iter=int(max_iter),
         p0=p0,
     )
     return _result(
-        out, surface, nominal_pressure, "bem",
+        out, surface, valid, nominal_pressure, "bem",
         {"e_star": e_star, "periodic": bool(periodic)}, int(max_iter), float(tol),
     )
 
@@ -302,6 +307,6 @@ def solve_bem_displacement(
         op, h, valid, separation=float(separation), tol=float(tol), max_iter=int(max_iter)
     )
     return _result(
-        out, surface, None, "bem-displacement",
+        out, surface, valid, None, "bem-displacement",
         {"e_star": e_star, "periodic": False}, int(max_iter), float(tol),
     )

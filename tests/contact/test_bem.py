@@ -22,7 +22,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from contact import Surface
+from contact import Surface, solve, weierstrass
 from contact._bem_kernel import NonPeriodicOperator, PeriodicOperator, love_coefficients
 from contact.bem import BEMConvergenceWarning, solve_bem, solve_bem_displacement
 
@@ -263,7 +263,45 @@ def test_masked_points_carry_no_pressure():
     res = solve_bem(Surface(s.heights, s.dx, mask=mask), 5e6, E, NU)
     assert res.converged
     assert res.pressure[top] == 0.0
-    assert res.force == pytest.approx(5e6 * s.area, rel=1e-12)
+    # the nominal area is the measured one: one cell fewer than the grid
+    assert res.force == pytest.approx(5e6 * s.dx * s.dy * (s.heights.size - 1), rel=1e-12)
+
+
+def test_masked_surface_is_loaded_on_its_measured_area_like_the_asperity_model():
+    s = weierstrass((128, 128), 1e-3, 0.5, rq=50e-6, rng=1)
+    mask = np.zeros(s.shape, bool)
+    mask[:, 64:] = True
+    masked = Surface(s.heights, s.dx, s.dy, mask=mask)
+    p = 20e6
+    asperity = solve(masked, p, E, NU, jump="blend")
+    bem = solve_bem(masked, p, E, NU)
+    measured = p * s.dx * s.dy * int((~mask).sum())
+    assert bem.converged
+    assert asperity.target_force == pytest.approx(measured, rel=1e-12)
+    assert bem.target_force == pytest.approx(asperity.target_force, rel=1e-12)
+    assert bem.force == pytest.approx(measured, rel=1e-9)
+    assert bem.nominal_pressure == p
+    np.testing.assert_array_equal(bem.pressure[mask], 0.0)
+    # alpha counts only the measured points: masked ones are neither in nor out of contact
+    np.testing.assert_array_equal(bem.mask, mask)
+    in_contact = int((bem.pressure[~mask] > 0).sum())
+    assert 0 < in_contact < (~mask).sum()
+    assert bem.alpha == pytest.approx(1 - in_contact / (~mask).sum(), rel=1e-15)
+    assert bem.contact_fraction == pytest.approx(in_contact / (~mask).sum(), rel=1e-15)
+    assert solve_bem(s, p, E, NU).mask is None
+
+
+def test_masked_displacement_control_reports_the_mask():
+    s = _rough(32)
+    mask = np.zeros(s.shape, bool)
+    mask[:4] = True
+    res = solve_bem_displacement(Surface(s.heights, s.dx, mask=mask),
+                                 float(np.quantile(s.heights, 0.9)), E, NU)
+    np.testing.assert_array_equal(res.mask, mask)
+    np.testing.assert_array_equal(res.pressure[mask], 0.0)
+    in_contact = int((res.pressure[~mask] > 0).sum())
+    assert in_contact > 0
+    assert res.alpha == pytest.approx(1 - in_contact / (~mask).sum(), rel=1e-15)
 
 
 def test_input_is_not_modified_and_workers_give_the_same_answer():

@@ -52,3 +52,14 @@ def test_bad_input_propagates(surface):
         compare_models(surface, -1.0, E, NU)
     with pytest.raises(ValueError, match="tol"):
         compare_models(surface, P, E, NU, tol=0.0)
+
+
+def test_masked_surface_compares_equal_loads(surface):
+    mask = np.zeros(surface.shape, bool)
+    mask[:, 24:] = True
+    masked = Surface(surface.heights, surface.dx, surface.dy, mask=mask)
+    res = compare_models(masked, P, E, NU).attrs["results"]
+    measured = P * surface.dx * surface.dy * int((~mask).sum())
+    assert res["asperity"].target_force == pytest.approx(measured, rel=1e-12)
+    assert res["bem"].target_force == pytest.approx(measured, rel=1e-12)
+    assert res["bem"].force == pytest.approx(measured, rel=1e-9)
