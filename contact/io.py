@@ -151,14 +151,31 @@ def _read_text(path, dx, dy, fname):
     return np.array(rows), *_spacing(dx, dy, found["dx"], found["dy"], fname), None
 
 
+# Printed coordinates are rounded: ``%g`` keeps 6 significant digits, i.e. a relative
+# error up to 5e-6 of the coordinate. A coordinate is on the grid when its distance to
+# the nearest grid index, in units of the step, is below _INDEX_TOL plus that rounding.
+_INDEX_TOL = 1e-3
+_PRINT_REL = 5e-6
+
+
 def _axis(values: np.ndarray, name: str, fname: str) -> tuple[np.ndarray, float]:
-    """Index of each coordinate on a uniform axis, and the spacing."""
+    """Index of each coordinate on a uniform axis, and the spacing (m).
+
+    The step is the span over the number of distinct values less one; every coordinate
+    must lie within ``_INDEX_TOL + _PRINT_REL * |x| / step`` grid steps of a grid index,
+    so coordinates printed with 6 or more significant digits are accepted and irregular
+    grids are not.
+    """
     u = np.unique(values)
     if u.size < 3:
         raise TopographyFileError(f"{fname}: only {u.size} distinct {name} values; need >= 3")
-    steps = np.diff(u)
     step = (u[-1] - u[0]) / (u.size - 1)
-    if not np.allclose(steps, step, rtol=1e-6, atol=0):
+    position = (u - u[0]) / step
+    index = np.rint(position)
+    deviation = np.abs(position - index)
+    allowed = _INDEX_TOL + _PRINT_REL * np.abs(u) / step
+    if not (deviation <= allowed).all() or np.unique(index).size != u.size:
+        steps = np.diff(u)
         raise TopographyFileError(
             f"{fname}: non-uniform spacing along {name}: steps from {steps.min():.6g} to "
             f"{steps.max():.6g} m; resample onto a regular grid first"

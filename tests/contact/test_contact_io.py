@@ -206,3 +206,43 @@ def test_write_does_not_touch_the_surface(tmp_path, surface):
     surface.write(tmp_path / "s.txt")
     surface.write(tmp_path / "s.x3p")
     np.testing.assert_array_equal(surface.heights, before)
+
+
+def test_xyz_with_rounded_coordinates(tmp_path):
+    # dx = 1/3 um printed with 6 significant digits: the printed steps differ by ~1e-6
+    rng = np.random.default_rng(2)
+    h = rng.normal(size=(64, 48)) * 1e-7
+    dx, dy = 1e-6 / 3, 0.7e-6
+    ii, jj = np.meshgrid(np.arange(64), np.arange(48), indexing="ij")
+    pts = np.column_stack([ii.ravel() * dx, jj.ravel() * dy, h.ravel()])
+    path = tmp_path / "g.xyz"
+    np.savetxt(path, pts, fmt="%g")
+    printed = np.loadtxt(path)
+    steps = np.diff(np.unique(printed[:, 0]))
+    assert not np.allclose(steps, steps.mean(), rtol=1e-6, atol=0)
+    s = contact.read(path)
+    assert s.shape == (64, 48)
+    assert s.dx == pytest.approx(dx, rel=1e-5)
+    assert s.dy == pytest.approx(dy, rel=1e-5)
+    np.testing.assert_allclose(s.heights, h, rtol=1e-5, atol=1e-12)
+    assert s.mask is None
+
+
+def test_xyz_irregular_grids_still_rejected(tmp_path):
+    path = tmp_path / "p.xyz"
+    # a column displaced by 1 % of a step
+    xs = np.arange(8) * 1e-6
+    xs[3] += 1e-8
+    np.savetxt(path, [(x, y, 0.0) for x in xs for y in np.arange(4) * 1e-6], fmt="%.17g")
+    with pytest.raises(TopographyFileError, match=r"non-uniform spacing along x"):
+        contact.read(path)
+    # a jittered axis along y
+    ys = np.arange(6) * 1e-6 + np.array([0, 2e-8, -3e-8, 1e-8, 0, 0])
+    np.savetxt(path, [(x, y, 0.0) for x in np.arange(4) * 1e-6 for y in ys], fmt="%.17g")
+    with pytest.raises(TopographyFileError, match=r"non-uniform spacing along y"):
+        contact.read(path)
+    # a missing interior column: the remaining coordinates are not on a uniform grid
+    xs = np.delete(np.arange(8) * 1e-6, 4)
+    np.savetxt(path, [(x, y, 0.0) for x in xs for y in np.arange(4) * 1e-6], fmt="%g")
+    with pytest.raises(TopographyFileError, match=r"non-uniform spacing along x"):
+        contact.read(path)
