@@ -207,6 +207,83 @@ def test_resume_with_other_settings_is_refused(tmp_path, capsys):
     assert _files(out) != before
 
 
+def _flip_byte_in_member(path: Path, member: str) -> None:
+    """Flip one byte in the middle of the compressed data of ``member`` of the zip ``path``."""
+    import zipfile
+
+    with zipfile.ZipFile(path) as zf:
+        info = zf.getinfo(member)
+    raw = bytearray(path.read_bytes())
+    # local header: 30 bytes, then the file name and the extra field, then the data
+    name_len = int.from_bytes(raw[info.header_offset + 26:info.header_offset + 28], "little")
+    extra_len = int.from_bytes(raw[info.header_offset + 28:info.header_offset + 30], "little")
+    start = info.header_offset + 30 + name_len + extra_len
+    raw[start + info.compress_size // 2] ^= 0xFF
+    path.write_bytes(bytes(raw))
+
+
+def _drop_array(path: Path, name: str) -> None:
+    with np.load(path) as z:
+        arrays = {k: z[k] for k in z.files if k != name}
+    np.savez(path, **arrays)
+
+
+def test_damaged_surfaces_are_computed_again(tmp_path, capfd):
+    out = tmp_path / "run"
+    run_campaign(SMALL, out, executor=SerialExecutor(), progress=False)
+    before = _files(out)
+    bad_crc = surface_path(out, SMALL, 0, 0, 2)
+    no_alpha = surface_path(out, SMALL, 1, 0, 3)
+    _flip_byte_in_member(bad_crc, "samples.npy")
+    _drop_array(no_alpha, "alpha")
+    capfd.readouterr()
+    # analysing the damaged files directly: a CampaignError naming the file and the fix
+    with pytest.raises(CampaignError, match=rf"{re.escape(str(bad_crc))} is unreadable.*rerun"):
+        load_results(out, SMALL)
+    with pytest.raises(CampaignError, match=rf"{re.escape(str(no_alpha))} lacks the array\(s\) alpha"):
+        load_results(out, SMALL, keys=[(1, 0, 3)])
+    # the campaign recomputes exactly those two surfaces, with a note naming each file
+    r = run_campaign(SMALL, out, executor=SerialExecutor(), progress=False)
+    assert sorted(r.computed) == [(0, 0, 2), (1, 0, 3)] and r.skipped == 6
+    err = capfd.readouterr().err
+    assert f"note: {bad_crc} is unreadable" in err and "computing it again" in err
+    assert f"note: {no_alpha} lacks the array(s) alpha; computing it again" in err
+    assert _files(out) == before
+    # through the command: the study finishes and reports the recomputed surface
+    args = ["study", "--surfaces", "4", "--grid", "48", "--n-terms", "5", "--hurst", "0.5",
+            "--bootstrap", "20", "--no-progress", "--workers", "1", "--out", str(tmp_path / "cli")]
+    assert main(args) == 0
+    stored = _files(tmp_path / "cli")
+    damaged = tmp_path / "cli" / "H0.5_P20MPa" / "surface_0002.npz"
+    _flip_byte_in_member(damaged, "samples.npy")
+    capfd.readouterr()
+    assert main(args) == 0
+    captured = capfd.readouterr()
+    assert f"note: {damaged} is unreadable" in captured.err
+    assert "1 surfaces computed, 3 reused" in captured.out
+    assert _files(tmp_path / "cli") == stored
+
+
+def test_corrupt_manifest(tmp_path, capsys):
+    out = tmp_path / "run"
+    run_campaign(SMALL, out, executor=SerialExecutor(), progress=False)
+    before = _files(out)
+    (out / "manifest.json").write_text('{"campaign": ')
+    with pytest.raises(CampaignError, match=r"manifest.json is not a readable campaign manifest"
+                                            r".*--out DIR.*--force"):
+        run_campaign(SMALL, out, executor=SerialExecutor(), progress=False)
+    assert _files(out) == before  # refused: nothing deleted
+    rc = main(["study", *TINY, "--workers", "1", "--out", str(out)])
+    assert rc == 1 and "--force" in capsys.readouterr().err
+    (out / "manifest.json").write_text('{"campaign": [1, 2]}')
+    with pytest.raises(CampaignError, match=r"not a readable campaign manifest.*--force"):
+        run_campaign(SMALL, out, executor=SerialExecutor(), progress=False)
+    r = run_campaign(SMALL, out, executor=SerialExecutor(), progress=False, force=True)
+    assert len(r.computed) == 8 and r.skipped == 0
+    assert _files(out) == before
+    assert run_campaign(SMALL, out, executor=SerialExecutor(), progress=False).skipped == 8
+
+
 def test_unwritable_output_directory(tmp_path, capsys):
     blocker = tmp_path / "file"
     blocker.write_text("not a directory")

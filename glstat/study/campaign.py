@@ -13,6 +13,7 @@ import io
 import json
 import math
 import os
+import sys
 import tempfile
 import time
 import warnings
@@ -267,7 +268,47 @@ def atomic_write(path: str | os.PathLike, data: bytes) -> None:
         raise
 
 
-def _npz_has(path: Path, names: tuple[str, ...]) -> bool:
+#: Arrays every stored surface holds (the analysis reads them); ``in_jump`` and
+#: ``force_jump`` are optional (files written before they existed lack them).
+SURFACE_ARRAYS = ("samples", "asperity_peak", "max_pressure", "mean_pressure", "alpha",
+                  "n_contact", "n_points", "n_asperities", "force_error")
+
+
+def _npz_problem(path: Path, names: tuple[str, ...]) -> str | None:
+    """Why ``path`` is not a readable .npz archive holding every array of ``names``.
+
+    Every member of the archive is read, so a damaged file (a bad CRC, a truncated or
+    malformed array) is found here rather than when the results are analysed.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The archive.
+    names : tuple of str
+        Array names (without ``.npy``) it must hold.
+
+    Returns
+    -------
+    str or None
+        None for a complete file; ``"missing"`` when there is no file; otherwise the
+        problem as the end of a sentence about the file (the error met while reading, or
+        the arrays it lacks).
+    """
+    if not path.is_file():
+        return "missing"
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            for name in z.files:
+                z[name]
+            lacking = [name for name in names if name not in z.files]
+    except Exception as exc:
+        return f"is unreadable ({type(exc).__name__}: {exc})"
+    if lacking:
+        return f"lacks the array(s) {', '.join(lacking)}"
+    return None
+
+
+def _npz_has(path: Path, names: tuple[str, ...], note: bool = True) -> bool:
     """Whether ``path`` is a readable .npz archive holding every array of ``names``.
 
     Parameters
@@ -276,23 +317,23 @@ def _npz_has(path: Path, names: tuple[str, ...]) -> bool:
         The archive.
     names : tuple of str
         Array names (without ``.npy``).
+    note : bool
+        Print a one-line note to stderr when the file exists but is damaged or incomplete
+        (it is then computed again and replaced).
 
     Returns
     -------
     bool
         False for a missing, truncated or unreadable file, or one without some of ``names``.
     """
-    if not path.is_file():
-        return False
-    try:
-        with np.load(path) as z:
-            return all(name in z.files for name in names)
-    except Exception:
-        return False
+    problem = _npz_problem(path, names)
+    if problem is not None and problem != "missing" and note:
+        print(f"note: {path} {problem}; computing it again", file=sys.stderr)
+    return problem is None
 
 
 def _is_complete(path: Path) -> bool:
-    return _npz_has(path, ("samples", "max_pressure"))
+    return _npz_has(path, SURFACE_ARRAYS)
 
 
 def _check_writable(root: Path) -> None:
@@ -316,10 +357,16 @@ def _prepare_dir(root: Path, settings: CampaignSettings, force: bool) -> None:
     if mpath.exists():
         try:
             old = json.loads(mpath.read_text())["campaign"]
-        except (ValueError, KeyError) as exc:
-            raise CampaignError(
-                f"{mpath} is not a campaign manifest ({exc}); use a new output directory"
-            ) from None
+            if not isinstance(old, dict):
+                raise TypeError(f"'campaign' is a {type(old).__name__}, not a mapping")
+        except (OSError, ValueError, KeyError, TypeError) as exc:
+            if not force:
+                raise CampaignError(
+                    f"{mpath} is not a readable campaign manifest ({type(exc).__name__}: {exc}); "
+                    f"use a new output directory (--out DIR), or --force (force=True) to discard "
+                    f"the stored surfaces and start over in this directory"
+                ) from None
+            old = {}
         if old != ident and not force:
             diff = ", ".join(f"{k}: {old.get(k)!r} -> {v!r}" for k, v in ident.items() if old.get(k) != v)
             raise CampaignError(
@@ -333,7 +380,7 @@ def _prepare_dir(root: Path, settings: CampaignSettings, force: bool) -> None:
                 for f in [*sub.glob("surface_*"), *sub.glob("bem_*")]:
                     f.unlink()
     manifest = {"campaign": ident, "created": time.strftime("%Y-%m-%dT%H:%M:%S")}
-    if mpath.exists() and old == ident:
+    if old == ident:
         previous = json.loads(mpath.read_text())
         # Keep the other sections (the BEM comparison's settings) of a resumed campaign.
         manifest = {**previous, **manifest, "created": previous.get("created", manifest["created"])}
@@ -682,14 +729,26 @@ def load_results(out: str | os.PathLike, settings: CampaignSettings,
     Raises
     ------
     CampaignError
-        A requested surface is missing.
+        A requested surface is missing, unreadable or lacks an array the analysis needs (the
+        message names the file; rerunning the campaign computes it again).
     """
     res = {}
     for key in settings.tasks() if keys is None else keys:
         path = surface_path(out, settings, *key)
         if not path.is_file():
             raise CampaignError(f"{path} is missing: run the campaign (it resumes) before analysing")
-        with np.load(path) as z:
-            res[key] = {k: z[k] for k in z.files if maps or k not in ("heights", "pressure")}
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                res[key] = {k: z[k] for k in z.files if maps or k not in ("heights", "pressure")}
+        except Exception as exc:
+            raise CampaignError(
+                f"{path} is unreadable ({type(exc).__name__}: {exc}); rerun the campaign (the "
+                f"same glstat study command) to compute this surface again"
+            ) from None
+        lacking = [k for k in SURFACE_ARRAYS if k not in res[key]]
+        if lacking:
+            raise CampaignError(
+                f"{path} lacks the array(s) {', '.join(lacking)}; rerun the campaign (the same "
+                f"glstat study command) to compute this surface again"
+            )
     return res
-
