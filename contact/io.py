@@ -9,7 +9,8 @@ npy       ``.npy`` (heights only)                      no: pass ``dx`` (and ``dy
 npz       ``.npz`` (``heights``, ``dx``, ``dy``,       yes
           optional ``mask``)
 text      ``.txt``, ``.asc``, ``.dat``, ``.csv``       in ``# dx = ...`` header lines,
-          (a grid: one row per x, NaN for missing)     else pass ``dx``
+          (a grid: one row per x, NaN for missing;     else pass ``dx``
+          optional ``# shape = nx ny`` header)
 xyz       ``.xyz`` (one ``x y z`` point per line)      yes (from the coordinates)
 x3p       ``.x3p`` (ISO 25178-72)                      yes
 ========  ===========================================  ==========================
@@ -117,10 +118,13 @@ def _read_npz(path, dx, dy, fname):
 
 
 _HEADER = re.compile(r"^\s*#\s*(dx|dy)\s*[=:]\s*(\S+)\s*$", re.IGNORECASE)
+_SHAPE = re.compile(r"^\s*#\s*shape\s*[=:]\s*(\d+)[\s,x]+(\d+)\s*,?\s*$", re.IGNORECASE)
+_POINTS = re.compile(r"^\s*#\s*points\s*[=:]\s*(\d+)\s*,?\s*$", re.IGNORECASE)
 
 
 def _read_text(path, dx, dy, fname):
     found = {"dx": None, "dy": None}
+    shape = None
     rows: list[list[float]] = []
     delimiter = "," if Path(path).suffix.lower() == ".csv" else None
     try:
@@ -129,6 +133,10 @@ def _read_text(path, dx, dy, fname):
                 m = _HEADER.match(line)
                 if m:
                     found[m.group(1).lower()] = float(m.group(2))
+                    continue
+                m = _SHAPE.match(line)
+                if m:
+                    shape = (int(m.group(1)), int(m.group(2)))
                     continue
                 body = line.split("#", 1)[0].strip()
                 if not body:
@@ -147,6 +155,11 @@ def _read_text(path, dx, dy, fname):
     if len(widths) != 1:
         raise TopographyFileError(
             f"{fname}: rows have different lengths {sorted(widths)} (truncated or ragged grid)"
+        )
+    if shape is not None and (len(rows), len(rows[0])) != shape:
+        raise TopographyFileError(
+            f"{fname}: holds {len(rows)} rows of {len(rows[0])} values, but its header "
+            f"says shape = {shape[0]} {shape[1]} (truncated file?)"
         )
     return np.array(rows), *_spacing(dx, dy, found["dx"], found["dy"], fname), None
 
@@ -183,6 +196,19 @@ def _axis(values: np.ndarray, name: str, fname: str) -> tuple[np.ndarray, float]
     return np.rint((values - u[0]) / step).astype(np.int64), float(step)
 
 
+def _point_count(path, fname) -> int | None:
+    """The ``# points = N`` header line of an XYZ file, or None when there is none."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            for line in fh:
+                m = _POINTS.match(line)
+                if m:
+                    return int(m.group(1))
+    except OSError as exc:
+        raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
+    return None
+
+
 def _read_xyz(path, dx, dy, fname):
     try:
         data = np.loadtxt(path, comments="#", ndmin=2)
@@ -192,6 +218,12 @@ def _read_xyz(path, dx, dy, fname):
         raise TopographyFileError(f"{fname}: expected 3 columns (x y z), got {data.shape[1]}")
     if not np.isfinite(data[:, :2]).all():
         raise TopographyFileError(f"{fname}: x or y coordinates contain NaN or inf")
+    count = _point_count(path, fname)
+    if count is not None and data.shape[0] != count:
+        raise TopographyFileError(
+            f"{fname}: holds {data.shape[0]} points, but its header says points = {count} "
+            "(truncated file?)"
+        )
     ii, sx = _axis(data[:, 0], "x", fname)
     jj, sy = _axis(data[:, 1], "y", fname)
     nx, ny = int(ii.max()) + 1, int(jj.max()) + 1
@@ -291,6 +323,9 @@ def write(surface: Surface, path: str | os.PathLike, *, format: str | None = Non
 
     ``.npy`` stores the heights only (the spacing is lost; prefer ``.npz``). Missing
     points are written as NaN (npy, text, XYZ, X3P) or as the ``mask`` array (npz).
+    Text grids carry ``# shape = nx ny``, ``# dx = ...`` and ``# dy = ...`` header lines
+    (spacing in metres), XYZ files a ``# points = N`` line; :func:`read` checks them, so
+    a file cut short at a row boundary is reported instead of read as a smaller surface.
     The file is first written next to ``path`` and moved into place, so a failed write
     leaves no partial file.
     """
@@ -322,14 +357,15 @@ def write(surface: Surface, path: str | os.PathLike, *, format: str | None = Non
             delimiter = "," if p.suffix.lower() == ".csv" else " "
             header = (
                 "contact surface grid: heights in metres; row i is x = i * dx, column j is "
-                f"y = j * dy; NaN marks missing points\ndx = {surface.dx!r}\ndy = {surface.dy!r}"
+                f"y = j * dy; NaN marks missing points\nshape = {h.shape[0]} {h.shape[1]}\n"
+                f"dx = {surface.dx!r}\ndy = {surface.dy!r}"
             )
             np.savetxt(tmp, h, fmt="%.17g", delimiter=delimiter, header=header)
         else:  # xyz
             nx, ny = h.shape
             ii, jj = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
             pts = np.column_stack([ii.ravel() * surface.dx, jj.ravel() * surface.dy, h.ravel()])
-            np.savetxt(tmp, pts, fmt="%.17g", header="x y z in metres")
+            np.savetxt(tmp, pts, fmt="%.17g", header=f"x y z in metres\npoints = {nx * ny}")
         os.replace(tmp, p)
     finally:
         if tmp.exists():

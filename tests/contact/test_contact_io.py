@@ -246,3 +246,36 @@ def test_xyz_irregular_grids_still_rejected(tmp_path):
     np.savetxt(path, [(x, y, 0.0) for x in xs for y in np.arange(4) * 1e-6], fmt="%g")
     with pytest.raises(TopographyFileError, match=r"non-uniform spacing along x"):
         contact.read(path)
+
+
+@pytest.mark.parametrize("name", ["s.txt", "s.csv"])
+def test_text_grid_truncated_at_a_row_boundary(tmp_path, surface, name):
+    path = tmp_path / name
+    surface.write(path)
+    text = path.read_text()
+    assert f"# shape = {surface.shape[0]} {surface.shape[1]}\n" in text
+    lines = text.splitlines(keepends=True)
+    (tmp_path / ("t" + path.suffix)).write_text("".join(lines[:-2]))
+    with pytest.raises(TopographyFileError, match=r"holds \d+ rows of \d+ values, but its "
+                       r"header says shape = \d+ \d+ \(truncated file\?\)"):
+        contact.read(tmp_path / ("t" + path.suffix))
+    # without the shape line, the same rows read as a smaller surface
+    kept = [ln for ln in lines[:-2] if not ln.startswith("# shape")]
+    (tmp_path / ("n" + path.suffix)).write_text("".join(kept))
+    assert contact.read(tmp_path / ("n" + path.suffix)).shape == (
+        surface.shape[0] - 2, surface.shape[1])
+
+
+def test_xyz_truncated_at_a_row_boundary(tmp_path, surface):
+    path = tmp_path / "s.xyz"
+    surface.write(path)
+    lines = path.read_text().splitlines(keepends=True)
+    assert f"# points = {surface.heights.size}\n" in lines
+    ny = surface.shape[1]
+    (tmp_path / "t.xyz").write_text("".join(lines[:-ny]))
+    with pytest.raises(TopographyFileError, match=rf"holds {surface.heights.size - ny} points, "
+                       rf"but its header says points = {surface.heights.size}"):
+        contact.read(tmp_path / "t.xyz")
+    kept = [ln for ln in lines[:-ny] if not ln.startswith("# points")]
+    (tmp_path / "n.xyz").write_text("".join(kept))
+    assert contact.read(tmp_path / "n.xyz").shape == (surface.shape[0] - 1, ny)
