@@ -8,9 +8,9 @@ format    extensions                                   spacing stored in the fil
 npy       ``.npy`` (heights only)                      no: pass ``dx`` (and ``dy``)
 npz       ``.npz`` (``heights``, ``dx``, ``dy``,       yes
           optional ``mask``)
-text      ``.txt``, ``.asc``, ``.dat``, ``.csv``       in ``# dx = ...`` header lines,
-          (a grid: one row per x, NaN for missing;     else pass ``dx``
-          optional ``# shape = nx ny`` header)
+text      ``.txt``, ``.asc``, ``.dat``, ``.csv``       in ``# dx = ...`` header lines
+          (a grid: one row per x, NaN for missing;     (metres, or with a unit: m,
+          optional ``# shape = nx ny`` header)         mm, um/µm, nm), else pass ``dx``
 xyz       ``.xyz`` (one ``x y z`` point per line)      yes (from the coordinates)
 x3p       ``.x3p`` (ISO 25178-72)                      yes
 ========  ===========================================  ==========================
@@ -117,9 +117,51 @@ def _read_npz(path, dx, dy, fname):
     return h.astype(float), *_spacing(dx, dy, *found, fname), mask
 
 
-_HEADER = re.compile(r"^\s*#\s*(dx|dy)\s*[=:]\s*(\S+)\s*$", re.IGNORECASE)
+_HEADER = re.compile(r"^\s*#\s*(dx|dy)\s*[=:]\s*(.*?)\s*$", re.IGNORECASE)
+_VALUE = re.compile(r"^(?P<number>.+?)\s*(?P<unit>m|mm|um|µm|μm|nm)?\s*,?$")
+_HEADER_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9}
 _SHAPE = re.compile(r"^\s*#\s*shape\s*[=:]\s*(\d+)[\s,x]+(\d+)\s*,?\s*$", re.IGNORECASE)
 _POINTS = re.compile(r"^\s*#\s*points\s*[=:]\s*(\d+)\s*,?\s*$", re.IGNORECASE)
+
+
+def _text_lines(path, fname) -> list[str]:
+    """The lines of a text file: UTF-8 (with or without a byte-order mark), else Latin-1.
+
+    Numbers are ASCII in both; the fallback only matters for comments such as ``µm``
+    written by software that uses Latin-1.
+    """
+    try:
+        raw = Path(path).read_bytes()
+    except OSError as exc:
+        raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = raw.removeprefix(b"\xef\xbb\xbf").decode("latin-1")
+    return text.splitlines()
+
+
+def _header_spacing(name: str, value: str, fname: str, lineno: int) -> float:
+    """A ``# dx = ...`` value in metres: a number, an optional unit (m, mm, um or µm, nm;
+    metres when absent) and an optional trailing comma."""
+    m = _VALUE.match(value)
+    number = None
+    if m:
+        try:
+            number = float(m.group("number"))
+        except ValueError:
+            number = None
+    if number is None:
+        raise TopographyFileError(
+            f"{fname}: line {lineno}: {name} = {value!r} is not a length; write a number "
+            "in metres, optionally followed by a unit (m, mm, um, µm or nm)"
+        )
+    spacing = number * _HEADER_UNITS[m.group("unit") or "m"]
+    if not (math.isfinite(spacing) and spacing > 0):
+        raise TopographyFileError(
+            f"{fname}: line {lineno}: {name} = {value!r} is not a positive finite spacing"
+        )
+    return spacing
 
 
 def _read_text(path, dx, dy, fname):
@@ -127,28 +169,25 @@ def _read_text(path, dx, dy, fname):
     shape = None
     rows: list[list[float]] = []
     delimiter = "," if Path(path).suffix.lower() == ".csv" else None
-    try:
-        with open(path, encoding="utf-8") as fh:
-            for lineno, line in enumerate(fh, 1):
-                m = _HEADER.match(line)
-                if m:
-                    found[m.group(1).lower()] = float(m.group(2))
-                    continue
-                m = _SHAPE.match(line)
-                if m:
-                    shape = (int(m.group(1)), int(m.group(2)))
-                    continue
-                body = line.split("#", 1)[0].strip()
-                if not body:
-                    continue
-                try:
-                    rows.append([float(t) for t in body.split(delimiter)])
-                except ValueError:
-                    raise TopographyFileError(
-                        f"{fname}: line {lineno} holds a non-number"
-                    ) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
+    for lineno, line in enumerate(_text_lines(path, fname), 1):
+        m = _HEADER.match(line)
+        if m:
+            name = m.group(1).lower()
+            found[name] = _header_spacing(name, m.group(2), fname, lineno)
+            continue
+        m = _SHAPE.match(line)
+        if m:
+            shape = (int(m.group(1)), int(m.group(2)))
+            continue
+        body = line.split("#", 1)[0].strip()
+        if delimiter and body.endswith(delimiter):
+            body = body[:-1].rstrip()  # spreadsheets end CSV rows with a comma
+        if not body:
+            continue
+        try:
+            rows.append([float(t) for t in body.split(delimiter)])
+        except ValueError:
+            raise TopographyFileError(f"{fname}: line {lineno} holds a non-number") from None
     if not rows:
         raise TopographyFileError(f"{fname}: holds no data rows")
     widths = {len(r) for r in rows}
@@ -196,29 +235,17 @@ def _axis(values: np.ndarray, name: str, fname: str) -> tuple[np.ndarray, float]
     return np.rint((values - u[0]) / step).astype(np.int64), float(step)
 
 
-def _point_count(path, fname) -> int | None:
-    """The ``# points = N`` header line of an XYZ file, or None when there is none."""
-    try:
-        with open(path, encoding="utf-8", errors="replace") as fh:
-            for line in fh:
-                m = _POINTS.match(line)
-                if m:
-                    return int(m.group(1))
-    except OSError as exc:
-        raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
-    return None
-
-
 def _read_xyz(path, dx, dy, fname):
+    lines = _text_lines(path, fname)
     try:
-        data = np.loadtxt(path, comments="#", ndmin=2)
-    except (ValueError, OSError) as exc:
+        data = np.loadtxt(lines, comments="#", ndmin=2)
+    except ValueError as exc:
         raise TopographyFileError(f"{fname}: not a readable x y z point list: {exc}") from None
     if data.shape[1] != 3 or data.shape[0] == 0:
         raise TopographyFileError(f"{fname}: expected 3 columns (x y z), got {data.shape[1]}")
     if not np.isfinite(data[:, :2]).all():
         raise TopographyFileError(f"{fname}: x or y coordinates contain NaN or inf")
-    count = _point_count(path, fname)
+    count = next((int(m.group(1)) for m in map(_POINTS.match, lines) if m), None)
     if count is not None and data.shape[0] != count:
         raise TopographyFileError(
             f"{fname}: holds {data.shape[0]} points, but its header says points = {count} "

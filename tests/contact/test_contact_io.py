@@ -279,3 +279,54 @@ def test_xyz_truncated_at_a_row_boundary(tmp_path, surface):
     kept = [ln for ln in lines[:-ny] if not ln.startswith("# points")]
     (tmp_path / "n.xyz").write_text("".join(kept))
     assert contact.read(tmp_path / "n.xyz").shape == (surface.shape[0] - 1, ny)
+
+
+GRID = "1 2 3\n4 5 6\n7 8 9\n"
+
+
+@pytest.mark.parametrize(("value", "metres"), [
+    ("1e-06", 1e-6), ("1e-06,", 1e-6), ("1 um", 1e-6), ("1um", 1e-6), ("1 µm", 1e-6),
+    ("2.5 nm", 2.5e-9), ("0.5 mm,", 5e-4), ("3e-6 m", 3e-6), ("1e-06 ,", 1e-6),
+])
+def test_text_header_values_and_units(tmp_path, value, metres):
+    path = tmp_path / "g.txt"
+    path.write_text(f"# dx = {value}\n" + GRID, encoding="utf-8")
+    s = contact.read(path)
+    assert s.dx == pytest.approx(metres, rel=1e-15)
+    assert s.dy == s.dx
+
+
+@pytest.mark.parametrize("value", ["abc", "1 inch", "1e-6 um um", "-1e-6", "0 nm", "inf", ""])
+def test_text_header_bad_values(tmp_path, value):
+    path = tmp_path / "g.txt"
+    path.write_text("# a comment\n# dy = " + value + "\n" + GRID, encoding="utf-8")
+    with pytest.raises(TopographyFileError, match=r"g\.txt: line 2: dy = .* (not a length|"
+                       r"not a positive finite spacing)"):
+        contact.read(path, dx=1e-6)
+
+
+def test_csv_with_trailing_commas(tmp_path):
+    path = tmp_path / "g.csv"
+    path.write_text("# heights in metres,\n# dx = 1e-06,\n# dy = 2e-06,\n"
+                    "1,2,3,\n4,5,6,\n7,8,9,\n")
+    s = contact.read(path)
+    assert (s.dx, s.dy) == (1e-6, 2e-6)
+    np.testing.assert_array_equal(s.heights, np.arange(1, 10.0).reshape(3, 3))
+
+
+def test_text_encodings(tmp_path):
+    bom = tmp_path / "bom.txt"
+    bom.write_bytes(b"\xef\xbb\xbf# dx = 1e-06\n" + GRID.encode())
+    assert contact.read(bom).dx == 1e-6
+    bom_data = tmp_path / "bom_data.txt"
+    bom_data.write_bytes(b"\xef\xbb\xbf" + GRID.encode())
+    np.testing.assert_array_equal(contact.read(bom_data, dx=1e-6).heights[0], [1, 2, 3])
+    latin = tmp_path / "latin.txt"
+    latin.write_bytes("# heights in µm from the profiler\n# dx = 2 µm\n".encode("latin-1")
+                      + GRID.encode())
+    assert contact.read(latin).dx == pytest.approx(2e-6, rel=1e-15)
+    xyz = tmp_path / "latin.xyz"
+    pts = "".join(f"{i * 1e-6} {j * 1e-6} {i + j}\n" for i in range(3) for j in range(3))
+    xyz.write_bytes(b"\xef\xbb\xbf" + "# x y z in m (0.001 µm resolution)\n".encode("latin-1")
+                    + pts.encode())
+    assert contact.read(xyz).shape == (3, 3)
