@@ -80,6 +80,36 @@ def _surface(heights, dx, dy, mask, fname) -> Surface:
         raise TopographyFileError(f"{fname}: {exc}") from None
 
 
+def _heights_array(h: np.ndarray, what: str, fname: str) -> np.ndarray:
+    """A 2-D array of real numbers (integer or floating point) as float64."""
+    if h.dtype.kind not in "iuf":
+        raise TopographyFileError(
+            f"{fname}: {what} has dtype {h.dtype}; heights must be real numbers "
+            "(integer or floating point)"
+        )
+    if h.ndim != 2:
+        raise TopographyFileError(f"{fname}: {what} is {h.ndim}-D; a 2-D height map is needed")
+    return h.astype(float)
+
+
+def _stored_spacing(content: dict, name: str, fname: str) -> float | None:
+    """A spacing stored in an .npz archive: a finite positive real scalar (m), or None."""
+    if name not in content:
+        return None
+    v = content[name]
+    if v.dtype.kind not in "iuf" or v.ndim != 0:
+        raise TopographyFileError(
+            f"{fname}: {name!r} must be a real scalar in metres, got an array of shape "
+            f"{v.shape} and dtype {v.dtype}"
+        )
+    value = float(v)
+    if not (math.isfinite(value) and value > 0):
+        raise TopographyFileError(
+            f"{fname}: {name!r} must be a positive finite spacing in metres, got {value!r}"
+        )
+    return value
+
+
 def _read_npy(path, dx, dy, fname):
     try:
         h = np.load(path, allow_pickle=False)
@@ -87,9 +117,8 @@ def _read_npy(path, dx, dy, fname):
         raise TopographyFileError(
             f"{fname}: not a readable .npy array (truncated?): {exc}"
         ) from None
-    if h.ndim != 2:
-        raise TopographyFileError(f"{fname}: holds a {h.ndim}-D array; a 2-D height map is needed")
-    return h.astype(float), *_spacing(dx, dy, None, None, fname), None
+    h = _heights_array(h, "the array", fname)
+    return h, *_spacing(dx, dy, None, None, fname), None
 
 
 def _read_npz(path, dx, dy, fname):
@@ -105,16 +134,14 @@ def _read_npz(path, dx, dy, fname):
             f"{fname}: no 'heights' array (found {sorted(content)}); save with "
             "Surface.write or numpy.savez(path, heights=..., dx=..., dy=...)"
         )
-    h = content["heights"]
-    if h.ndim != 2:
-        raise TopographyFileError(f"{fname}: 'heights' is {h.ndim}-D; a 2-D height map is needed")
-    found = [float(content[k]) if k in content else None for k in ("dx", "dy")]
+    h = _heights_array(content["heights"], "'heights'", fname)
+    found = [_stored_spacing(content, k, fname) for k in ("dx", "dy")]
     mask = content.get("mask")
     if mask is not None and mask.shape != h.shape:
         raise TopographyFileError(
             f"{fname}: mask shape {mask.shape} differs from heights {h.shape}"
         )
-    return h.astype(float), *_spacing(dx, dy, *found, fname), mask
+    return h, *_spacing(dx, dy, *found, fname), mask
 
 
 _HEADER = re.compile(r"^\s*#\s*(dx|dy)\s*[=:]\s*(.*?)\s*$", re.IGNORECASE)

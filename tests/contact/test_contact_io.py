@@ -330,3 +330,47 @@ def test_text_encodings(tmp_path):
     xyz.write_bytes(b"\xef\xbb\xbf" + "# x y z in m (0.001 µm resolution)\n".encode("latin-1")
                     + pts.encode())
     assert contact.read(xyz).shape == (3, 3)
+
+
+@pytest.mark.parametrize(("array", "dtype"), [
+    (np.array([["a", "b"], ["c", "d"]]), "<U1"),
+    (np.ones((3, 3)) + 1j, "complex128"),
+    (np.zeros((3, 3), dtype=[("a", "f8")]), r"\[\('a', '<f8'\)\]"),
+    (np.ones((3, 3), dtype=bool), "bool"),
+])
+def test_npy_and_npz_need_real_heights(tmp_path, array, dtype):
+    np.save(tmp_path / "h.npy", array)
+    with pytest.raises(TopographyFileError, match=rf"the array has dtype {dtype}; heights "
+                       "must be real numbers"):
+        contact.read(tmp_path / "h.npy", dx=1e-6)
+    np.savez(tmp_path / "h.npz", heights=array, dx=1e-6)
+    with pytest.raises(TopographyFileError, match=rf"'heights' has dtype {dtype}"):
+        contact.read(tmp_path / "h.npz")
+
+
+def test_npy_and_npz_accept_integer_and_single_precision_heights(tmp_path):
+    h = np.arange(12, dtype=np.int16).reshape(3, 4)
+    np.save(tmp_path / "h.npy", h)
+    np.testing.assert_array_equal(contact.read(tmp_path / "h.npy", dx=1e-6).heights, h)
+    np.savez(tmp_path / "h.npz", heights=h.astype(np.float32), dx=np.float32(1e-6), dy=2)
+    s = contact.read(tmp_path / "h.npz")
+    assert s.dx == pytest.approx(1e-6, rel=1e-7) and s.dy == 2.0
+    np.save(tmp_path / "v.npy", np.ones(5))
+    with pytest.raises(TopographyFileError, match=r"the array is 1-D; a 2-D height map"):
+        contact.read(tmp_path / "v.npy", dx=1e-6)
+
+
+@pytest.mark.parametrize(("dx", "match"), [
+    (np.array([1e-6, 2e-6]), r"'dx' must be a real scalar in metres, got an array of shape "
+                             r"\(2,\)"),
+    (np.array("abc"), r"'dx' must be a real scalar in metres, got an array of shape \(\) "
+                      r"and dtype <U3"),
+    (np.array(1e-6 + 0j), r"'dx' must be a real scalar"),
+    (np.array(-1e-6), r"'dx' must be a positive finite spacing in metres, got -1e-06"),
+    (np.array(np.nan), r"'dx' must be a positive finite spacing in metres, got nan"),
+    (np.array(0), r"'dx' must be a positive finite spacing in metres, got 0.0"),
+])
+def test_npz_spacing_must_be_a_positive_scalar(tmp_path, dx, match):
+    np.savez(tmp_path / "h.npz", heights=np.zeros((3, 3)), dx=dx)
+    with pytest.raises(TopographyFileError, match=match):
+        contact.read(tmp_path / "h.npz")
