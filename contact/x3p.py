@@ -63,6 +63,11 @@ def _member(archive: zipfile.ZipFile, name: str, fname: str) -> bytes:
     names = {n.lower().lstrip("/"): n for n in archive.namelist()}
     key = name.replace("\\", "/").lower().lstrip("/")
     if key not in names:
+        if key == "main.xml":
+            raise TopographyFileError(
+                f"{fname}: not a valid X3P file: the archive lacks 'main.xml', the "
+                "description every X3P file starts with"
+            )
         raise TopographyFileError(f"{fname}: the archive lacks {name!r} (listed in main.xml)")
     try:
         return archive.read(names[key])

@@ -374,3 +374,24 @@ def test_npz_spacing_must_be_a_positive_scalar(tmp_path, dx, match):
     np.savez(tmp_path / "h.npz", heights=np.zeros((3, 3)), dx=dx)
     with pytest.raises(TopographyFileError, match=match):
         contact.read(tmp_path / "h.npz")
+
+
+def test_x3p_without_main_xml_and_without_a_listed_member(tmp_path, surface):
+    path = tmp_path / "s.x3p"
+    surface.write(path)
+    with zipfile.ZipFile(path) as z:
+        members = {n: z.read(n) for n in z.namelist()}
+    listed = next(n for n in members if n.lower().endswith(".bin"))
+    for name, drop, match in [
+        ("nomain.x3p", "main.xml",
+         r"not a valid X3P file: the archive lacks 'main.xml', the description every X3P"),
+        ("nodata.x3p", listed, rf"the archive lacks '{listed}' \(listed in main.xml\)"),
+    ]:
+        with zipfile.ZipFile(tmp_path / name, "w") as z:
+            for n, data in members.items():
+                if n != drop:
+                    z.writestr(n, data)
+        with pytest.raises(TopographyFileError, match=match) as info:
+            contact.read(tmp_path / name)
+        if drop == "main.xml":
+            assert "listed in main.xml" not in str(info.value)
