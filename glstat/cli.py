@@ -57,6 +57,40 @@ def _positive(kind):
     return parse
 
 
+def _number_in(low: float, high: float, *, low_open: bool = False, high_open: bool = False,
+               kind=float):
+    """An argparse type accepting numbers of ``kind`` between ``low`` and ``high``.
+
+    Parameters
+    ----------
+    low, high : float
+        The bounds (``math.inf`` for none).
+    low_open, high_open : bool
+        Exclude that bound.
+    kind : type
+        ``float`` or ``int``.
+
+    Returns
+    -------
+    callable
+        The parser of one command-line value.
+    """
+    lo = ("(" if low_open else "[") + f"{low:g}"
+    hi = f"{high:g}" + (")" if high_open else "]")
+    expected = f"{'an integer' if kind is int else 'a number'} in {lo}, {hi}"
+
+    def parse(text: str):
+        try:
+            v = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}") from None
+        if not (math.isfinite(v) and (low < v if low_open else low <= v)
+                and (v < high if high_open else v <= high)):
+            raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}")
+        return v
+    return parse
+
+
 def _study_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="glstat study",
@@ -74,7 +108,8 @@ def _study_parser() -> argparse.ArgumentParser:
                                  f"{QUICK['out']} with --quick)")
     p.add_argument("--surfaces", type=_positive(int), help=f"surfaces per H (default {DEFAULTS['surfaces']})")
     p.add_argument("--grid", type=_positive(int), help=f"points per side (default {DEFAULTS['grid']})")
-    p.add_argument("--hurst", type=float, nargs="+", default=[0.0, 0.5, 1.0], help="Hurst exponents")
+    p.add_argument("--hurst", type=_number_in(0, 1), nargs="+", default=[0.0, 0.5, 1.0],
+                   help="Hurst exponents, in [0, 1]")
     p.add_argument("--pressure", type=_positive(float), nargs="+", default=[20.0],
                    help="nominal pressure(s) in MPa")
     p.add_argument("--hardness", type=_positive(float), default=2050.0, help="hardness Pd in MPa")
@@ -83,7 +118,8 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--rq", type=_positive(float), default=50.0, help="RMS roughness in µm")
     p.add_argument("--size", type=_positive(float), default=1.0, help="side of the surface in mm")
     p.add_argument("--modulus", type=_positive(float), default=210.0, help="Young's modulus E in GPa")
-    p.add_argument("--poisson", type=float, default=0.3, help="Poisson ratio ν")
+    p.add_argument("--poisson", type=_number_in(-1, 0.5, low_open=True), default=0.3,
+                   help="Poisson ratio ν, in (-1, 0.5]")
     p.add_argument("--cone-factor", type=_positive(float), default=0.2, help="c in p_m = c E* tan β")
     trunc = p.add_mutually_exclusive_group()
     trunc.add_argument("--n-terms", type=_n_terms_arg, nargs="+",
@@ -93,12 +129,14 @@ def _study_parser() -> argparse.ArgumentParser:
     trunc.add_argument("--max-frequency", type=_positive(float), nargs="+",
                        help="highest Weierstrass frequency in 1/mm instead of --n-terms (one value or "
                             "one per H): n_terms = floor(log(f L) / log γ) + 1")
-    p.add_argument("--gamma", type=float, default=1.5, help="Weierstrass frequency ratio γ")
+    p.add_argument("--gamma", type=_number_in(1, math.inf, low_open=True, high_open=True), default=1.5,
+                   help="Weierstrass frequency ratio γ (> 1)")
     p.add_argument("--workers", type=_positive(int), help="local worker processes (default: all cores)")
     p.add_argument("--scheduler", help="address of a Dask scheduler (tcp://host:8786) to run the surfaces on")
     p.add_argument("--scheduler-timeout", type=_positive(float), default=10.0,
                    help="seconds to wait for the Dask scheduler")
-    p.add_argument("--seed", type=int, default=2019, help="root seed of the campaign and the bootstrap")
+    p.add_argument("--seed", type=_number_in(0, math.inf, high_open=True, kind=int), default=2019,
+                   help="root seed of the campaign and the bootstrap (an integer >= 0)")
     p.add_argument("--force", action="store_true",
                    help="reuse an output directory holding a campaign with other settings "
                         "(its surfaces are discarded)")
@@ -115,7 +153,10 @@ def _study_parser() -> argparse.ArgumentParser:
 def study_main(argv: list[str]) -> int:
     """``glstat study``: run the study and write the report; returns the exit status."""
     parser = _study_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, or a usage error already printed by argparse
+        return exc.code if isinstance(exc.code, int) else 2
     base = QUICK if args.quick else DEFAULTS
     surfaces = args.surfaces or base["surfaces"]
     grid = args.grid or base["grid"]
@@ -129,7 +170,9 @@ def study_main(argv: list[str]) -> int:
         n_terms = [math.floor(math.log(f * 1e3 * length) / math.log(args.gamma) + 1e-12) + 1
                    for f in args.max_frequency]
         if min(n_terms) < 1:
-            parser.error(f"--max-frequency must be at least 1/L = {1 / (length * 1e3):g} per mm")
+            print(f"glstat study: error: --max-frequency must be at least 1/L = "
+                  f"{1 / (length * 1e3):g} per mm (1/--size)", file=sys.stderr)
+            return 2
     else:
         n_terms = args.n_terms or [DEFAULT_N_TERMS]
     try:

@@ -312,6 +312,35 @@ def test_bad_settings():
     with pytest.raises(ValueError, match="hardness must be a positive pressure in MPa"):
         AnalysisSettings(hardness=-1.0)
     assert main(["study", "--hurst", "2", "--no-progress"]) == 2
+    with pytest.raises(ValueError, match=r"nu \(Poisson ratio\) must be in \(-1, 0.5\]"):
+        CampaignSettings(nu=0.6)
+    with pytest.raises(ValueError, match="seed must be an integer >= 0"):
+        CampaignSettings(seed=-1)
+    with pytest.raises(ValueError, match="seed must be an integer >= 0"):
+        AnalysisSettings(seed=-1)
+    with pytest.raises(ValueError, match="cone_factor must be positive"):
+        CampaignSettings(cone_factor=0.0)
+    with pytest.raises(ValueError, match="n_examples must be an integer"):
+        CampaignSettings(n_examples=0.5)
+
+
+@pytest.mark.parametrize("option", [
+    ["--poisson", "0.6"], ["--poisson", "-1"], ["--poisson", "nan"], ["--seed", "-1"],
+    ["--seed", "1.5"], ["--hurst", "0.5", "-0.1"], ["--gamma", "1"], ["--gamma", "inf"],
+    ["--surfaces", "0"], ["--grid", "8"], ["--bootstrap", "5"], ["--pressure", "-20"],
+    ["--hardness", "0"], ["--rq", "nan"], ["--size", "0"], ["--modulus", "-1"],
+    ["--cone-factor", "0"], ["--n-terms", "0"], ["--n-terms", "40"], ["--max-frequency", "0.1"],
+    ["--workers", "0"], ["--scheduler-timeout", "0"], ["--compare-bem", "0"],
+    ["--compare-bem", "7"], ["--hurst", "0.5", "0.5"],
+])
+def test_bad_options_are_refused_before_anything_is_written(tmp_path, capsys, option):
+    out = tmp_path / "out"
+    rc = main(["study", *TINY, "--workers", "1", "--out", str(out), *option])
+    assert rc == 2
+    err = capsys.readouterr().err
+    assert "error:" in err and "Traceback" not in err
+    assert not out.exists()
+    assert not list(tmp_path.iterdir())
 
 
 def test_seeds_do_not_depend_on_the_number_of_surfaces():

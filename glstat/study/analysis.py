@@ -67,6 +67,10 @@ class AnalysisSettings:
             v = getattr(self, name)
             if not 0 < v < 1:
                 raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+        if isinstance(self.seed, bool) or int(self.seed) != self.seed or self.seed < 0:
+            raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
+        if not self.area_factors or any(not (math.isfinite(v) and v > 0) for v in self.area_factors):
+            raise ValueError(f"area_factors must be positive finite numbers, got {self.area_factors!r}")
 
 
 def wilson_interval(k: int, n: int, level: float = 0.95) -> tuple[float, float]:

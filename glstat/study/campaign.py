@@ -123,6 +123,12 @@ class CampaignSettings:
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise ValueError(f"{name} must be positive and finite (SI units), got {v!r}")
+        if not (math.isfinite(self.nu) and -1.0 < self.nu <= 0.5):
+            raise ValueError(f"nu (Poisson ratio) must be in (-1, 0.5], got {self.nu!r}")
+        if not (math.isfinite(self.cone_factor) and self.cone_factor > 0):
+            raise ValueError(f"cone_factor must be positive and finite, got {self.cone_factor!r}")
+        if not _is_int(self.seed) or self.seed < 0:
+            raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
         if not (math.isfinite(self.gamma) and self.gamma > 1):
             raise ValueError(f"gamma must be > 1, got {self.gamma!r}")
         limit = nyquist_terms(self.grid, self.length, self.gamma)
@@ -132,8 +138,8 @@ class CampaignSettings:
                     f"n_terms must be between 1 and {limit} (the Nyquist limit of a {self.grid}² "
                     f"grid with gamma={self.gamma}), got {v}; use None for the full spectrum"
                 )
-        if not (0 <= self.n_examples <= self.n_surfaces):
-            raise ValueError(f"n_examples must be in [0, n_surfaces], got {self.n_examples!r}")
+        if not (_is_int(self.n_examples) and 0 <= self.n_examples <= self.n_surfaces):
+            raise ValueError(f"n_examples must be an integer in [0, n_surfaces], got {self.n_examples!r}")
 
     def identity(self) -> dict[str, Any]:
         """The settings that define the stored results (everything but ``n_surfaces``).
@@ -162,6 +168,14 @@ class CampaignSettings:
     def seed_sequence(self, ih: int, il: int, i: int) -> np.random.SeedSequence:
         """``SeedSequence(seed).spawn(nH)[ih].spawn(nL)[il].spawn(...)[i]`` (spawn key (ih, il, i))."""
         return np.random.SeedSequence(self.seed, spawn_key=(ih, il, i))
+
+
+def _is_int(v: Any) -> bool:
+    """Whether ``v`` is an integer (a Python or NumPy integer, or a float with an integral value)."""
+    try:
+        return not isinstance(v, bool) and math.isfinite(v) and int(v) == v
+    except (TypeError, ValueError):
+        return False
 
 
 def nyquist_terms(grid: int, length: float, gamma: float) -> int:
