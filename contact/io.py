@@ -112,7 +112,9 @@ def _stored_spacing(content: dict, name: str, fname: str) -> float | None:
 
 def _read_npy(path, dx, dy, fname):
     try:
-        h = np.load(path, allow_pickle=False)
+        # the file is opened here so that it is closed even when numpy fails to parse it
+        with open(path, "rb") as fh:
+            h = np.load(fh, allow_pickle=False)
     except (ValueError, OSError, EOFError) as exc:
         raise TopographyFileError(
             f"{fname}: not a readable .npy array (truncated?): {exc}"
@@ -123,7 +125,7 @@ def _read_npy(path, dx, dy, fname):
 
 def _read_npz(path, dx, dy, fname):
     try:
-        with np.load(path, allow_pickle=False) as data:
+        with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as data:
             content = {k: data[k] for k in data.files}
     except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
         raise TopographyFileError(
