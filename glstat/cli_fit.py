@@ -45,6 +45,14 @@ _METHOD_NAMES = {"moments": "method of moments", "percentiles": "percentiles (Ka
                  "lmoments": "L-moments", "mle": "maximum likelihood",
                  "mps": "maximum product of spacings", "starship": "starship (minimum Anderson–Darling)"}
 _COMPRESSION = (".gz", ".bz2", ".xz", ".zip", ".zst")
+#: Replicates of the goodness-of-fit p-values by default, and the budget that caps them:
+#: replicates x sample size <= GOF_BUDGET values simulated and refitted (about 10 s of work);
+#: below GOF_MIN_RESAMPLES replicates the p-values are not computed by default.
+GOF_RESAMPLES = 99
+GOF_BUDGET = 10_000_000
+GOF_MIN_RESAMPLES = 19
+#: Values simulated and refitted above which the goodness-of-fit replicates show a progress bar.
+GOF_PROGRESS_WORK = 2_000_000
 _GOF_ROWS = (("loglik", None), ("aic", None), ("bic", None), ("ks", "ks_pvalue"), ("ad", "ad_pvalue"),
              ("cvm", "cvm_pvalue"), ("chi2", "chi2_pvalue"), ("max_qdev_iqr", None))
 
@@ -377,9 +385,13 @@ def build_parser() -> argparse.ArgumentParser:
                         "entropy, recorded in fit.json)")
     p.add_argument("--nan-policy", choices=("raise", "omit"), default="raise",
                    help="missing/NaN/infinite entries: refuse the file (raise, default) or drop them (omit)")
-    p.add_argument("--gof-resamples", type=int, default=99, metavar="B",
-                   help="parametric-bootstrap replicates for the goodness-of-fit p-values "
-                        "(default 99; 0: no p-values)")
+    p.add_argument("--gof-resamples", type=int, default=None, metavar="B",
+                   help=f"parametric-bootstrap replicates for the goodness-of-fit p-values (0: no "
+                        f"p-values). Default {GOF_RESAMPLES}, lowered for large samples so that B x n "
+                        f"<= {GOF_BUDGET:.0e} values (e.g. {GOF_BUDGET // 200_000} for n = 200000); "
+                        f"below {GOF_MIN_RESAMPLES} replicates (n > "
+                        f"{GOF_BUDGET // GOF_MIN_RESAMPLES}) no p-values unless B is given. A "
+                        f"progress bar shows on stderr when the replicates are long")
     return p
 
 
@@ -397,7 +409,7 @@ def _check_options(args: argparse.Namespace) -> None:
             raise InputError(f"--area-factor values must be positive, got {bad[0]:g}")
     if args.hardness is not None and not math.isfinite(args.hardness):
         raise InputError(f"--hardness must be a finite number, got {args.hardness}")
-    if args.gof_resamples < 0 or args.gof_resamples == 1:
+    if args.gof_resamples is not None and (args.gof_resamples < 0 or args.gof_resamples == 1):
         raise InputError(f"--gof-resamples must be 0 or at least 2, got {args.gof_resamples}")
 
 
@@ -472,6 +484,12 @@ class FitResults:
         Warnings raised while fitting (e.g. failed bootstrap resamples).
     files : list of str
         Names of the files written to the output directory.
+    gof_resamples : int
+        Replicates used for the goodness-of-fit p-values (``--gof-resamples``, or the default
+        adapted to the sample size).
+    gof_note : str or None
+        Why fewer than the default replicates (or none) were used, when the default was
+        adapted to the sample size.
     """
 
     sample: Sample
@@ -485,6 +503,8 @@ class FitResults:
     damage: dict[str, Any] | None = None
     notes: list[str] = field(default_factory=list)
     files: list[str] = field(default_factory=list)
+    gof_resamples: int = 0
+    gof_note: str | None = None
 
 
 def _g(v: float, digits: int = 6) -> str:
@@ -587,6 +607,57 @@ def _check_sample(args: argparse.Namespace, sample: Sample) -> None:
                          "or pass --bootstrap 0")
 
 
+def gof_resamples_for(n: int, requested: int | None) -> tuple[int, str | None]:
+    """Replicates of the goodness-of-fit p-values for a sample of ``n`` values.
+
+    Parameters
+    ----------
+    n : int
+        Sample size.
+    requested : int or None
+        ``--gof-resamples``; None for the default.
+
+    Returns
+    -------
+    (int, str or None)
+        The replicates B, and a sentence saying how the default was lowered for this sample
+        size (None when B is the requested value or the full default).
+
+    Notes
+    -----
+    The default is ``GOF_RESAMPLES`` replicates, capped so that ``B * n <= GOF_BUDGET``;
+    when the cap leaves fewer than ``GOF_MIN_RESAMPLES`` replicates, none are run (such
+    p-values would have a resolution coarser than 0.05).
+    """
+    if requested is not None:
+        return int(requested), None
+    cap = GOF_BUDGET // max(int(n), 1)
+    if cap >= GOF_RESAMPLES:
+        return GOF_RESAMPLES, None
+    if cap >= GOF_MIN_RESAMPLES:
+        return int(cap), (f"p-values from {cap} replicates instead of {GOF_RESAMPLES}: the default is "
+                          f"lowered for n = {n} so that replicates x n <= {GOF_BUDGET:.0e}; pass "
+                          f"--gof-resamples {GOF_RESAMPLES} for the full default")
+    return 0, (f"p-values not computed: for n = {n} the default budget (replicates x n <= "
+               f"{GOF_BUDGET:.0e}) allows fewer than {GOF_MIN_RESAMPLES} replicates; pass "
+               f"--gof-resamples B to compute them on B replicates (each simulates and refits "
+               f"{n} values)")
+
+
+def _gof_refit(f: GLDFit, bar) -> Callable[[np.ndarray], Any]:
+    """Refit of one goodness-of-fit replicate (as :func:`glstat.gof_report` does for a fit)
+    that advances ``bar`` by one."""
+    from .fitting import fit
+
+    def refit(sample: np.ndarray):
+        try:
+            return fit(sample, f.param, f.method, **dict(f.options)).dist
+        finally:
+            bar.update(1)
+
+    return refit
+
+
 def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
     from .bootstrap import bootstrap
     from .fitting import fit
@@ -602,16 +673,27 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
     lo, hi = (float(v) for v in f.dist.support())
     res = FitResults(sample=sample, fit=f, gof=None, seed=seed, support=(lo, hi), notes=notes)
     _print_fit(res, emit)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        res.gof = gof_report(x, f, n_resamples=args.gof_resamples, rng=seed)
+    res.gof_resamples, res.gof_note = gof_resamples_for(x.size, args.gof_resamples)
+    from tqdm import tqdm
+
+    bar = tqdm(total=res.gof_resamples, desc="goodness-of-fit p-values", unit="replicate",
+               file=sys.stderr, leave=False,
+               disable=res.gof_resamples * x.size <= GOF_PROGRESS_WORK)
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            res.gof = gof_report(x, f, n_resamples=res.gof_resamples, rng=seed,
+                                 refit=_gof_refit(f, bar))
+    finally:
+        bar.close()
     _collect_warnings(caught, notes)
     _print_gof(res, emit)
     if args.bootstrap:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
+            # a progress bar (stderr) shows when the resamples are long
             res.boot = bootstrap(x, args.param, args.method, n_resamples=args.bootstrap,
-                                 confidence_level=args.confidence_level, rng=seed)
+                                 confidence_level=args.confidence_level, rng=seed, progress=None)
             res.boot_summary = res.boot.summary()
         _collect_warnings(caught, notes)
         _print_bootstrap(res, emit)
@@ -666,6 +748,8 @@ def _print_gof(res: FitResults, emit: Callable[[str], None]) -> None:
     tab = _gof_table(res.gof)
     tab["p_value"] = [("" if not np.isfinite(p) else _g(p, 4)) for p in tab["p_value"]]
     emit(_indent(_table(tab)))
+    if res.gof_note is not None:
+        emit(f"  {res.gof_note}")
 
 
 def _print_bootstrap(res: FitResults, emit: Callable[[str], None]) -> None:
@@ -860,7 +944,8 @@ def _write_tables(res: FitResults, args: argparse.Namespace, out: Path) -> None:
         "settings": {"param": args.param, "method": args.method, "bootstrap": args.bootstrap,
                      "confidence_level": args.confidence_level, "n_max": args.n_max,
                      "area_factors": args.area_factor, "hardness": args.hardness, "seed": res.seed,
-                     "gof_resamples": args.gof_resamples},
+                     "gof_resamples": res.gof_resamples,
+                     "gof_resamples_requested": args.gof_resamples, "gof_note": res.gof_note},
         "fit": {"lambdas": list(f.lambdas), "param": f.param, "method": f.method, "region": f.region,
                 "n": f.n, "support": list(res.support), "statistics": f.statistics,
                 "options": f.options, "solutions": _records(f.solutions)},

@@ -433,3 +433,48 @@ def test_python_m_glstat_cli_fit(tmp_path):
     assert proc.returncode == 0, proc.stderr
     np.testing.assert_allclose(_printed_lambdas(proc.stdout), glstat.fit(x).lambdas, rtol=1e-13)
     assert json.loads((tmp_path / "o" / "fit.json").read_text())["input"]["n_used"] == 100
+
+
+# ---------------------------------------------------------------------------------------------
+# large samples: the goodness-of-fit replicates adapt to n
+# ---------------------------------------------------------------------------------------------
+def test_gof_resamples_default_adapts_to_the_sample_size():
+    assert cli_fit.gof_resamples_for(1000, None) == (cli_fit.GOF_RESAMPLES, None)
+    b, note = cli_fit.gof_resamples_for(200_000, None)
+    assert b == cli_fit.GOF_BUDGET // 200_000 == 50
+    assert "50 replicates instead of 99" in note and "--gof-resamples 99" in note
+    b, note = cli_fit.gof_resamples_for(10_000_000, None)
+    assert b == 0 and "p-values not computed" in note and "--gof-resamples B" in note
+    # an explicit value is kept whatever n
+    assert cli_fit.gof_resamples_for(10_000_000, 5) == (5, None)
+    assert cli_fit.gof_resamples_for(100, 0) == (0, None)
+    for n in (1, 10**5, 2 * 10**5, 5 * 10**5, 10**6, 10**7):
+        b, _ = cli_fit.gof_resamples_for(n, None)
+        assert b * n <= cli_fit.GOF_BUDGET
+        assert b == 0 or cli_fit.GOF_MIN_RESAMPLES <= b <= cli_fit.GOF_RESAMPLES
+    assert "B x n <= 1e+07" in cli_fit.build_parser().format_help().replace("\n", " ").replace("  ", " ")
+
+
+def test_large_sample_runs_with_the_adapted_default(tmp_path, capsys):
+    import time
+
+    npy = tmp_path / "big.npy"
+    n = 200_000
+    np.save(npy, _pressures(n, seed=5))
+    t0 = time.perf_counter()
+    code, out, err = _run(capsys, [npy, "--bootstrap", 0, "--seed", 1, "--out", tmp_path / "o"])
+    elapsed = time.perf_counter() - t0
+    assert code == 0, err
+    assert elapsed < 60, f"{elapsed:.0f} s"
+    assert "p-values: parametric bootstrap (B=50)" in out
+    assert f"p-values from 50 replicates instead of 99: the default is lowered for n = {n}" in out
+    # the progress bar of the replicates went to stderr, the report to stdout
+    assert "goodness-of-fit p-values" in err and "goodness-of-fit p-values" not in out.split("(n =")[0]
+    doc = json.loads((tmp_path / "o" / "fit.json").read_text())
+    assert doc["settings"]["gof_resamples"] == 50 and doc["settings"]["gof_resamples_requested"] is None
+    assert doc["gof"]["n_resamples"] == 50
+    # an explicit --gof-resamples is used as given, without the note and without a bar
+    code, out, err = _run(capsys, [npy, "--bootstrap", 0, "--gof-resamples", 2, "--seed", 1,
+                                   "--out", tmp_path / "o2"])
+    assert code == 0, err
+    assert "(B=2)" in out and "instead of" not in out and "goodness-of-fit p-values" not in err
