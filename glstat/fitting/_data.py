@@ -13,6 +13,7 @@ import numpy as np
 
 from .._core._gld import FKML, RS, median_std, q_lower, rs_sign
 from ..errors import ConvergenceWarning, FitError
+from . import _kernels as K
 from . import _likelihood as L
 from ._stats import distinct_note
 
@@ -28,6 +29,16 @@ _GTOL = 1e-9
 _FTOL = 1e-14
 # distance of a pinned support end point from the data, relative to the data range
 _PIN_GAP = 1e-9
+# shapes (lambda3, lambda4) tried on every sample besides the equation roots: FKML a subset of
+# {-0.5, -0.2, 0, 0.14, 1}^2 (heavy, logistic, normal-like, bounded tails, and the skewed
+# combinations); RS the normal-like shapes and a heavy-tailed region-4 pair
+_GENERIC_SHAPES = {
+    "fkml": ((0.14, 0.14), (0.0, 0.0), (-0.2, -0.2), (1.0, 1.0), (1.0, -0.2), (-0.2, 1.0),
+             (1.0, -0.5), (-0.5, 1.0), (0.14, -0.5), (-0.5, 0.14)),
+    "rs": ((0.1349, 0.1349), (-0.1, -0.1)),
+}
+# fewer distinct values than this: only the equation roots start (no density fits such data)
+_MIN_DISTINCT = 5
 # iteration cap of a pinned run (the pinned optimum can drift to extreme shapes along a ridge)
 _PIN_MAXITER = 100
 
@@ -71,8 +82,20 @@ def cover_theta(theta: np.ndarray, fam: int, zmin: float, zmax: float) -> np.nda
     return out
 
 
-def _starting_points(x: np.ndarray, param: str, fam: int, med: float, iqr: float, z: np.ndarray):
-    """Feasible standardized starts from every valid root of the percentile and L-moment fits."""
+def _matched_theta(fam: int, a: float, b: float) -> np.ndarray | None:
+    """Standardized theta with shapes (a, b) whose quartiles are those of the scaled data
+    (median 0, interquartile range 1); None for invalid shapes."""
+    if not K.shape_valid(fam, a, b):
+        return None
+    q25, q50, q75 = (float(q_lower(fam, a, b, math.log(p), math.log1p(-p))) for p in (0.25, 0.5, 0.75))
+    if not (q75 > q25 and math.isfinite(q75 - q25)):
+        return None
+    sc = 1.0 / (q75 - q25)
+    return np.array([-sc * q50, math.log(sc), a, b])
+
+
+def _equation_shapes(x: np.ndarray, param: str):
+    """(lambdas, shapes valid) of every converged root of the percentile and L-moment fits."""
     from ._stats import check_lmoment_stats, rho_from_quantiles, sample_lmoments, sample_quantiles
     from .core import _roots
 
@@ -83,18 +106,44 @@ def _starting_points(x: np.ndarray, param: str, fam: int, med: float, iqr: float
         stats_list.append(("lmoments", lm))
     except FitError:
         pass
-    starts = []
+    out = []
     for meth, st in stats_list:
         try:
             roots = _roots(meth, param, st, 0.1)
         except (FitError, ValueError, ZeroDivisionError):
             continue
-        for lams, conv, _ in roots:
-            if not (conv and all(math.isfinite(v) for v in lams) and lams[1] != 0.0):
-                continue
-            th = cover_theta(_std_theta(lams, med, iqr), fam, float(z[0]), float(z[-1]))
-            if th is not None:
-                starts.append(th)
+        out.extend(lams for lams, conv, _ in roots
+                   if conv and all(math.isfinite(v) for v in lams) and lams[1] != 0.0)
+    return out
+
+
+def _starting_points(x: np.ndarray, param: str, fam: int, med: float, iqr: float, z: np.ndarray):
+    """Feasible standardized starts for the data-based fits.
+
+    Every valid root of the percentile and L-moment fits; then, for samples with at least
+    ``_MIN_DISTINCT`` distinct values, the generic shapes of ``_GENERIC_SHAPES`` and the
+    shapes of the other parameterisation's roots (where valid here), with location and scale
+    matching the sample median and interquartile range. Each start's scale is widened about
+    the median where its support misses data points. The equation roots alone can all lie
+    in a basin far from the optimum (bounded shapes with large lambda3 and lambda4 for
+    heavy-tailed or exponential samples), which the generic shapes reach.
+    """
+    zmin, zmax = float(z[0]), float(z[-1])
+    starts = []
+    for lams in _equation_shapes(x, param):
+        th = cover_theta(_std_theta(lams, med, iqr), fam, zmin, zmax)
+        if th is not None:
+            starts.append(th)
+    if 1 + np.count_nonzero(np.diff(x)) < _MIN_DISTINCT:
+        return starts
+    other = "fkml" if param == "rs" else "rs"
+    shapes = list(_GENERIC_SHAPES[param]) + [lams[2:] for lams in _equation_shapes(x, other)]
+    for a, b in shapes:
+        th = _matched_theta(fam, float(a), float(b))
+        if th is not None:
+            th = cover_theta(th, fam, zmin, zmax)
+        if th is not None:
+            starts.append(th)
     return starts
 
 
@@ -167,9 +216,11 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
                        starts: int = 2, optimizer: str = "bfgs"):
     """ML, MPS or starship fit of sorted, checked data ``x`` (see :func:`glstat.fit`).
 
-    Starts: every valid root of the percentile and L-moment equations, the scale widened
-    about the median where the support misses data points; of starts with nearly equal
-    shapes the better one is kept, and the ``starts`` best by objective are refined in
+    Starts (:func:`_starting_points`): every valid root of the percentile and L-moment
+    equations, generic shapes and the other parameterisation's roots, the scale widened
+    about the median where the support misses data points. All are scored by the
+    objective; of starts with nearly equal shapes the better one is kept, and the
+    ``starts`` best are refined in
     theta = (lambda1, log scale, lambda3, lambda4) on the data scaled by median and
     interquartile range, by the compiled BFGS with the analytic gradient
     (``optimizer="bfgs"``) or by scipy's Nelder–Mead (``"nelder-mead"``). Infeasible

@@ -133,41 +133,50 @@ def pit_logit(fam, a, b, y, w):
     if not (y[0] > lo_end and y[n - 1] < hi_end):
         return False
     for i in range(n):
-        wi = w[i]
-        lo = -_W_MAX
-        hi = _W_MAX
-        if i > 0 and w[i - 1] > lo:
-            lo = w[i - 1] - 1e-9 * (1.0 + abs(w[i - 1]))
-        if not (wi > lo and wi < hi):
-            wi = lo + 1e-9 * (1.0 + abs(lo)) if lo > -_W_MAX else 0.0
+        lo0 = -_W_MAX
+        if i > 0 and w[i - 1] > lo0:
+            lo0 = w[i - 1] - 1e-9 * (1.0 + abs(w[i - 1]))
         ok = False
-        for _ in range(200):
-            q, dq = _q_w(fam, a, b, wi)
-            r = q - y[i]
-            if abs(r) <= 4e-16 * (abs(q) + abs(y[i])):
-                ok = True
-                break
-            if r > 0.0:
-                hi = wi
-            elif r < 0.0:
-                lo = wi
-            else:
-                ok = True
-                break
-            wn = wi - r / dq if dq > 0.0 else math.nan
-            if wn > lo and wn < hi:
-                # quadratic convergence: after a Newton step below 1e-8 the error is ~1e-16
-                if abs(wn - wi) <= 1e-8 * (1.0 + abs(wi)):
-                    wi = wn
+        wi = w[i]
+        # first from the warm start, then (should that fail, e.g. after a large change of the
+        # parameters) from the plotting position of the point
+        for attempt in range(2):
+            if attempt == 1:
+                wi = math.log((i + 0.5) / (n - i - 0.5))
+            lo = lo0
+            hi = _W_MAX
+            if not (wi > lo and wi < hi):
+                wi = lo + 1e-9 * (1.0 + abs(lo)) if lo > -_W_MAX else 0.0
+            for _ in range(200):
+                q, dq = _q_w(fam, a, b, wi)
+                r = q - y[i]
+                if abs(r) <= 4e-16 * (abs(q) + abs(y[i])):
                     ok = True
                     break
-            else:
-                wn = 0.5 * (lo + hi)
-                if hi - lo <= 4e-16 * (1.0 + abs(wn)):
-                    wi = wn
+                # a Newton step below 1e-8 leaves an error of ~1e-16 (quadratic convergence);
+                # taken before the bracket update, which a warm start at the root would
+                # otherwise empty (a step below the spacing of doubles lands on its end)
+                if dq > 0.0 and abs(r) <= 1e-8 * (1.0 + abs(wi)) * dq:
+                    wi = wi - r / dq
                     ok = True
                     break
-            wi = wn
+                if r > 0.0:
+                    hi = wi
+                elif r < 0.0:
+                    lo = wi
+                else:
+                    ok = True
+                    break
+                wn = wi - r / dq if dq > 0.0 else math.nan
+                if not (wn > lo and wn < hi):
+                    wn = 0.5 * (lo + hi)
+                    if hi - lo <= 4e-16 * (1.0 + abs(wn)):
+                        wi = wn
+                        ok = True
+                        break
+                wi = wn
+            if ok:
+                break
         if not ok:
             return False
         w[i] = wi

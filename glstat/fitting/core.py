@@ -481,7 +481,7 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
         (n+1)p). ``"lmoments"``: unbiased sample L-moments. ``"mle"``: maximum likelihood;
         ``"mps"``: maximum product of spacings; ``"starship"``: minimum Anderson–Darling
         statistic of the probability integral transform. The last three start from the
-        percentile and L-moment fits, are refined by a compiled BFGS with analytic
+        percentile and L-moment fits and from generic shapes, are refined by a compiled BFGS with analytic
         gradients and keep the support covering the data.
     nan_policy : {"raise", "omit", "propagate"}
         Non-finite values (NaN, inf): raise ``ValueError``, drop them, or return a NaN fit.
