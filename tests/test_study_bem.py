@@ -199,8 +199,10 @@ def test_interrupted_comparison_resumes(tmp_path, monkeypatch):
 def test_bad_k(tmp_path, capsys):
     assert main([*ARGS, "--compare-bem", "3", "--out", str(tmp_path / "x")]) == 2
     assert "--compare-bem K = 3 cannot exceed the 2 surfaces per H" in capsys.readouterr().err
-    with pytest.raises(SystemExit):
-        main([*ARGS, "--compare-bem", "0", "--out", str(tmp_path / "x")])
+    # a usage error returns status 2 with the message, and writes nothing
+    assert main([*ARGS, "--compare-bem", "0", "--out", str(tmp_path / "y")]) == 2
+    assert "--compare-bem" in capsys.readouterr().err
+    assert not (tmp_path / "y").exists()
     with pytest.raises(ValueError, match="positive integer"):
         BEMSettings(n_compare=0)
     with pytest.raises(CampaignError, match="run the campaign before the BEM comparison"):
