@@ -11,7 +11,7 @@ from .bootstrap import (
 )
 from .damage import damage_probability, guaranteed_threshold, integrity_probability
 from .distributions import gld_fkml, gld_rs
-from .errors import ConvergenceWarning, FitError, InvalidParameterError
+from .errors import ConvergenceWarning, FitError, FitWarning, InvalidParameterError
 from .extremes import MaximumDistribution, OrderStatisticDistribution, maximum, order_statistic
 from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
 from .gld import GLD
@@ -29,6 +29,7 @@ __all__ = [
     "BootstrapWarning",
     "ConvergenceWarning",
     "FitError",
+    "FitWarning",
     "GLDFit",
     "InvalidParameterError",
     "MaximumDistribution",

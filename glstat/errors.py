@@ -1,6 +1,6 @@
 """Exceptions and warnings raised by glstat."""
 
-__all__ = ["ConvergenceWarning", "FitError", "InvalidParameterError"]
+__all__ = ["ConvergenceWarning", "FitError", "FitWarning", "InvalidParameterError"]
 
 
 class InvalidParameterError(ValueError):
@@ -13,3 +13,9 @@ class FitError(RuntimeError):
 
 class ConvergenceWarning(RuntimeWarning):
     """An iteration reached its limit; the affected results are the best available estimate."""
+
+
+class FitWarning(UserWarning):
+    """A fit that was carried out but describes the data poorly (support missing data points
+    or a Kolmogorov–Smirnov distance beyond the 1 % critical value); the message says what to
+    try instead."""

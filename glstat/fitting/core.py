@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._core import _gld
-from ..errors import FitError, InvalidParameterError
+from ..errors import FitError, FitWarning, InvalidParameterError
 from ..gld import GLD
 from ..regions import rs_region
 from . import _kernels as K
@@ -265,6 +265,31 @@ def _reach_message(method: str, param: str, stats, u: float) -> str:
     return msg + "other options: " + hint
 
 
+# asymptotic 1 % critical value of the Kolmogorov–Smirnov distance times sqrt(n)
+_KS_CRIT_1PCT = math.sqrt(-0.5 * math.log(0.005))
+
+
+def _warn_if_poor(f: GLDFit, x: np.ndarray) -> None:
+    """Warn (``FitWarning``) when the selected equation-based fit of the data ``x`` does not
+    cover them or its KS distance exceeds the asymptotic 1 % critical value."""
+    sel = f.solutions[f.solutions["selected"]]
+    if sel.empty:
+        return
+    row = sel.iloc[0]
+    ks = float(row["ks"])
+    crit = _KS_CRIT_1PCT / math.sqrt(x.size)
+    covered = bool(row["covers_data"])
+    if covered and not ks > crit:
+        return
+    other = "fkml" if f.param == "rs" else "rs"
+    alt = " or ".join(f"'{m}'" for m in ("percentiles", "lmoments") if m != f.method)
+    warnings.warn(
+        f"{f.method} fit ({f.param.upper()}, lambda3={row['lambda3']:.4g}, lambda4={row['lambda4']:.4g}) "
+        f"describes the data poorly: KS distance {ks:.3g} (1 % critical value {crit:.3g}), support "
+        f"{'covers' if covered else 'does not cover'} the data; try param='{other}', method={alt}, or "
+        "a data-based method ('mle', 'mps', 'starship')", FitWarning, stacklevel=3)
+
+
 def _fit_from_stats(method, param, stats, u, x, n, statistics, options) -> GLDFit:
     roots = _roots(method, param, stats, u)
     rows = [_candidate(lams, param, conv, res, x) for lams, conv, res in roots]
@@ -498,6 +523,13 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
         Kolmogorov–Smirnov distance (equation methods) or objective (data-based methods).
         Every root or candidate stays in ``solutions``.
 
+    Warns
+    -----
+    FitWarning
+        Equation methods: the selected root's support does not cover the data, or its
+        Kolmogorov–Smirnov distance exceeds the asymptotic 1 % critical value 1.63/sqrt(n);
+        the message names both and what to try instead.
+
     Raises
     ------
     FitError
@@ -521,21 +553,21 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
     if x is None:
         return _nan_fit(param, method, None, dict(options))
     n = x.size
+    if method in ("mle", "mps", "starship"):
+        from ._data import fit_data_objective
+
+        return fit_data_objective(x, param, method, **options)
+    u = 0.1
     if method == "moments":
         stats = S.sample_moments(x)
-        return _fit_from_stats(method, param, stats, 0.1, x, n,
-                               dict(zip(_STAT_NAMES[method], stats, strict=True)), {})
-    if method == "percentiles":
+    elif method == "percentiles":
         u = _check_u(options.get("u", 0.1))
         stats = S.rho_from_quantiles(S.sample_quantiles(x, u))
         S.check_rho(*stats)
-        return _fit_from_stats(method, param, stats, u, x, n,
-                               dict(zip(_STAT_NAMES[method], stats, strict=True)), {"u": u})
-    if method == "lmoments":
+    else:
         stats = S.sample_lmoments(x)
         S.check_lmoment_stats(*stats)
-        return _fit_from_stats(method, param, stats, 0.1, x, n,
-                               dict(zip(_STAT_NAMES[method], stats, strict=True)), {})
-    from ._data import fit_data_objective
-
-    return fit_data_objective(x, param, method, **options)
+    f = _fit_from_stats(method, param, stats, u, x, n, dict(zip(_STAT_NAMES[method], stats, strict=True)),
+                        {"u": u} if method == "percentiles" else {})
+    _warn_if_poor(f, x)
+    return f

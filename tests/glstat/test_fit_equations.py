@@ -1,6 +1,7 @@
 """Moment, percentile and L-moment fits: every root, reference values, recovery, bad input."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -323,3 +324,47 @@ def test_small_shapes_in_fit_batch():
     assert (cnt >= 1).all()
     for (l3, l4), row in zip(truth, lams, strict=True):
         assert row[2] == pytest.approx(l3, rel=1e-5) and row[3] == pytest.approx(l4, rel=1e-5)
+
+
+# --- a selected root that describes the data poorly is reported -----------------------------------
+EXPO = np.random.default_rng(0).exponential(size=10_000)
+
+
+def test_root_not_covering_the_data_warns():
+    # the only FKML moment root, (11.3, 22.3), is bounded above the largest observation
+    with pytest.warns(glstat.FitWarning, match=r"KS distance 0\.33.* \(1 % critical value 0\.0163\), "
+                      r"support does not cover the data; try param='rs', method='percentiles' or "
+                      r"'lmoments', or a data-based method") as rec:
+        f = fit(EXPO, "fkml", "moments")
+    sel = f.solutions[f.solutions.selected].iloc[0]
+    assert not sel.covers_data and sel.ks > 0.3
+    assert rec[0].filename == __file__  # points at the caller of fit
+    assert issubclass(glstat.FitWarning, UserWarning) and "FitWarning" in glstat.__all__
+
+
+def test_ks_beyond_the_critical_value_warns_even_when_covered():
+    # t with 2 degrees of freedom: no finite variance, the sample moments are erratic; the RS
+    # moment root covers the sample but is far from it in KS distance
+    x = np.random.default_rng(3).standard_t(2, 4000)
+    with pytest.warns(glstat.FitWarning, match=r"support covers the data") as rec:
+        f = fit(x, "rs", "moments")
+    sel = f.solutions[f.solutions.selected].iloc[0]
+    assert sel.covers_data and sel.ks > 1.63 / np.sqrt(x.size)
+    assert "method='percentiles' or 'lmoments'" in str(rec[0].message)
+    # the percentile fit of the same data is silent
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fit(x, "rs", "percentiles")
+
+
+def test_good_fit_and_fit_batch_are_silent():
+    x = np.random.default_rng(1).normal(size=2000)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        f = fit(x, "rs", "moments")
+        # the bootstrap core counts non-covering fits itself
+        mvsk = glstat.fitting._stats.sample_moments(EXPO)
+        lam, nroots = fit_batch([mvsk], "moments", "fkml",
+                                extremes=[[EXPO.min(), EXPO.max()]])
+    assert f.solutions.ks[f.solutions.selected].iloc[0] < 1.63 / np.sqrt(x.size)
+    assert nroots[0] >= 1 and np.all(np.isnan(lam))
