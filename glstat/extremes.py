@@ -362,9 +362,8 @@ class _ExtremeGen(rv_continuous):
         return dct
 
     # functions of v and of its complement, both accurate -------------------------------
-    def _quantile_vq(self, v, q, logv, logq):  # pragma: no cover - overridden
-        """Quantile at probability v with complement q (and their logs), all accurate."""
-        raise NotImplementedError
+    # Subclasses define ``_quantile_vq(v, q, logv, logq)``: the quantile at probability v with
+    # complement q (and their logs), all accurate; the methods below are written in terms of it.
 
     @_flat
     def _ppf(self, v):
