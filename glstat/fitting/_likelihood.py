@@ -55,6 +55,21 @@ def _logsig(w):
     return w - math.log1p(math.exp(w))
 
 
+@njit(cache=True, inline="always")
+def _spacing(w, i, prev_u):
+    """Spacing i of the sorted PIT values u = sigmoid(w) (i = 0..n, with u_0 = 0, u_{n+1} = 1)
+    and the new running u; two points in the upper half are differenced through their
+    survival probabilities, which keeps the spacing's relative accuracy there."""
+    n = w.shape[0]
+    if i == n:
+        return math.exp(_logsig(-w[n - 1])), prev_u
+    wi = w[i]
+    ui = math.exp(_logsig(wi))
+    if i > 0 and wi > 0.0 and w[i - 1] > 0.0:
+        return math.exp(_logsig(-w[i - 1])) - math.exp(_logsig(-wi)), ui
+    return ui - prev_u, ui
+
+
 @njit(cache=True)
 def _q_w_ref(fam, a, b, w):
     """Standardized Q and dQ/dw at u = 1 / (1 + exp(-w)) from the generic lower-tail kernels."""
@@ -216,17 +231,7 @@ def objective(kind, fam, a, b, l1, scale, x, w):
     if kind == MPS:
         prev_u = 0.0
         for i in range(n + 1):
-            if i < n:
-                wi = w[i]
-                ui = math.exp(_logsig(wi))
-                if i > 0 and wi > 0.0 and w[i - 1] > 0.0:
-                    # both in the upper half: difference of the survival probabilities
-                    d = math.exp(_logsig(-w[i - 1])) - math.exp(_logsig(-wi))
-                else:
-                    d = ui - prev_u
-                prev_u = ui
-            else:
-                d = math.exp(_logsig(-w[n - 1]))
+            d, prev_u = _spacing(w, i, prev_u)
             if d > 0.0:
                 total -= math.log(d)
             else:
@@ -355,16 +360,7 @@ def objective_grad(kind, fam, theta, z, w, dw, grad, y):
     if kind == MPS:
         prev_u = 0.0
         for i in range(n + 1):
-            if i < n:
-                wi = w[i]
-                ui = math.exp(_logsig(wi))
-                if i > 0 and wi > 0.0 and w[i - 1] > 0.0:
-                    d = math.exp(_logsig(-w[i - 1])) - math.exp(_logsig(-wi))
-                else:
-                    d = ui - prev_u
-                prev_u = ui
-            else:
-                d = math.exp(_logsig(-w[n - 1]))
+            d, prev_u = _spacing(w, i, prev_u)
             if d > 0.0:
                 total -= math.log(d)
                 # d(spacing)/dw = u (1 - u) at its upper point minus the same at its lower point
