@@ -115,7 +115,8 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--hardness", type=_positive(float), default=2050.0, help="hardness Pd in MPa")
     p.add_argument("--bootstrap", type=_positive(int),
                    help=f"bootstrap resamples B (default {DEFAULTS['bootstrap']})")
-    p.add_argument("--rq", type=_positive(float), default=50.0, help="RMS roughness in µm")
+    p.add_argument("--rq", type=_positive(float), default=1.6,
+                   help="RMS roughness in µm (1.6: the paper's mean pressures; 50: the value it prints, see docs/method.md)")
     p.add_argument("--size", type=_positive(float), default=1.0, help="side of the surface in mm")
     p.add_argument("--modulus", type=_positive(float), default=210.0, help="Young's modulus E in GPa")
     p.add_argument("--poisson", type=_number_in(-1, 0.5, low_open=True), default=0.3,

@@ -86,7 +86,7 @@ class CampaignSettings:
     n_surfaces: int = 100
     grid: int = 1024
     length: float = 1e-3
-    rq: float = 50e-6
+    rq: float = 1.6e-6
     gamma: float = 1.5
     n_terms: tuple[int | None, ...] = (6, 6, 6)
     E: float = 210e9
