@@ -1,5 +1,7 @@
 """glstat: Generalized Lambda Distributions and the statistics of contact pressures."""
 
+from contact import _numba_cache  # noqa: F401  (first: numba caches outside the package)
+
 from .bootstrap import (
     BootstrapFit,
     BootstrapInterval,
@@ -9,10 +11,17 @@ from .bootstrap import (
     MaximumMixture,
     bootstrap,
 )
+from .counts import CountDistribution, ObservedCounts, PoissonCount
 from .damage import damage_probability, guaranteed_threshold, integrity_probability
 from .distributions import gld_fkml, gld_rs
 from .errors import ConvergenceWarning, FitError, FitWarning, InvalidParameterError
-from .extremes import MaximumDistribution, OrderStatisticDistribution, maximum, order_statistic
+from .extremes import (
+    MaximumCountDistribution,
+    MaximumDistribution,
+    OrderStatisticDistribution,
+    maximum,
+    order_statistic,
+)
 from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
 from .gld import GLD
 from .gof import compare_families, edf_statistics, gof_report
@@ -28,13 +37,17 @@ __all__ = [
     "BootstrapProbability",
     "BootstrapWarning",
     "ConvergenceWarning",
+    "CountDistribution",
     "FitError",
     "FitWarning",
     "GLDFit",
     "InvalidParameterError",
+    "MaximumCountDistribution",
     "MaximumDistribution",
     "MaximumMixture",
+    "ObservedCounts",
     "OrderStatisticDistribution",
+    "PoissonCount",
     "bootstrap",
     "compare_families",
     "damage_probability",

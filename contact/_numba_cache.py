@@ -1,0 +1,188 @@
+"""Where the compiled numba kernels of ``glstat`` and ``contact`` are cached.
+
+Both packages compile their kernels with ``numba.njit(cache=True)``. By default numba writes
+the cache next to the source, into the installed package's ``__pycache__`` folders: an
+installation then changes under the package manager's feet (folders it does not know about
+outlive an uninstall and shadow a later editable install) and a read-only installation
+cannot be imported at all. This module, imported first by both packages, registers a numba
+cache locator for the files of these two packages only (other code keeps numba's rules):
+
+1. ``NUMBA_CACHE_DIR`` when the user set it (and it is writable);
+2. else the per-user cache directory: ``$XDG_CACHE_HOME/glstat/numba`` (default
+   ``~/.cache/glstat/numba``) on Linux, ``~/Library/Caches/glstat/numba`` on macOS,
+   ``%LOCALAPPDATA%\\glstat\\numba`` on Windows;
+3. else a private folder of the temporary directory, ``<tmp>/glstat-numba-<user id>``
+   (created with mode 0700; one owned by another user is never used, since numba's cache
+   files are pickles);
+4. else (nothing writable) numba's own rules apply.
+
+The installed package is never written to. No environment variable or numba setting of the
+process is changed; ``NUMBA_CACHE_LOCATOR_CLASSES``, when set, takes precedence over this
+module as numba documents. :func:`cache_dir` tells where the cache is and
+:func:`cache_is_cold` whether it holds no compiled kernel yet.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+import sys
+import tempfile
+from pathlib import Path
+
+__all__ = ["cache_dir", "cache_is_cold", "package_dirs"]
+
+#: Folders whose numba functions this module places (``glstat`` and ``contact``).
+_ROOT = Path(__file__).resolve().parent.parent
+_PACKAGES = tuple(str(_ROOT / name) + os.sep for name in ("glstat", "contact"))
+_CHOSEN: list[str | None] = []  # memo of the chosen directory ([] until the first look-up)
+
+
+def package_dirs() -> tuple[str, ...]:
+    """The package folders whose kernels are cached by this module (with a trailing separator)."""
+    return _PACKAGES
+
+
+def _user_cache_root() -> Path | None:
+    if sys.platform == "win32":
+        base = os.environ.get("LOCALAPPDATA")
+        return Path(base) / "glstat" / "numba" if base else None
+    if sys.platform == "darwin":
+        return Path.home() / "Library" / "Caches" / "glstat" / "numba"
+    base = os.environ.get("XDG_CACHE_HOME")
+    if not base or not os.path.isabs(base):
+        try:
+            base = str(Path.home() / ".cache")
+        except RuntimeError:  # no home directory
+            return None
+    return Path(base) / "glstat" / "numba"
+
+
+def _writable(path: Path, private: bool = False) -> bool:
+    """Whether ``path`` exists (created if needed) and accepts new files.
+
+    ``private``: also require that the folder is ours and not writable by others (a shared
+    temporary directory may hold a folder of that name made by someone else).
+    """
+    try:
+        path.mkdir(mode=0o700, parents=True, exist_ok=True)
+        if private and hasattr(os, "getuid"):
+            st = os.lstat(path)
+            if (not stat.S_ISDIR(st.st_mode) or st.st_uid != os.getuid()
+                    or st.st_mode & (stat.S_IWGRP | stat.S_IWOTH)):
+                return False
+        tempfile.TemporaryFile(dir=path).close()
+    except (OSError, RuntimeError, ValueError):
+        return False
+    return True
+
+
+def _choose() -> str | None:
+    try:
+        from numba.core import config
+
+        user = config.CACHE_DIR
+    except Exception:  # numba missing or reorganised: read the variable itself
+        user = os.environ.get("NUMBA_CACHE_DIR", "")
+    candidates: list[tuple[Path, bool]] = []
+    if user:
+        candidates.append((Path(user), False))
+    root = _user_cache_root()
+    if root is not None:
+        candidates.append((root, False))
+    try:
+        who = str(os.getuid()) if hasattr(os, "getuid") else os.environ.get("USERNAME", "user")
+        candidates.append((Path(tempfile.gettempdir()) / f"glstat-numba-{who}", True))
+    except (OSError, FileNotFoundError):
+        pass
+    for path, private in candidates:
+        if _writable(path, private):
+            return str(path)
+    return None
+
+
+def cache_dir() -> str | None:
+    """The folder holding the compiled kernels of ``glstat`` and ``contact``.
+
+    Returns
+    -------
+    str or None
+        The folder (see the module documentation for the order of preference), or None when
+        no folder is writable (numba's own rules then apply).
+    """
+    if not _CHOSEN:
+        _CHOSEN.append(_choose())
+    return _CHOSEN[0]
+
+
+def cache_is_cold() -> bool:
+    """Whether no compiled kernel of this Python version is cached yet (the first run compiles).
+
+    Returns
+    -------
+    bool
+        True when :func:`cache_dir` holds no numba index file for this Python version, or
+        when there is no cache folder.
+    """
+    path = cache_dir()
+    if path is None:
+        return True
+    tag = f"py{sys.version_info.major}{sys.version_info.minor}.nbi"
+    try:
+        for _root, _dirs, files in os.walk(path):
+            if any(f.endswith(tag) for f in files):
+                return False
+    except OSError:
+        return True
+    return True
+
+
+def _install() -> None:
+    """Register the locator with numba (once per process)."""
+    try:
+        from numba.core import caching
+    except ImportError:  # numba is a dependency; without it nothing is compiled anyway
+        return
+    impl = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
+    base = getattr(caching, "_CacheLocator", None)
+    mixin = getattr(caching, "_SourceFileBackedLocatorMixin", None)
+    classes = getattr(impl, "_locator_classes", None)
+    if base is None or mixin is None or not isinstance(classes, list):
+        return
+    if any(getattr(c, "_glstat_locator", False) for c in classes):
+        return
+
+    class GlstatCacheLocator(mixin, base):
+        """numba cache locator for the files of ``glstat`` and ``contact`` (see the module)."""
+
+        _glstat_locator = True
+
+        def __init__(self, py_func, py_file):
+            self._py_file = py_file
+            self._lineno = py_func.__code__.co_firstlineno
+            self._cache_path = os.path.join(cache_dir(), self.get_suitable_cache_subpath(py_file))
+
+        def get_cache_path(self):
+            return self._cache_path
+
+        @classmethod
+        def from_function(cls, py_func, py_file):
+            try:
+                resolved = os.path.realpath(py_file)
+            except (OSError, ValueError):
+                return None
+            if not resolved.startswith(_PACKAGES) or cache_dir() is None:
+                return None
+            if not os.path.exists(py_file):
+                return None
+            self = cls(py_func, py_file)
+            try:
+                self.ensure_cache_path()
+            except OSError:
+                return None
+            return self
+
+    classes.insert(0, GlstatCacheLocator)
+
+
+_install()
