@@ -54,6 +54,7 @@ from scipy.stats import rv_continuous
 
 from ._core import _gld
 from ._core import resample as _R
+from .counts import ObservedCounts, RowCounts, as_count
 from .damage import damage_probability as _damage
 from .damage import integrity_probability as _integrity
 from .distributions import evaluate, gld_fkml, gld_rs, quantile
@@ -210,12 +211,37 @@ def _max_raw_moments(lam: np.ndarray, fam: int, n: float, k: int) -> np.ndarray:
     return out
 
 
+def _count_max_moments(lam: np.ndarray, fam: int, counts: RowCounts, k: int) -> np.ndarray:
+    """E[M^k] per row for a random count per row: the count-weighted fixed-n moments."""
+    out = np.zeros(lam.shape[0])
+    for j, v in enumerate(counts.values):
+        w = counts.weights[:, j]
+        rows = np.flatnonzero(w > 0)
+        if rows.size:
+            out[rows] += w[rows] * _max_raw_moments(lam[rows], fam, float(v), k)
+    return out
+
+
 # ---------------------------------------------------------------------------------------------
 # resample generation
 # ---------------------------------------------------------------------------------------------
-def _draw(x: np.ndarray, g: np.random.Generator, kind: str, lam, fam: int) -> np.ndarray:
-    """One resample (length n) with generator ``g``; sorted for the parametric kind."""
+def _group_indices(groups, chosen: np.ndarray) -> np.ndarray:
+    """Indices into the sorted sample of the members of the chosen groups, group after group."""
+    members, offsets = groups
+    sizes = offsets[1:] - offsets[:-1]
+    take = sizes[chosen]
+    starts = offsets[:-1][chosen]
+    shift = np.repeat(starts - np.concatenate(([0], np.cumsum(take)[:-1])), take)
+    return members[np.arange(int(take.sum())) + shift]
+
+
+def _draw(x: np.ndarray, g: np.random.Generator, kind: str, lam, fam: int, groups=None) -> np.ndarray:
+    """One resample with generator ``g`` (length n, or the members of G groups drawn with
+    replacement); sorted for the parametric kind."""
     n = x.size
+    if groups is not None:
+        G = groups[1].size - 1
+        return x[_group_indices(groups, g.integers(0, G, size=G, dtype=np.int64))]
     if kind == "nonparametric":
         return x[g.integers(0, n, size=n, dtype=np.int64)]
     e = g.standard_exponential(n + 1)
@@ -225,12 +251,12 @@ def _draw(x: np.ndarray, g: np.random.Generator, kind: str, lam, fam: int) -> np
     return _quantiles(np.asarray(lam, dtype=float)[None, :], fam, v[None, :], q[None, :])[0]
 
 
-def _fit_task(x, seeds, kind, lam, param, method, options):
+def _fit_task(x, seeds, kind, lam, param, method, options, groups=None):
     """Fits of the resamples with the given seeds (runs in the executor's workers)."""
     fam = _FAM[param]
     out = []
     for s in seeds:
-        sample = _draw(x, np.random.default_rng(s), kind, lam, fam)
+        sample = _draw(x, np.random.default_rng(s), kind, lam, fam, groups)
         ext = (float(np.min(sample)), float(np.max(sample)))
         try:
             with warnings.catch_warnings():
@@ -345,13 +371,22 @@ def _branch_note(region: np.ndarray, jump: np.ndarray, param: str, full_region) 
             "not depend on the parameterisation")
 
 
-def _compiled_statistics(x, seeds, kind, lam, fam, method, u, loc, scale, bar):
+def _compiled_statistics(x, seeds, kind, lam, fam, method, u, loc, scale, bar, groups=None):
     """Statistics (B, 4) and extremes (B, 2: min, max) of the resamples, compiled."""
     code = _R.CODES[method]
     n = x.size
     B = len(seeds)
     st = np.empty((B, 4))
     ext = np.empty((B, 2))
+    if groups is not None:  # resamples of groups have their own lengths: one call each
+        G = groups[1].size - 1
+        for r, seed in enumerate(seeds):
+            chosen = np.random.default_rng(seed).integers(0, G, size=G, dtype=np.int64)
+            idx = _group_indices(groups, chosen)[None, :]
+            _R.stats_from_indices(code, x, idx, u, loc, scale, st[r:r + 1], ext[r:r + 1])
+            if bar is not None:
+                bar.update(1)
+        return st, ext
     rows = max(1, min(B, _CHUNK_VALUES // n))
     dtype = np.int32 if n < 2**31 else np.int64
     for s in range(0, B, rows):
@@ -476,6 +511,36 @@ class BootstrapFit:
     _data: np.ndarray | None = field(default=None, repr=False, compare=False)
     _entropy: tuple[int, ...] = field(default=(), repr=False, compare=False)
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
+    _grouping: tuple | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def counts(self) -> ObservedCounts | None:
+        """The number of values per group (a bootstrap with ``groups``), else None."""
+        return None if self._grouping is None else ObservedCounts(self._grouping[0])
+
+    def resampled_counts(self) -> RowCounts:
+        """Per successful resample, the numbers of values of its drawn groups (with ``groups``)."""
+        if self._grouping is None:
+            raise TypeError("the bootstrap has no groups: give n or count")
+        lam = self.lambdas[list(_LAMBDA_NAMES)].to_numpy(dtype=float)
+        ok = np.all(np.isfinite(lam), axis=1)
+        sizes, choices = self._grouping
+        return RowCounts.from_choices(sizes, choices[ok])
+
+    def _draw_counts(self, n, count):
+        """(n, None, None) for a fixed n, or (None, full-sample count, RowCounts per resample)."""
+        if n is not None and count is not None:
+            raise TypeError("give either n (a fixed number of draws) or count (a random one), not both")
+        if count is not None:
+            c = as_count(count)
+            return None, c, RowCounts.common(c, self._lam().shape[0])
+        if n is not None:
+            return n, None, None
+        if self._grouping is None:
+            raise TypeError("n (the number of points of the analysed area) or count (a random "
+                            "number of them) is required; a bootstrap with groups defaults to "
+                            "its groups' sizes")
+        return None, self.counts, self.resampled_counts()
 
     # -- basic views ----------------------------------------------------------------------
     @property
@@ -730,23 +795,31 @@ class BootstrapFit:
         )
 
     # -- maximum and damage -----------------------------------------------------------------
-    def maximum(self, n: float, confidence_level: float | None = None, *, rng=None) -> BootstrapMaximum:
+    def maximum(self, n: float | None = None, confidence_level: float | None = None, *, rng=None,
+                count=None) -> BootstrapMaximum:
         """The maximum of n draws for every bootstrap GLD (DESIGN §1 step 6).
 
         Parameters
         ----------
-        n : float
+        n : float, optional
             Number of draws (grid points), >= 1.
         confidence_level : float, optional
             Coverage of the intervals; default :attr:`confidence_level`.
         rng : int, numpy.random.Generator or None
             Source of the one random maximum drawn per bootstrap GLD. Default: a stream
             derived from the bootstrap's own seed, so the draws are reproducible.
+        count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
+            A random number of draws instead of ``n`` (see :func:`glstat.maximum`). Without
+            ``n`` and ``count``, a bootstrap with ``groups`` uses each resample's own group
+            sizes, so the interval carries the uncertainty of the count too.
 
         Returns
         -------
         BootstrapMaximum
         """
+        n, cfull, rows = self._draw_counts(n, count)
+        if rows is not None:
+            return self._count_maximum(cfull, rows, confidence_level, rng)
         full = _maximum(self.fit.dist, n)
         level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
         lam = self._lam()
@@ -758,13 +831,32 @@ class BootstrapFit:
         draws = _max_quantiles(lam, self._fam, n, np.log(v)[:, None])[:, 0]
         medians = _max_quantiles(lam, self._fam, n, np.array([[math.log(0.5)]]))[:, 0]
         means = _max_raw_moments(lam, self._fam, n, 1)
-        return BootstrapMaximum(n=n, draws=draws, medians=medians, means=means,
-                                confidence_level=level,
+        return BootstrapMaximum(n=n, draws=draws, medians=medians, confidence_level=level,
                                 mixture=MaximumMixture(lam, self.param, n), full=full,
-                                _lam=lam, _param=self.param)
+                                _lam=lam, _param=self.param, _means=means)
 
-    def integrity_probability(self, threshold, n, area_factor=1.0,
-                              confidence_level: float | None = None) -> BootstrapProbability:
+    def _count_maximum(self, cfull, rows, confidence_level, rng) -> BootstrapMaximum:
+        full = _maximum(self.fit.dist, count=cfull)
+        level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
+        lam = self._lam()
+        if lam.shape[0] < 2:
+            raise FitError(f"only {lam.shape[0]} resamples have a fit")
+        cond = rows.conditional()
+        g = np.random.default_rng(self._seed(1) if rng is None else rng)
+        counts = cond.sample(g)
+        v = g.random(lam.shape[0])
+        draws = _max_quantiles(lam, self._fam, counts[:, None], np.log(v)[:, None])[:, 0]
+        lf = cond.log_f_for(math.log(0.5))
+        with np.errstate(invalid="ignore"):
+            medians = _quantiles(lam, self._fam, np.exp(lf)[:, None], (-np.expm1(lf))[:, None])[:, 0]
+        return BootstrapMaximum(n=float(cfull.mean), draws=draws, medians=medians,
+                                confidence_level=level,
+                                mixture=MaximumMixture(lam, self.param, 1.0, counts=cond), full=full,
+                                _lam=lam, _param=self.param, _counts=cond, count=cfull)
+
+    def integrity_probability(self, threshold, n=None, area_factor=1.0,
+                              confidence_level: float | None = None, *, count=None
+                              ) -> BootstrapProbability:
         """Integrity probability F(threshold)^(k n) with its bootstrap percentile interval.
 
         Parameters
@@ -772,12 +864,16 @@ class BootstrapFit:
         threshold : float
             Pressure level (units of the data); outside the support of a fit, that fit gives
             the limiting probabilities (integrity 0 below, 1 above).
-        n : float
+        n : float, optional
             Number of points of the analysed area (>= 1).
         area_factor : array_like
             k, ratio of the area of interest to the analysed one (> 0); vectorised.
         confidence_level : float, optional
             Default :attr:`confidence_level`.
+        count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
+            A random number of points instead of ``n`` (``E[F^N]^k``, see
+            :func:`glstat.integrity_probability`). Without ``n`` and ``count``, a bootstrap
+            with ``groups`` uses each resample's own group sizes.
 
         Returns
         -------
@@ -785,31 +881,43 @@ class BootstrapFit:
             ``estimate`` from the full-sample fit, ``low``/``high`` the percentile interval,
             ``values`` the per-resample probabilities (shape (n_successful, *area_factor.shape)).
         """
-        return self._probability(_integrity, "integrity", threshold, n, area_factor, confidence_level)
+        return self._probability(_integrity, "integrity", threshold, n, area_factor, confidence_level,
+                                 count)
 
-    def damage_probability(self, threshold, n, area_factor=1.0,
-                           confidence_level: float | None = None) -> BootstrapProbability:
+    def damage_probability(self, threshold, n=None, area_factor=1.0,
+                           confidence_level: float | None = None, *, count=None
+                           ) -> BootstrapProbability:
         """Damage probability 1 - F(threshold)^(k n) with its bootstrap percentile interval.
 
         Parameters and returns as for :meth:`integrity_probability`.
         """
-        return self._probability(_damage, "damage", threshold, n, area_factor, confidence_level)
+        return self._probability(_damage, "damage", threshold, n, area_factor, confidence_level,
+                                 count)
 
-    def _probability(self, func, what, threshold, n, area_factor, confidence_level):
+    def _probability(self, func, what, threshold, n, area_factor, confidence_level, count=None):
         level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
         k = np.asarray(area_factor, dtype=float)
         t = float(threshold)
+        n, cfull, rows = self._draw_counts(n, count)
         # the full-sample value and the argument checks come from glstat.damage itself
-        est = np.asarray(func(self.fit.dist, t, n, k, outside_support="limit"), dtype=float)
+        est = np.asarray(func(self.fit.dist, t, n, k, count=cfull, outside_support="limit"),
+                         dtype=float)
         lam = self._lam()
         logf = _log_tails(lam, self._fam, np.array([t]))[0][:, 0]
-        y = (logf.reshape((-1,) + (1,) * k.ndim) * k) * float(n)  # k n log F, one row per resample
-        vals = np.exp(y) if what == "integrity" else -np.expm1(y)
+        logf = logf.reshape((-1,) + (1,) * k.ndim)  # one row per resample
+        if rows is None:
+            y = (logf * k) * float(n)  # k n log F
+            vals = np.exp(y) if what == "integrity" else -np.expm1(y)
+        elif what == "integrity":
+            vals = np.exp(k * rows.log_pgf(logf))
+        else:
+            vals = rows.damage(logf, k)
         alpha = 1.0 - level
         q = np.quantile(vals, [alpha / 2, 1 - alpha / 2], axis=0)
-        return BootstrapProbability(what=what, threshold=t, n=float(n), area_factor=k,
-                                    estimate=est, low=q[0], high=q[1], values=vals,
-                                    confidence_level=level)
+        return BootstrapProbability(what=what, threshold=t,
+                                    n=float(n) if cfull is None else float(cfull.mean),
+                                    area_factor=k, estimate=est, low=q[0], high=q[1], values=vals,
+                                    confidence_level=level, count=cfull)
 
     # -- tables -------------------------------------------------------------------------------
     def to_frame(self) -> pd.DataFrame:
@@ -870,6 +978,12 @@ class BootstrapFit:
                 f"n_resamples={self.n_resamples}, n_failed={self.n_failed}, fit={self.fit!r})")
 
 
+def _table_count(values, weights):
+    from .counts import _Table
+
+    return _Table(values, weights)
+
+
 def _batch(lam: np.ndarray, param: str):
     gen = gld_rs if param == "rs" else gld_fkml
     return gen(_col(lam[:, 2]), _col(lam[:, 3]), loc=_col(lam[:, 0]), scale=1.0 / np.abs(_col(lam[:, 1])))
@@ -920,15 +1034,21 @@ class MaximumMixture(rv_continuous):
         Parameterisation.
     n : float
         Number of draws (>= 1).
+    counts : glstat.counts.RowCounts, optional
+        A random number of draws per component, given at least one (then ``n`` is unused):
+        component b is ``E_b[F_b(x)^N]``.
     """
 
-    def __init__(self, lambdas=None, param="rs", n=1.0, **kwargs):
+    def __init__(self, lambdas=None, param="rs", n=1.0, counts=None, **kwargs):
         lam = np.array(lambdas, dtype=float, ndmin=2)
         if lam.ndim != 2 or lam.shape[1] != 4 or lam.shape[0] < 1:
             raise ValueError(f"lambdas must have shape (B, 4), got {np.shape(lambdas)}")
         self._lam = lam
         self._param = param
         self._n = float(n)
+        self._counts = counts
+        if counts is not None and counts.rows != lam.shape[0]:
+            raise ValueError(f"counts has {counts.rows} rows for {lam.shape[0]} components")
         self._family = _FAM[param]
         lo, hi = _support(lam, self._family)
         kwargs.setdefault("a", float(np.min(lo)))
@@ -938,7 +1058,7 @@ class MaximumMixture(rv_continuous):
 
     def _updated_ctor_param(self):
         dct = super()._updated_ctor_param()
-        dct.update(lambdas=self._lam, param=self._param, n=self._n)
+        dct.update(lambdas=self._lam, param=self._param, n=self._n, counts=self._counts)
         return dct
 
     @property
@@ -949,6 +1069,14 @@ class MaximumMixture(rv_continuous):
     def _component_logs(self, x):
         x = np.asarray(x, dtype=float).ravel()
         logf, logs, logp = _log_tails(self._lam, self._family, x)
+        c = self._counts
+        if c is not None:
+            y = c.log_pgf(logf)
+            with np.errstate(divide="ignore"):
+                ls = np.log(c.one_minus_pgf(logf))
+            deep = logs < math.log(1e-290)
+            ls = np.where(deep, np.log(c.mean)[:, None] + logs, ls)
+            return y, ls, c.log_dpgf(logf) + logp
         n = self._n
         y = n * logf  # log of the component cdf of the maximum
         ls = _log1mexp(y)
@@ -986,8 +1114,14 @@ class MaximumMixture(rv_continuous):
             logv = _log1mexp(np.array([logp]))
         else:
             logv = np.array([logp])
-        t = logv / self._n
-        comp = _quantiles(self._lam, self._family, np.exp(t)[None, :], (-np.expm1(t))[None, :])[:, 0]
+        ns = [self._n] if self._counts is None else [self._counts.values.min(),
+                                                      self._counts.values.max()]
+        comp = []
+        for n in ns:  # F^nmax <= E[F^N] <= F^nmin: the quantiles of nmin and nmax bracket
+            t = logv / n
+            comp.append(_quantiles(self._lam, self._family, np.exp(t)[None, :],
+                                   (-np.expm1(t))[None, :])[:, 0])
+        comp = np.concatenate(comp)
         lo, hi = float(np.min(comp)), float(np.max(comp))
         if not lo < hi:
             return lo
@@ -1031,13 +1165,18 @@ class MaximumMixture(rv_continuous):
         comp = np.minimum(pick.astype(np.int64), self.n_components - 1)
         v = random_state.uniform(size=size)
         flat_c = np.ravel(comp)
-        t = np.log(np.ravel(v)) / self._n
+        n = self._n
+        if self._counts is not None:
+            n = self._counts.take(flat_c).sample(random_state)
+        t = np.log(np.ravel(v)) / n
         out = _quantiles(self._lam[flat_c], self._family, np.exp(t)[:, None], (-np.expm1(t))[:, None])
         return out[:, 0].reshape(np.shape(comp))
 
     def _munp(self, k):
         if k > 2 or int(k) != k:
             return super()._munp(k)
+        if self._counts is not None:
+            return float(np.mean(_count_max_moments(self._lam, self._family, self._counts, int(k))))
         return float(np.mean(_max_raw_moments(self._lam, self._family, self._n, int(k))))
 
     def _stats(self):
@@ -1053,7 +1192,7 @@ class BootstrapMaximum:
     Attributes
     ----------
     n : float
-        Number of draws.
+        Number of draws (the mean count given at least one draw, with a random count).
     draws : ndarray, shape (B_ok,)
         One random maximum of n draws per bootstrap GLD (the paper's "one value per
         bootstrap GLD"), units of the data.
@@ -1068,17 +1207,31 @@ class BootstrapMaximum:
         combining parameter uncertainty and the randomness of the maximum itself.
     full : MaximumDistribution
         Maximum of n draws from the full-sample fit.
+    count : CountDistribution or None
+        The random count (None for a fixed n); each bootstrap GLD then has its own count
+        given N >= 1 (its resample's group sizes with ``groups``).
     """
 
     n: float
     draws: np.ndarray
     medians: np.ndarray
-    means: np.ndarray
     confidence_level: float
     mixture: MaximumMixture
     full: MaximumDistribution
     _lam: np.ndarray = field(repr=False, compare=False, default=None)
     _param: str = field(repr=False, compare=False, default="rs")
+    _means: np.ndarray | None = field(repr=False, compare=False, default=None)
+    _counts: RowCounts | None = field(repr=False, compare=False, default=None)
+    count: Any = None
+
+    @property
+    def means(self) -> np.ndarray:
+        """Mean of each bootstrap GLD's maximum (NaN where it does not exist); with a random
+        count, the count-weighted means of the fixed-n maxima (computed when first asked)."""
+        if self._means is None:
+            object.__setattr__(self, "_means",
+                               _count_max_moments(self._lam, _FAM[self._param], self._counts, 1))
+        return self._means
 
     @property
     def mean(self) -> float:
@@ -1124,8 +1277,13 @@ class BootstrapMaximum:
         return float(self.mixture.ppf(a / 2)), float(self.mixture.isf(a / 2))
 
     def components(self) -> list[MaximumDistribution]:
-        """``glstat.maximum(dist, n)`` of every bootstrap GLD."""
-        return [_maximum(GLD(*row, param=self._param), self.n) for row in self._lam]
+        """``glstat.maximum(dist, n)`` of every bootstrap GLD (with its own count, if random)."""
+        if self._counts is None:
+            return [_maximum(GLD(*row, param=self._param), self.n) for row in self._lam]
+        c = self._counts
+        return [_maximum(GLD(*row, param=self._param),
+                         count=_table_count(c.values, c.weights[b]))
+                for b, row in enumerate(self._lam)]
 
     def to_frame(self) -> pd.DataFrame:
         """One row per bootstrap GLD: draw, median and mean of its maximum."""
@@ -1159,7 +1317,8 @@ class BootstrapProbability:
     what : str
         ``"integrity"`` or ``"damage"``.
     threshold, n : float
-        Pressure level (units of the data) and number of points.
+        Pressure level (units of the data) and number of points (the mean count with a
+        random count).
     area_factor : ndarray
         Area factors k (dimensionless).
     estimate : ndarray
@@ -1169,6 +1328,8 @@ class BootstrapProbability:
     values : ndarray
         Per-resample probabilities, shape (B_ok, *area_factor.shape).
     confidence_level : float
+    count : CountDistribution or None
+        The random count of the full-sample estimate (None for a fixed n).
     """
 
     what: str
@@ -1180,6 +1341,7 @@ class BootstrapProbability:
     high: np.ndarray
     values: np.ndarray
     confidence_level: float
+    count: Any = None
 
     def to_frame(self) -> pd.DataFrame:
         """One row per area factor: estimate, low, high."""
@@ -1204,6 +1366,7 @@ def bootstrap(
     executor: Executor | None = None,
     nan_policy: str = "raise",
     progress: bool | None = None,
+    groups=None,
     **options,
 ) -> BootstrapFit:
     """Fit a GLD to bootstrap resamples of the data (DESIGN §1 step 5).
@@ -1233,6 +1396,14 @@ def bootstrap(
         Non-finite data: raise, drop them, or return a bootstrap whose resamples all failed.
     progress : bool, optional
         Show a tqdm progress bar; default: only for long runs.
+    groups : array_like, optional
+        A label per data value (e.g. the surface each asperity peak comes from). Resamples
+        then draw whole groups with replacement (G of them, a cluster bootstrap), so the
+        intervals include the variation between groups and the number of values per group:
+        :attr:`BootstrapFit.counts` holds the group sizes and the probabilities and maxima
+        use each resample's own sizes as the random count (docs/method.md §6). Only with
+        ``kind="nonparametric"``; non-finite values are dropped with their labels under
+        ``nan_policy="omit"``.
     **options
         Fitting options (``u`` for percentiles; ``maxiter``, ``starts`` for data methods).
 
@@ -1273,6 +1444,13 @@ def bootstrap(
     param = str(param).lower()
     if param not in _FAM:
         raise ValueError(f"param must be 'rs' or 'fkml', got {param!r}")
+    grouping = None
+    if groups is not None:
+        if kind != "nonparametric":
+            raise ValueError("groups resample whole groups of the data: use kind='nonparametric'")
+        if nan_policy == "propagate":
+            raise ValueError("groups need finite data: use nan_policy='raise' or 'omit'")
+        grouping = _grouping(data, groups)
     x, _ = _S.prepare_data(data, nan_policy)
     seq = np.random.SeedSequence([int(v) for v in np.random.default_rng(rng).integers(0, 2**63, size=4)])
     entropy = tuple(int(v) for v in seq.entropy)
@@ -1296,7 +1474,7 @@ def bootstrap(
             u = float(full.options.get("u", 0.1))
             mean, std = _S.location_spread(x)
             st, ext = _compiled_statistics(x, seeds, kind, full.lambdas, fam, method, u, mean, std,
-                                           bar)
+                                           bar, None if grouping is None else grouping[:2])
             reasons = _stat_failures(method, st)
             ok = np.array([r == "" for r in reasons])
             lam = np.full((B, 4), np.nan)
@@ -1334,7 +1512,8 @@ def bootstrap(
                     BootstrapWarning, stacklevel=2)
         else:
             tasks = [seeds[s:s + _TASK_SIZE] for s in range(0, B, _TASK_SIZE)]
-            args = (kind, full.lambdas, param, method, dict(options))
+            args = (kind, full.lambdas, param, method, dict(options),
+                    None if grouping is None else grouping[:2])
             results = []
             if executor is None:
                 for t in tasks:
@@ -1355,12 +1534,36 @@ def bootstrap(
     finally:
         if bar is not None:
             bar.close()
+    if grouping is not None:
+        G = grouping[2].size
+        choices = np.stack([np.random.default_rng(sd).integers(0, G, size=G, dtype=np.int64)
+                            for sd in seeds])
+        grouping = (grouping[2], choices)
     return _result(full, lam, nroots, stats_df, reasons, B, level, kind, method, param, options, x,
-                   entropy, warn=True)
+                   entropy, warn=True, grouping=grouping)
+
+
+def _grouping(data, groups):
+    """(members, offsets, sizes) of the groups over the sorted finite data."""
+    values = np.asarray(data, dtype=float).ravel()
+    labels = np.asarray(groups).ravel()
+    if labels.size != values.size:
+        raise ValueError(f"groups must give one label per data value: {labels.size} labels for "
+                         f"{values.size} values")
+    keep = np.isfinite(values)
+    values, labels = values[keep], labels[keep]
+    order = np.argsort(values, kind="stable")
+    _, inverse = np.unique(labels[order], return_inverse=True)
+    sizes = np.bincount(inverse)
+    if sizes.size < 2:
+        raise ValueError("groups: at least two groups are needed to resample them")
+    members = np.argsort(inverse, kind="stable")
+    offsets = np.concatenate(([0], np.cumsum(sizes)))
+    return members, offsets, sizes
 
 
 def _result(full, lam, nroots, stats_df, reasons, B, level, kind, method, param, options, x, entropy,
-            *, warn):
+            *, warn, grouping=None):
     import pandas as pd
 
     frame = pd.DataFrame(lam, columns=list(_LAMBDA_NAMES))
@@ -1391,4 +1594,4 @@ def _result(full, lam, nroots, stats_df, reasons, B, level, kind, method, param,
     return BootstrapFit(fit=full, lambdas=frame, statistics=stats_df, failed=failed, n_resamples=B,
                         confidence_level=level, kind=kind, method=method, param=param,
                         options=dict(full.options) if full.options else dict(options), _data=x,
-                        _entropy=entropy)
+                        _entropy=entropy, _grouping=grouping)

@@ -30,6 +30,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from .counts import as_count
 from .extremes import _Parent
 
 __all__ = ["damage_probability", "guaranteed_threshold", "integrity_probability"]
@@ -64,16 +65,29 @@ def _positive(name, value, *, at_least_one=False):
     return arr
 
 
-def _log_integrity(dist, threshold, n, area_factor, outside_support):
+def _draws(n, count):
+    """(n as an array, None) for a fixed number of draws, or (None, CountDistribution)."""
+    if count is not None:
+        if n is not None:
+            raise TypeError("give either n (a fixed number of draws) or count (a random one), not both")
+        return None, as_count(count)
+    if n is None:
+        raise TypeError("n (the number of points of the analysed area) or count (a random number "
+                        "of them) is required")
+    return _positive("n", n, at_least_one=True), None
+
+
+def _log_integrity(dist, threshold, n, area_factor, outside_support, count=None, damage=False):
+    """log integrity (or, with ``damage=True``, the damage probability) per distribution."""
     if outside_support not in _OUTSIDE:
         raise ValueError(f"outside_support must be one of {_OUTSIDE}, got {outside_support!r}")
     parents, many = _parents(dist)
-    n = _positive("n", n, at_least_one=True)
+    n, cnt = _draws(n, count)
     k = _positive("area_factor", area_factor)
     x = np.asarray(threshold, dtype=float)
     if not np.isfinite(x).all():
         raise ValueError(f"threshold must be finite; got {x[~np.isfinite(x)].ravel()[0]}")
-    kn = k * n
+    kn = k if cnt is not None else k * n
     shape = np.broadcast_shapes(x.shape, kn.shape)
     out = []
     for i, p in enumerate(parents):
@@ -90,16 +104,24 @@ def _log_integrity(dist, threshold, n, area_factor, outside_support):
                     "to accept the limiting probabilities 0 and 1"
                 )
         _, logf, _, _ = p.tail(x)  # evaluated once per threshold, then broadcast
-        out.append(np.broadcast_to(kn * logf, shape))
+        if cnt is None:
+            y = kn * logf
+            y = -np.expm1(y) if damage else y
+        elif damage:
+            y = cnt.damage(logf, k)
+        else:
+            y = cnt.log_integrity(logf, k)
+        out.append(np.broadcast_to(y, shape))
     return np.stack(out) if many else out[0]
 
 
 def integrity_probability(
     dist,
     threshold,
-    n,
+    n=None,
     area_factor=1.0,
     *,
+    count=None,
     outside_support: str = "raise",
 ):
     """Probability that no point of an area exceeds ``threshold``: ``F(threshold)^(k n)``.
@@ -113,10 +135,14 @@ def integrity_probability(
         adds a leading axis over the distributions.
     threshold : array_like
         Pressure level, e.g. the hardness Pd, in the units of ``dist`` (e.g. MPa).
-    n : array_like
-        Number of points of the analysed area (>= 1).
+    n : array_like, optional
+        Number of points of the analysed area (>= 1), one per output (broadcast).
     area_factor : array_like, optional
         k, the ratio of the area of interest to the analysed one (> 0). Default 1.
+    count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
+        A random number N of points (e.g. asperities in contact) instead of ``n``: the
+        integrity is ``E[F^N]^k`` (``F^0 = 1``: an area without contact is intact); for a
+        Poisson count ``exp(-k mu (1 - F))``. See :mod:`glstat.counts` for the area rule.
     outside_support : {"raise", "limit"}, optional
         A threshold outside the support of ``dist`` raises ``ValueError`` (default); with
         ``"limit"`` the exact limits 0 (below) and 1 (above) are returned.
@@ -140,7 +166,7 @@ def integrity_probability(
     >>> round(float(integrity_probability(scipy.stats.expon(), 30.0, 1e12)), 6)  # exp(-1e12 e^-30)
     0.910669
     """
-    y = _log_integrity(dist, threshold, n, area_factor, outside_support)
+    y = _log_integrity(dist, threshold, n, area_factor, outside_support, count)
     out = np.exp(y)
     return out[()] if out.ndim == 0 else out
 
@@ -148,9 +174,10 @@ def integrity_probability(
 def damage_probability(
     dist,
     threshold,
-    n,
+    n=None,
     area_factor=1.0,
     *,
+    count=None,
     outside_support: str = "raise",
 ):
     """Probability that some point of an area exceeds ``threshold``: ``1 - F^(k n)``.
@@ -161,8 +188,10 @@ def damage_probability(
 
     Parameters
     ----------
-    dist, threshold, n, area_factor, outside_support
-        As for :func:`integrity_probability`.
+    dist, threshold, n, area_factor, count, outside_support
+        As for :func:`integrity_probability`. With ``count`` the damage ``1 - E[F^N]^k`` is
+        summed from the positive terms ``P(N = n_j) (1 - F^(n_j))``, so it keeps full
+        relative accuracy when tiny.
 
     Returns
     -------
@@ -181,12 +210,12 @@ def damage_probability(
     >>> f"{float(damage_probability(scipy.stats.expon(), 60.0, 1e11)):.4e}"  # ~ 1e11 e^-60
     '8.7565e-16'
     """
-    y = _log_integrity(dist, threshold, n, area_factor, outside_support)
-    out = -np.expm1(y)
+    out = np.asarray(_log_integrity(dist, threshold, n, area_factor, outside_support, count,
+                                    damage=True), dtype=float)
     return out[()] if out.ndim == 0 else out
 
 
-def guaranteed_threshold(dist, n, probability, area_factor=1.0):
+def guaranteed_threshold(dist, n=None, probability=None, area_factor=1.0, *, damage=None, count=None):
     """Level that all ``k n`` points stay below with a given probability: ``Q(p^(1/(k n)))``.
 
     Parameters
@@ -195,10 +224,19 @@ def guaranteed_threshold(dist, n, probability, area_factor=1.0):
         As for :func:`integrity_probability`.
     n : array_like
         Number of points of the analysed area (>= 1).
-    probability : array_like
+    probability : array_like, optional
         Required integrity probability p, strictly between 0 and 1.
     area_factor : array_like, optional
         k, the ratio of the area of interest to the analysed one (> 0). Default 1.
+    damage : array_like, optional
+        The accepted damage probability ``1 - p`` instead of ``probability``, strictly
+        between 0 and 1. Use it for levels near 1: ``probability=1 - 1e-15`` is rounded to
+        the double nearest to it, 8 % away in the complement, while ``damage=1e-15`` is
+        exact.
+    count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
+        A random number of points instead of ``n``: the level x with ``E[F(x)^N]^k = p``
+        (a Poisson count has ``x = isf(-log(p) / (k mu))``). When ``p <= P(N = 0)^k`` every
+        level qualifies and the lower end of the support is returned.
 
     Returns
     -------
@@ -214,16 +252,25 @@ def guaranteed_threshold(dist, n, probability, area_factor=1.0):
         probability outside (0, 1), n < 1 or non-finite, area_factor <= 0 or non-finite.
     """
     parents, many = _parents(dist)
-    n = _positive("n", n, at_least_one=True)
+    n, cnt = _draws(n, count)
     k = _positive("area_factor", area_factor)
-    p = np.asarray(probability, dtype=float)
+    if (probability is None) == (damage is None):
+        raise TypeError("give exactly one of probability (the integrity level) and damage (its "
+                        "complement)")
+    name = "probability" if damage is None else "damage"
+    p = np.asarray(probability if damage is None else damage, dtype=float)
     bad = ~((p > 0) & (p < 1))
     if bad.any():
         first = p[bad].ravel()[0] if p.ndim else float(p)
-        raise ValueError(f"probability must be strictly between 0 and 1; got {first}")
-    t = np.log(p) / (k * n)
-    u = np.exp(t)
-    q = -np.expm1(t)
+        raise ValueError(f"{name} must be strictly between 0 and 1; got {first}")
+    log_p = np.log(p) if damage is None else np.log1p(-p)
+    if cnt is None:
+        t = log_p / (k * n)
+    else:
+        t = cnt.log_f_for(np.broadcast_to(log_p / k, np.broadcast_shapes(log_p.shape, k.shape)))
+    with np.errstate(invalid="ignore"):
+        u = np.exp(t)
+        q = -np.expm1(t)
     out = [par.quantile(u, q) for par in parents]
     res = np.stack(out) if many else out[0]
     return res[()] if res.ndim == 0 else res

@@ -48,7 +48,13 @@ from .distributions import gld_fkml, gld_rs
 from .gld import GLD
 from .regions import rs_lambda2_sign
 
-__all__ = ["MaximumDistribution", "OrderStatisticDistribution", "maximum", "order_statistic"]
+__all__ = [
+    "MaximumCountDistribution",
+    "MaximumDistribution",
+    "OrderStatisticDistribution",
+    "maximum",
+    "order_statistic",
+]
 
 _LN2 = math.log(2.0)
 # below this the parent's sf may be subnormal or zero: switch to its logsf
@@ -589,7 +595,101 @@ class MaximumDistribution(_ExtremeFrozen):
         return f"maximum({self.parent!r}, n={self.n:g})"
 
 
-def maximum(dist, n: float) -> MaximumDistribution:
+class _MaximumCountGen(_ExtremeGen):
+    """Maximum of a random number N >= 1 of i.i.d. draws; ``order`` is the count given N >= 1
+    (a table of values n_j and probabilities w_j)."""
+
+    @_flat
+    def _logcdf(self, x):
+        _, logf, _, _ = self._parent.tail(x)
+        return self._order.log_pgf(logf)
+
+    @_flat
+    def _cdf(self, x):
+        return np.exp(self._logcdf(x))
+
+    @_flat
+    def _sf(self, x):
+        _, logf, s, logs = self._parent.tail(x)
+        out = np.asarray(self._order.one_minus_pgf(logf), dtype=float)
+        deep = s < _TINY
+        out[deep] = np.exp(math.log(self._order.mean) + logs[deep])
+        return out
+
+    @_flat
+    def _logsf(self, x):
+        _, logf, s, logs = self._parent.tail(x)
+        with np.errstate(divide="ignore"):
+            out = np.log(np.asarray(self._order.one_minus_pgf(logf), dtype=float))
+        deep = s < _TINY
+        out[deep] = math.log(self._order.mean) + logs[deep]
+        return out
+
+    @_flat
+    def _logpdf(self, x):
+        # d/dx E[F^N] = E[N F^(N-1)] f
+        c = self._order
+        _, logf, _, _ = self._parent.tail(x)
+        lp = self._parent.logpdf(x)
+        with np.errstate(invalid="ignore"):
+            terms = np.multiply.outer(logf, c.values - 1.0)
+        terms = np.where(c.values == 1, 0.0, terms) + c._logw + np.log(c.values)
+        return special.logsumexp(terms, axis=-1) + lp
+
+    def _quantile_vq(self, v, q, logv, logq):
+        logv = np.asarray(logv, dtype=float)
+        logf = self._order.log_f_for(logv)
+        with np.errstate(invalid="ignore"):
+            return self._parent.quantile(np.exp(logf), -np.expm1(logf))
+
+    def _rvs(self, size=None, random_state=None):
+        n = self._order.sample(size, random_state).astype(float)
+        t = np.log(random_state.uniform(size=size)) / n
+        return self._parent.quantile(np.exp(t), -np.expm1(t))
+
+    def _components(self):
+        return [(float(w), _MaximumGen(self._parent, float(n), name="maximum"))
+                for n, w in zip(self._order.values, self._order.weights, strict=True)]
+
+    def _munp(self, k):
+        return math.fsum(w * g._munp(k) for w, g in self._components())
+
+    def _stats(self):
+        m1, m2, m3, m4 = (self._munp(k) for k in (1, 2, 3, 4))
+        if not math.isfinite(m1):
+            return np.nan, np.nan, np.nan, np.nan
+        var = m2 - m1 * m1
+        if not (math.isfinite(var) and var > 0):
+            return m1, var, np.nan, np.nan
+        c3 = m3 - 3 * m1 * m2 + 2 * m1**3
+        c4 = m4 - 4 * m1 * m3 + 6 * m1 * m1 * m2 - 3 * m1**4
+        return m1, var, c3 / var**1.5, c4 / var**2 - 3.0
+
+
+class MaximumCountDistribution(MaximumDistribution):
+    """Frozen distribution of the maximum of a random number of draws, given at least one
+    (see :func:`maximum` with ``count=``)."""
+
+    @property
+    def n(self) -> None:
+        """None: the number of draws is random (see :attr:`count`)."""
+        return None
+
+    @property
+    def count(self):
+        """The count distribution given (N unconditioned)."""
+        return self._count
+
+    @property
+    def p_none(self) -> float:
+        """P(N = 0): the probability that nothing is drawn (no contact on the area)."""
+        return float(self._count.p_zero)
+
+    def __repr__(self) -> str:
+        return f"maximum({self.parent!r}, count={self._count!r})"
+
+
+def maximum(dist, n: float | None = None, *, count=None) -> MaximumDistribution:
     """Distribution of the maximum of n independent draws from ``dist``.
 
     Parameters
@@ -599,13 +699,21 @@ def maximum(dist, n: float) -> MaximumDistribution:
         (both use the compiled GLD kernels), any frozen ``scipy.stats`` continuous
         distribution, or an object with ``logcdf``, ``logsf``, ``isf`` (and ``ppf``,
         ``logpdf``, ``support``) methods. Values are in the units of ``dist``.
-    n : float
+    n : float, optional
         Number of draws, real and >= 1 (for a surface: the number of grid points, possibly
         times an area factor). Tested up to 1e12; larger values keep the same formulas.
+    count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
+        A random number N of draws instead of ``n`` (e.g. the asperities in contact on an
+        area, docs/method.md §6): cdf ``E[F(x)^N | N >= 1]``. The maximum exists only when
+        something is drawn, so the distribution is that given N >= 1; ``p_none`` holds
+        ``P(N = 0)``, which :func:`glstat.damage_probability` counts as no damage
+        (``F^0 = 1``). Give ``n`` or ``count``, not both.
 
     Returns
     -------
     MaximumDistribution
+        (a :class:`MaximumCountDistribution` with ``count``, whose moments are the
+        probability-weighted moments of the fixed-n maxima)
         A frozen ``scipy.stats`` distribution (an ``rv_continuous_frozen``) with cdf
         ``F(x)^n``, pdf ``n F^(n-1) f``, quantile ``Q(v^(1/n))``, and the usual ``sf``,
         ``logcdf``, ``logsf``, ``isf``, ``rvs`` (by the quantile of uniforms, never by
@@ -634,6 +742,19 @@ def maximum(dist, n: float) -> MaximumDistribution:
     4.682
     """
     parent = _Parent(dist)
+    if count is not None:
+        if n is not None:
+            raise TypeError("give either n (a fixed number of draws) or count (a random one), not both")
+        from .counts import as_count
+
+        c = as_count(count)
+        if c.p_zero >= 1.0:
+            raise ValueError("count is 0 with probability 1: there is no maximum")
+        out = MaximumCountDistribution(_MaximumCountGen(parent, c.conditional(), name="maximum"))
+        out._count = c
+        return out
+    if n is None:
+        raise TypeError("maximum() needs n (a number of draws) or count (a random number of draws)")
     n = _check_n(n)
     return MaximumDistribution(_MaximumGen(parent, n, name="maximum"))
 
