@@ -7,7 +7,7 @@ import numbers
 
 import numpy as np
 
-__all__ = ["finite_separation", "positive_pressure", "real_scalar"]
+__all__ = ["finite_separation", "positive_pressure", "real_array", "real_scalar"]
 
 
 def real_scalar(value) -> float | None:
@@ -85,3 +85,59 @@ def finite_separation(value) -> float:
     if d is None or not math.isfinite(d):
         raise ValueError(f"separation must be a finite height in metres, got {value!r}")
     return d
+
+
+def real_array(value, name: str = "heights") -> tuple[np.ndarray, np.ndarray | None]:
+    """``value`` as a new float64 array, and the mask of a masked array.
+
+    Parameters
+    ----------
+    value : array_like
+        Real numbers: integers, floats or booleans-free numeric data; a
+        :class:`numpy.ma.MaskedArray` marks its masked entries as missing.
+    name : str
+        What the values are, for messages.
+
+    Returns
+    -------
+    values : ndarray of float64
+        A copy (the caller's data are never modified); masked entries are NaN.
+    mask : ndarray of bool or None
+        True at the masked entries of a masked array with any masked entry, else None.
+
+    Raises
+    ------
+    TypeError
+        Complex numbers, dates/times, strings, booleans, or objects that are not real
+        numbers (``None``, ``pandas.NA``, ...).
+    """
+    mask = None
+    if isinstance(value, np.ma.MaskedArray):
+        m = np.ma.getmaskarray(value)
+        mask = m.copy() if m.any() else None
+        data = np.ma.getdata(value)
+    else:
+        data = value
+    arr = np.asarray(data)
+    kind = arr.dtype.kind
+    if kind == "c":
+        raise TypeError(f"{name} are complex ({arr.dtype}); pass real numbers (e.g. .real or abs())")
+    if kind in "mM":
+        raise TypeError(f"{name} are dates or times ({arr.dtype}), not numbers")
+    if kind in "SUVb":
+        raise TypeError(f"{name} must be real numbers, got an array of dtype {arr.dtype}")
+    if kind == "O":
+        try:
+            out = np.array(arr, dtype=float)
+        except (TypeError, ValueError):
+            bad = next((v for v in arr.ravel() if not isinstance(v, numbers.Real)
+                        or isinstance(v, bool | np.bool_)), None)
+            raise TypeError(
+                f"{name} must be real numbers, got an object array holding {bad!r} "
+                f"({type(bad).__name__}); convert missing values to NaN first"
+            ) from None
+    else:
+        out = np.array(arr, dtype=float, copy=True)
+    if mask is not None:
+        out[mask] = np.nan
+    return out, mask

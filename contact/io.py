@@ -33,7 +33,7 @@ import numpy as np
 
 from .errors import TopographyFileError
 from .surface import Surface
-from .x3p import read_x3p, write_x3p
+from .x3p import DEFLATE_MAX_RATIO, READ_ERRORS, check_zip_member, read_x3p, write_x3p
 
 __all__ = ["FORMATS", "read", "write"]
 
@@ -72,8 +72,15 @@ def _spacing(dx, dy, found_dx, found_dy, fname):
 
 
 def _surface(heights, dx, dy, mask, fname) -> Surface:
-    if mask is None and not np.isfinite(heights).all():
-        mask = ~np.isfinite(heights)
+    n_inf = int(np.isinf(heights).sum())
+    if n_inf:
+        first = tuple(int(v) for v in np.argwhere(np.isinf(heights))[0])
+        raise TopographyFileError(
+            f"{fname}: {n_inf} height(s) are infinite (first at index {first}); write missing "
+            "points as NaN, not as infinite heights"
+        )
+    if mask is None and np.isnan(heights).any():
+        mask = np.isnan(heights)
     try:
         return Surface(heights, dx, dy, mask=mask)
     except ValueError as exc:
@@ -82,14 +89,64 @@ def _surface(heights, dx, dy, mask, fname) -> Surface:
 
 def _heights_array(h: np.ndarray, what: str, fname: str) -> np.ndarray:
     """A 2-D array of real numbers (integer or floating point) as float64."""
-    if h.dtype.kind not in "iuf":
+    _check_heights_header(h.dtype, h.shape, what, fname)
+    return h.astype(float)
+
+
+def _check_heights_header(dtype: np.dtype, shape: tuple, what: str, fname: str) -> None:
+    """Refuse heights that are not a 2-D array of real numbers, from the dtype and shape
+    declared in a ``.npy`` header (before any data are read)."""
+    if dtype.kind not in "iuf" or dtype.fields is not None or dtype.subdtype is not None:
         raise TopographyFileError(
-            f"{fname}: {what} has dtype {h.dtype}; heights must be real numbers "
+            f"{fname}: {what} has dtype {dtype}; heights must be real numbers "
             "(integer or floating point)"
         )
-    if h.ndim != 2:
-        raise TopographyFileError(f"{fname}: {what} is {h.ndim}-D; a 2-D height map is needed")
-    return h.astype(float)
+    if len(shape) != 2:
+        raise TopographyFileError(f"{fname}: {what} is {len(shape)}-D; a 2-D height map is needed")
+
+
+def _npy_header(fh, fname: str, what: str) -> tuple[np.dtype, tuple, int]:
+    """dtype, shape and data size in bytes declared by the ``.npy`` header at ``fh``."""
+    try:
+        version = np.lib.format.read_magic(fh)
+        if version == (1, 0):
+            shape, _fortran, dtype = np.lib.format.read_array_header_1_0(fh)
+        elif version in ((2, 0), (3, 0)):
+            shape, _fortran, dtype = np.lib.format.read_array_header_2_0(fh)
+        else:
+            raise ValueError(f"unknown .npy format version {version}")
+    except READ_ERRORS as exc:
+        raise TopographyFileError(
+            f"{fname}: not a readable .npy array (truncated?): {what} has an unreadable "
+            f"header ({type(exc).__name__}: {exc})"
+        ) from None
+    if dtype.hasobject:
+        raise TopographyFileError(
+            f"{fname}: {what} has dtype {dtype} (Python objects); heights must be real numbers "
+            "(integer or floating point)"
+        )
+    count = math.prod(int(n) for n in shape)
+    return dtype, tuple(int(n) for n in shape), count * dtype.itemsize
+
+
+def _load_npy(fh, fname: str, what: str, available: int) -> np.ndarray:
+    """Read the array at ``fh`` whose header was checked, refusing a header that declares more
+    data than the ``available`` bytes hold (no memory is reserved for such a header)."""
+    start = fh.tell()
+    dtype, shape, nbytes = _npy_header(fh, fname, what)
+    stored = available - (fh.tell() - start)
+    if nbytes != stored:
+        raise TopographyFileError(
+            f"{fname}: not a readable .npy array (truncated?): {what} declares shape {shape} of "
+            f"{dtype} ({nbytes} bytes) but holds {stored} bytes of data"
+        )
+    fh.seek(start)
+    try:
+        return np.lib.format.read_array(fh, allow_pickle=False)
+    except READ_ERRORS as exc:
+        raise TopographyFileError(
+            f"{fname}: not a readable .npy array (truncated?): {what}: {type(exc).__name__}: {exc}"
+        ) from None
 
 
 def _stored_spacing(content: dict, name: str, fname: str) -> float | None:
@@ -114,34 +171,73 @@ def _read_npy(path, dx, dy, fname):
     try:
         # the file is opened here so that it is closed even when numpy fails to parse it
         with open(path, "rb") as fh:
-            h = np.load(fh, allow_pickle=False)
-    except (ValueError, OSError, EOFError) as exc:
-        raise TopographyFileError(
-            f"{fname}: not a readable .npy array (truncated?): {exc}"
-        ) from None
+            dtype, shape, _ = _npy_header(fh, fname, "the array")
+            _check_heights_header(dtype, shape, "the array", fname)
+            fh.seek(0)
+            h = _load_npy(fh, fname, "the array", os.fstat(fh.fileno()).st_size)
+    except OSError as exc:
+        raise TopographyFileError(f"{fname}: not a readable .npy array: {exc}") from None
     h = _heights_array(h, "the array", fname)
     return h, *_spacing(dx, dy, None, None, fname), None
 
 
-def _read_npz(path, dx, dy, fname):
+#: Members of an .npz topography that are read (any other member is ignored, never read).
+_NPZ_MEMBERS = ("heights", "dx", "dy", "mask")
+
+
+def _npz_member(archive: zipfile.ZipFile, info: zipfile.ZipInfo, name: str, fname: str,
+                limit: int, check=None) -> np.ndarray:
+    """One array of an .npz archive, its zip entry and .npy header checked before reading."""
+    what = repr(name)
+    check_zip_member(info, fname, what, limit=limit)
     try:
-        with open(path, "rb") as fh, np.load(fh, allow_pickle=False) as data:
-            content = {k: data[k] for k in data.files}
-    except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
+        with archive.open(info) as f:
+            dtype, shape, _ = _npy_header(f, fname, what)
+            if check is not None:
+                check(dtype, shape)
+        with archive.open(info) as f:
+            return _load_npy(f, fname, what, info.file_size)
+    except READ_ERRORS as exc:
+        raise TopographyFileError(
+            f"{fname}: not a readable .npz archive (truncated?): {what}: {type(exc).__name__}: "
+            f"{exc}"
+        ) from None
+
+
+def _read_npz(path, dx, dy, fname):
+    content: dict[str, np.ndarray] = {}
+    try:
+        with zipfile.ZipFile(path) as archive:
+            infos = {i.filename.removesuffix(".npy"): i for i in archive.infolist()}
+            if "heights" not in infos:
+                raise TopographyFileError(
+                    f"{fname}: no 'heights' array (found {sorted(infos)}); save with "
+                    "Surface.write or numpy.savez(path, heights=..., dx=..., dy=...)"
+                )
+            # a member may not declare more than Deflate can expand the whole file to
+            limit = max(os.path.getsize(path), 1) * DEFLATE_MAX_RATIO + 2**20
+            h = _npz_member(archive, infos["heights"], "heights", fname, limit,
+                            lambda d, s: _check_heights_header(d, s, "'heights'", fname))
+            content["heights"] = h
+            for name in ("dx", "dy"):
+                if name in infos:
+                    content[name] = _npz_member(archive, infos[name], name, fname, 2**16)
+            if "mask" in infos:
+                content["mask"] = _npz_member(archive, infos["mask"], "mask", fname,
+                                              h.size * 8 + 2**16)
+    except TopographyFileError:
+        raise
+    except READ_ERRORS as exc:
         raise TopographyFileError(
             f"{fname}: not a readable .npz archive (truncated?): {exc}"
         ) from None
-    if "heights" not in content:
-        raise TopographyFileError(
-            f"{fname}: no 'heights' array (found {sorted(content)}); save with "
-            "Surface.write or numpy.savez(path, heights=..., dx=..., dy=...)"
-        )
     h = _heights_array(content["heights"], "'heights'", fname)
     found = [_stored_spacing(content, k, fname) for k in ("dx", "dy")]
     mask = content.get("mask")
-    if mask is not None and mask.shape != h.shape:
+    if mask is not None and (mask.dtype.kind not in "biu" or mask.shape != h.shape):
         raise TopographyFileError(
-            f"{fname}: mask shape {mask.shape} differs from heights {h.shape}"
+            f"{fname}: mask must be a boolean array of the heights' shape {h.shape}, got shape "
+            f"{mask.shape} and dtype {mask.dtype}"
         )
     return h, *_spacing(dx, dy, *found, fname), mask
 
@@ -153,21 +249,95 @@ _SHAPE = re.compile(r"^\s*#\s*shape\s*[=:]\s*(\d+)[\s,x]+(\d+)\s*,?\s*$", re.IGN
 _POINTS = re.compile(r"^\s*#\s*points\s*[=:]\s*(\d+)\s*,?\s*$", re.IGNORECASE)
 
 
-def _text_lines(path, fname) -> list[str]:
-    """The lines of a text file: UTF-8 (with or without a byte-order mark), else Latin-1.
+def _text_lines(path, fname):
+    """The lines of a text file, one at a time, with their numbers (from 1): UTF-8 (with or
+    without a byte-order mark), else Latin-1, decided line by line.
 
     Numbers are ASCII in both; the fallback only matters for comments such as ``µm``
-    written by software that uses Latin-1.
+    written by software that uses Latin-1. The file is streamed, never held in memory.
     """
     try:
-        raw = Path(path).read_bytes()
+        fh = open(path, "rb")
     except OSError as exc:
         raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        text = raw.removeprefix(b"\xef\xbb\xbf").decode("latin-1")
-    return text.splitlines()
+    with fh:
+        try:
+            for lineno, raw in enumerate(fh, 1):
+                if lineno == 1:
+                    raw = raw.removeprefix(b"\xef\xbb\xbf")
+                try:
+                    line = raw.decode("utf-8")
+                except UnicodeDecodeError:
+                    line = raw.decode("latin-1")
+                yield lineno, line.rstrip("\r\n")
+        except OSError as exc:
+            raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
+
+
+#: Rows parsed at once by the text readers (bounded memory whatever the file's length).
+_BATCH = 8192
+
+
+class _Rows:
+    """Rows of numbers of equal width, gathered in float64 batches (8 bytes per value)."""
+
+    def __init__(self, fname: str, delimiter: str | None, width: int | None = None,
+                 what: str = "rows"):
+        self.fname, self.delimiter, self.width, self.what = fname, delimiter, width, what
+        self.tokens: list[str] = []
+        self.lines: list[tuple[int, str]] = []
+        self.chunks: list[np.ndarray] = []
+        self.count = 0
+
+    def add(self, lineno: int, body: str) -> None:
+        parts = body.split(self.delimiter)
+        if self.width is None:
+            self.width = len(parts)
+        elif len(parts) != self.width:
+            raise TopographyFileError(
+                f"{self.fname}: rows have different lengths {sorted({self.width, len(parts)})} "
+                f"(line {lineno} holds {len(parts)} values, the rows before it "
+                f"{self.width}; truncated or ragged grid)"
+            )
+        self.tokens.extend(parts)
+        self.lines.append((lineno, body))
+        if len(self.lines) >= _BATCH:
+            self.flush()
+
+    def flush(self) -> None:
+        if not self.lines:
+            return
+        bad = next((ln for ln, body in self.lines if "_" in body), None)
+        values = None
+        if bad is None:
+            try:
+                values = np.array(self.tokens, dtype=float)
+            except ValueError:
+                values = None
+        if values is None:
+            for lineno, body in self.lines:
+                try:
+                    if "_" in body:
+                        raise ValueError(body)
+                    [float(t) for t in body.split(self.delimiter)]
+                except ValueError:
+                    raise TopographyFileError(
+                        f"{self.fname}: line {lineno} holds a non-number ({body[:60]!r}); write "
+                        "plain decimal numbers (digits, '.', exponent; no '_' separators)"
+                    ) from None
+            raise TopographyFileError(f"{self.fname}: lines {self.lines[0][0]}-"
+                                      f"{self.lines[-1][0]} hold a non-number")
+        self.chunks.append(values.reshape(len(self.lines), self.width))
+        self.count += len(self.lines)
+        self.tokens, self.lines = [], []
+
+    def array(self) -> np.ndarray:
+        self.flush()
+        if not self.chunks:
+            return np.empty((0, self.width or 0))
+        out = np.concatenate(self.chunks) if len(self.chunks) > 1 else self.chunks[0]
+        self.chunks = []
+        return out
 
 
 def _header_spacing(name: str, value: str, fname: str, lineno: int) -> float:
@@ -196,40 +366,34 @@ def _header_spacing(name: str, value: str, fname: str, lineno: int) -> float:
 def _read_text(path, dx, dy, fname):
     found = {"dx": None, "dy": None}
     shape = None
-    rows: list[list[float]] = []
     delimiter = "," if Path(path).suffix.lower() == ".csv" else None
-    for lineno, line in enumerate(_text_lines(path, fname), 1):
-        m = _HEADER.match(line)
-        if m:
-            name = m.group(1).lower()
-            found[name] = _header_spacing(name, m.group(2), fname, lineno)
-            continue
-        m = _SHAPE.match(line)
-        if m:
-            shape = (int(m.group(1)), int(m.group(2)))
-            continue
+    rows = _Rows(fname, delimiter)
+    for lineno, line in _text_lines(path, fname):
+        if "#" in line:
+            m = _HEADER.match(line)
+            if m:
+                name = m.group(1).lower()
+                found[name] = _header_spacing(name, m.group(2), fname, lineno)
+                continue
+            m = _SHAPE.match(line)
+            if m:
+                shape = (int(m.group(1)), int(m.group(2)))
+                continue
         body = line.split("#", 1)[0].strip()
         if delimiter and body.endswith(delimiter):
             body = body[:-1].rstrip()  # spreadsheets end CSV rows with a comma
         if not body:
             continue
-        try:
-            rows.append([float(t) for t in body.split(delimiter)])
-        except ValueError:
-            raise TopographyFileError(f"{fname}: line {lineno} holds a non-number") from None
-    if not rows:
+        rows.add(lineno, body)
+    h = rows.array()
+    if h.shape[0] == 0:
         raise TopographyFileError(f"{fname}: holds no data rows")
-    widths = {len(r) for r in rows}
-    if len(widths) != 1:
+    if shape is not None and h.shape != shape:
         raise TopographyFileError(
-            f"{fname}: rows have different lengths {sorted(widths)} (truncated or ragged grid)"
-        )
-    if shape is not None and (len(rows), len(rows[0])) != shape:
-        raise TopographyFileError(
-            f"{fname}: holds {len(rows)} rows of {len(rows[0])} values, but its header "
+            f"{fname}: holds {h.shape[0]} rows of {h.shape[1]} values, but its header "
             f"says shape = {shape[0]} {shape[1]} (truncated file?)"
         )
-    return np.array(rows), *_spacing(dx, dy, found["dx"], found["dy"], fname), None
+    return h, *_spacing(dx, dy, found["dx"], found["dy"], fname), None
 
 
 # Printed coordinates are rounded: ``%g`` keeps 6 significant digits, i.e. a relative
@@ -264,17 +428,33 @@ def _axis(values: np.ndarray, name: str, fname: str) -> tuple[np.ndarray, float]
     return np.rint((values - u[0]) / step).astype(np.int64), float(step)
 
 
+#: Largest grid an XYZ file may describe, in grid points per point listed: coordinates that
+#: span a much larger grid than the points fill are not a gridded topography (N points on a
+#: diagonal would otherwise make an N x N grid).
+XYZ_MAX_FILL = 10
+
+
 def _read_xyz(path, dx, dy, fname):
-    lines = _text_lines(path, fname)
-    try:
-        data = np.loadtxt(lines, comments="#", ndmin=2)
-    except ValueError as exc:
-        raise TopographyFileError(f"{fname}: not a readable x y z point list: {exc}") from None
-    if data.shape[1] != 3 or data.shape[0] == 0:
-        raise TopographyFileError(f"{fname}: expected 3 columns (x y z), got {data.shape[1]}")
+    rows = _Rows(fname, None)
+    count = None
+    for lineno, line in _text_lines(path, fname):
+        if "#" in line:
+            m = _POINTS.match(line)
+            if m:
+                count = int(m.group(1))
+        body = line.split("#", 1)[0].strip()
+        if not body:
+            continue
+        rows.add(lineno, body)
+        if rows.width != 3:
+            raise TopographyFileError(
+                f"{fname}: expected 3 columns (x y z), got {rows.width} (line {lineno})"
+            )
+    data = rows.array()
+    if data.shape[0] == 0:
+        raise TopographyFileError(f"{fname}: expected 3 columns (x y z), got no point")
     if not np.isfinite(data[:, :2]).all():
         raise TopographyFileError(f"{fname}: x or y coordinates contain NaN or inf")
-    count = next((int(m.group(1)) for m in map(_POINTS.match, lines) if m), None)
     if count is not None and data.shape[0] != count:
         raise TopographyFileError(
             f"{fname}: holds {data.shape[0]} points, but its header says points = {count} "
@@ -283,6 +463,12 @@ def _read_xyz(path, dx, dy, fname):
     ii, sx = _axis(data[:, 0], "x", fname)
     jj, sy = _axis(data[:, 1], "y", fname)
     nx, ny = int(ii.max()) + 1, int(jj.max()) + 1
+    if nx * ny > XYZ_MAX_FILL * data.shape[0] + 64:
+        raise TopographyFileError(
+            f"{fname}: the {data.shape[0]} points span a grid of {nx} x {ny} = {nx * ny} "
+            f"points, so more than {100 - 100 // XYZ_MAX_FILL} % of it would be missing: not a "
+            "gridded topography; resample the points onto a regular grid first"
+        )
     flat = ii * ny + jj
     if np.unique(flat).size != flat.size:
         raise TopographyFileError(f"{fname}: several points share the same (x, y) position")

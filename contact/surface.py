@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._validate import real_scalar
+from ._validate import real_array, real_scalar
 from .roughness import level_heights, roughness_parameters
 
 if TYPE_CHECKING:
@@ -27,7 +27,16 @@ class Surface:
         Grid spacing along x and y in metres. ``dy`` defaults to ``dx``.
     mask : array_like of bool, optional
         True where a point is missing (not measured). Missing heights are ignored by
-        statistics; they must not be NaN where the mask is False.
+        statistics; they must not be NaN where the mask is False. The masked entries of a
+        :class:`numpy.ma.MaskedArray` of heights are missing too.
+
+    Raises
+    ------
+    TypeError
+        Heights that are not real numbers: complex, dates, strings, booleans, or objects
+        such as ``None`` or ``pandas.NA`` (mask those points instead).
+    ValueError
+        Wrong shape, NaN or inf outside the mask, or a bad spacing.
 
     Notes
     -----
@@ -35,7 +44,7 @@ class Surface:
     """
 
     def __init__(self, heights, dx: float, dy: float | None = None, mask=None):
-        h = np.array(heights, dtype=float, copy=True)
+        h, hidden = real_array(heights, "heights")
         if h.ndim != 2:
             raise ValueError(f"heights must be a 2-D array, got {h.ndim} dimension(s)")
         if min(h.shape) < 3:
@@ -54,6 +63,9 @@ class Surface:
             mask = np.array(mask, dtype=bool, copy=True)
             if mask.shape != h.shape:
                 raise ValueError(f"mask shape {mask.shape} does not match heights shape {h.shape}")
+        if hidden is not None:
+            mask = hidden if mask is None else (mask | hidden)
+        if mask is not None:
             if mask.all():
                 raise ValueError("mask hides every point; nothing is left to analyse")
             if not np.isfinite(h[~mask]).all():
