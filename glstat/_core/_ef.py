@@ -38,15 +38,35 @@ def _split(a):
 
 
 @njit(cache=True, error_model="numpy")
-def two_prod(a, b):
-    """Return (p, e) with p = fl(a * b) and a * b = p + e exactly (no overflow assumed)."""
-    p = a * b
-    if abs(a) > 1e150 or abs(b) > 1e150 or not math.isfinite(p):
-        return p, 0.0
+def _dekker(a, b, p):
     ah, al = _split(a)
     bh, bl = _split(b)
-    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-    return p, e
+    return ((ah * bh - p) + ah * bl + al * bh) + al * bl
+
+
+@njit(cache=True, error_model="numpy")
+def two_prod(a, b):
+    """Return (p, e) with p = fl(a * b) and a * b = p + e exactly.
+
+    Exact over the whole double range: factors beyond 2**+-450 (where Dekker's splitting
+    would overflow, or the error term would fall below the subnormal range) are handled
+    through their binary mantissas, and the error term is scaled back, so it is lost only
+    where it is itself below the smallest subnormal. A non-finite or zero product has e = 0.
+    """
+    p = a * b
+    if not math.isfinite(p) or p == 0.0:
+        return p, 0.0
+    aa = abs(a)
+    ab = abs(b)
+    if 1e-135 < aa < 1e135 and 1e-135 < ab < 1e135 and abs(p) > 1e-270:
+        return p, _dekker(a, b, p)
+    if abs(p) < 2.2250738585072014e-308:
+        # subnormal product: its rounding error is below the smallest subnormal
+        return p, 0.0
+    ma, ea = math.frexp(a)
+    mb, eb = math.frexp(b)
+    pm = ma * mb
+    return p, math.ldexp(_dekker(ma, mb, pm), ea + eb)
 
 
 @njit(cache=True, error_model="numpy")

@@ -63,15 +63,46 @@ def _case(fam, a, b):
         if a == 0.0:
             return _R4Z
         return _RINF
-    return _FPOS if a > 0.0 else _FINF
+    # a subnormal lambda3 puts the lower end point -1/lambda3 beyond the double range
+    return _FPOS if (a > 0.0 and math.isfinite(1.0 / a)) else _FINF
+
+
+@njit(cache=True, error_model="numpy")
+def _exprel(z):
+    """expm1(z)/z for |z| < 1e-5 (series; the value of z only enters the correction)."""
+    return 1.0 + z * (0.5 + z * (1.0 / 6.0 + z * (1.0 / 24.0)))
 
 
 @njit(cache=True, error_model="numpy")
 def _em(lam, logx):
-    """(x**lam - 1)/lam from log(x), with the limit log(x) at lam = 0."""
+    """(x**lam - 1)/lam from log(x), with the limit log(x) at lam = 0.
+
+    For |lam log x| < 1e-5 the series log(x) * exprel(lam log x) is used: expm1(z)/lam would
+    lose the relative accuracy of z = lam * log(x) once that product is subnormal (tiny or
+    subnormal lam), and the series is continuous with the exact limit at lam = 0.
+    """
     if lam == 0.0:
         return logx
-    return math.expm1(lam * logx) / lam
+    z = lam * logx
+    if abs(z) < 1e-5:
+        return logx * _exprel(z)
+    return math.expm1(z) / lam
+
+
+@njit(cache=True, error_model="numpy")
+def _inv_diff_dd(a, b):
+    """1/b - 1/a as a double-double (a, b > 0 with finite reciprocals)."""
+    ra_hi, ra_lo = reciprocal_dd(a)
+    rb_hi, rb_lo = reciprocal_dd(b)
+    s, e = two_sum(rb_hi, -ra_hi)
+    return fast_two_sum(s, e + (rb_lo - ra_lo))
+
+
+@njit(cache=True, error_model="numpy")
+def _fkml_both_small(a, b, t, l1):
+    """True where both FKML powers p**a and (1-p)**b are below 1/2 (a, b > 0): there
+    expm1(a t)/a - expm1(b l1)/b cancels, and Q = (1/b - 1/a) + p**a/a - (1-p)**b/b is used."""
+    return a > 0.0 and b > 0.0 and a * t < -LN2 and b * l1 < -LN2
 
 
 @njit(cache=True, error_model="numpy")
@@ -99,6 +130,10 @@ def q_lower(fam, a, b, t, l1):
             # both powers below 1/2 (region 3, large shapes): the expm1 forms would cancel
             return s * (math.exp(a * t) - math.exp(b * l1))
         return s * (_xm1(a, t) - _xm1(b, l1))
+    if _fkml_both_small(a, b, t, l1):
+        # both powers below 1/2 (large shapes): the expm1 forms would cancel
+        c_hi, c_lo = _inv_diff_dd(a, b)
+        return c_hi + ((math.exp(a * t) / a - math.exp(b * l1) / b) + c_lo)
     return _em(a, t) - _em(b, l1)
 
 
@@ -156,6 +191,27 @@ def _lower_end_offset(case, a, y):
         s1, e1 = two_sum(y, r_hi)
         return two_sum(s1, e1 + r_lo)
     return y, 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _fkml_target(a, b, z_hi, z_lo):
+    """w = z - 1/b as a double-double, z = y + 1/a (FKML, a, b > 0): the target of the power
+    part p**a/a - (1-p)**b/b of Q."""
+    rb_hi, rb_lo = reciprocal_dd(b)
+    w_hi, w_lo = two_sum(z_hi, -rb_hi)
+    return fast_two_sum(w_hi, w_lo + (z_lo - rb_lo))
+
+
+@njit(cache=True, error_model="numpy")
+def _fkml_pow_residual(a, b, z_hi, z_lo, t, p, l1):
+    """FKML residual where both powers are below 1/2: p**a/a - (1-p)**b/b - (z - 1/b)."""
+    w_hi, w_lo = _fkml_target(a, b, z_hi, z_lo)
+    pa = math.exp(a * t)
+    pb = math.exp(b * l1)
+    r = ((pa / a - pb / b) - w_hi) - w_lo
+    dh = p * math.exp((b - 1.0) * l1)
+    k = min(dh / pa, pa / dh)
+    return r, pa + dh, EPS * (pa / a + pb / b + abs(w_hi)), k
 
 
 @njit(cache=True, error_model="numpy")
@@ -220,6 +276,8 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         da = a * pa
         k = min(dh / da, da / dh)
         return r, da + dh, EPS * (abs(ema) + h + abs(y)), k
+    if (case == _FPD or case == _FPOS) and _fkml_both_small(a, b, t, l1):
+        return _fkml_pow_residual(a, b, z_hi, z_lo, t, p, l1)
     if case == _FPD:
         g = math.expm1(a * t) / a
         h = -math.expm1(b * l1) / b if b != 0.0 else -l1
@@ -318,6 +376,42 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         if b_hi <= 0.0:
             return math.nan, math.nan
         return dd_root(b_hi, b_e + w_lo, a)
+    if (case == _FPOS or case == _FPD) and _fkml_both_small(a, b, t, l1):
+        # both powers below 1/2: p^a/a - (1-p)^b/b = w = z - 1/b, no 1/a or 1/b offsets
+        w_hi, w_lo = _fkml_target(a, b, z_hi, z_lo)
+        pa = math.exp(a * t)
+        pb = math.exp(b * l1)
+        if pa >= p * math.exp((b - 1.0) * l1):
+            s1, e1 = two_sum(w_hi, pb / b)
+            m_hi, m_lo = two_prod(a, s1)
+            m_hi, m_lo = fast_two_sum(m_hi, m_lo + a * (e1 + w_lo))
+            if m_hi <= 0.0:
+                return 0.0, -math.inf
+            return dd_root(m_hi, m_lo, a)
+        v = b * ((pa / a - w_hi) - w_lo)
+        if not (v > 0.0 and v < 1.0):
+            return math.nan, math.nan
+        return _from_p(-math.expm1(math.log(v) / b))
+    if case == _FPOS and z_hi * a >= 0.5:
+        # far from the lower end point -1/a: the direct form (the offset z = y + 1/a would
+        # drop the digits of y once 1/a is large)
+        case = _FPD
+    if case == _FPD:
+        h = -math.expm1(b * l1) / b if b != 0.0 else -l1
+        if math.exp(a * t) >= p * math.exp((b - 1.0) * l1):
+            # p^a = 1 + a (y - H), through a double-double 1 + m (exact also for tiny a)
+            w_hi, w_lo = two_sum(y, -h)
+            w_lo += y_lo
+            m_hi, m_lo = two_prod(a, w_hi)
+            m_lo += a * w_lo
+            b_hi, b_e = two_sum(1.0, m_hi)
+            if b_hi <= 0.0:
+                return 0.0, -math.inf
+            return dd_root(b_hi, b_e + m_lo, a)
+        w = (y - _em(a, t)) + y_lo
+        if b != 0.0:
+            return _from_p(-math.expm1(math.log1p(-b * w) / b))
+        return _from_p(-math.expm1(-w))
     if case == _FPOS:
         pa = math.exp(a * t)
         h = -math.expm1(b * l1) / b if b != 0.0 else -l1
@@ -545,22 +639,59 @@ def standardize(x, loc, inv_scale):
     return fast_two_sum(y_hi, e + d_lo * inv_scale)
 
 
+@njit(cache=True, error_model="numpy")
+def _scaled_exp(lq, inv_scale, log_scale):
+    """inv_scale * exp(-lq) without a spurious under- or overflow of either factor."""
+    v = math.exp(-lq)
+    if v > 2.2250738585072014e-308 and v < 1.7976931348623157e308:
+        r = v * inv_scale
+        if r > 2.2250738585072014e-308 and r < 1.7976931348623157e308:
+            return r
+    return math.exp(log_scale - lq)
+
+
 @njit(cache=True, inline="always", error_model="numpy")
 def emit(what, fam, ae, be, p, t, upper, inv_scale, log_scale):
     """The requested quantity from the smaller tail probability ``p`` (log ``t``) on the
     lower (``upper`` False) or upper side; ``ae, be`` are the shapes of that side's lower-tail
-    problem. what: 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf."""
+    problem. what: 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf.
+
+    The density is taken from ``t``, not ``p``: where p underflows (t < -745), log Q'(p) is
+    still finite, and so are logpdf and (after the scale) often pdf.
+    """
     if what <= 3:
         want_small = (what == 0 or what == 2) != upper
         if what < 2:
             return p if want_small else 1.0 - p
         return t if want_small else math.log1p(-p)
-    if p == 0.0:
+    if t == -math.inf:
         return 0.0 if what == 4 else -math.inf
+    l1 = math.log1p(-p)
     if what == 4 and t > -600.0:
-        return inv_scale / qprime_lower(fam, ae, be, t, math.log1p(-p))
-    lq = log_qprime_lower(fam, ae, be, t, math.log1p(-p))
-    return math.exp(-lq) * inv_scale if what == 4 else log_scale - lq
+        q1 = qprime_lower(fam, ae, be, t, l1)
+        r = inv_scale / q1
+        if r > 2.2250738585072014e-308 and r < 1.7976931348623157e308:
+            return r
+    lq = log_qprime_lower(fam, ae, be, t, l1)
+    return _scaled_exp(lq, inv_scale, log_scale) if what == 4 else log_scale - lq
+
+
+@njit(cache=True, error_model="numpy")
+def end_density(what, fam, ae, be, ys, ys_lo, loc, inv_scale, log_scale):
+    """pdf (what 4) or logpdf (5) at a point ``ys`` (+ ``ys_lo``, standardized, on the side of
+    the lower-tail problem with shapes ``ae, be``) that the solver placed at or below the
+    lower end point: the one-sided limit 1/Q'(0+) (times the scale) when the point is the
+    end point to within the rounding of x (four ulps of the end point in x), else 0."""
+    end = q_lower(fam, ae, be, -math.inf, 0.0)
+    if math.isfinite(end) and math.isfinite(ys):
+        tol = 4.0 * EPS * (abs(end) + abs(loc) * inv_scale)
+        if (ys - end) + ys_lo >= -tol:
+            q1 = qprime_lower(fam, ae, be, -math.inf, 0.0)
+            if q1 > 0.0 and q1 < math.inf:
+                if what == 4:
+                    return inv_scale / q1
+                return log_scale - math.log(q1)
+    return 0.0 if what == 4 else -math.inf
 
 
 # what = 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf
@@ -589,6 +720,10 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
             continue
         p, lp, upper, st, ae, be = _invert(fam, ai, bi, yi, yi_lo)
         status[i] = st
+        if what >= 4 and lp == -math.inf:
+            out[i] = end_density(what, fam, ae, be, -yi if upper else yi,
+                                 -yi_lo if upper else yi_lo, loc, inv_scale, log_scale)
+            continue
         out[i] = emit(what, fam, ae, be, p, lp, upper, inv_scale, log_scale)
 
 

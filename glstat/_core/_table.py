@@ -21,6 +21,7 @@ from ._gld import (
     _case,
     _residual,
     emit,
+    end_density,
     q_lower,
     qprime_lower,
     rs_sign,
@@ -241,4 +242,9 @@ def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0)
                 p, t, st = solve_lower(fam, ae, be, -yi if upper else yi,
                                        -yi_lo if upper else yi_lo)
                 status[i] = st
+                if what >= 4 and t == -math.inf:
+                    out[i] = end_density(what, fam, ae, be, -yi if upper else yi,
+                                         -yi_lo if upper else yi_lo, loc, inv_scale,
+                                         log_scale)
+                    continue
         out[i] = emit(what, fam, ae, be, p, t, upper, inv_scale, log_scale)

@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._gld import RS, log_qprime_lower, q_lower, rs_sign
+from ._gld import LN2, RS, log_qprime_lower, q_lower, rs_sign
 
 # tanh-sinh nodes on (0, 1) in log space
 _H = 1.0 / 32.0
@@ -240,21 +240,194 @@ def lmoments_kernel(fam, a, b, rmax, out):
 
 
 @njit(cache=True, error_model="numpy")
+def _softplus(x):
+    """log(1 + e^x) without overflow."""
+    if x > 0.0:
+        return x + math.log1p(math.exp(-x))
+    return math.log1p(math.exp(x))
+
+
+@njit(cache=True, error_model="numpy")
+def _gap(ca, am1, cb, bm1, lu, l1):
+    """g = log(A) - log(B) for the terms A = e^ca u^(a-1), B = e^cb (1-u)^(b-1) of Q'."""
+    return (ca - cb) + am1 * lu - bm1 * l1
+
+
+@njit(cache=True, error_model="numpy")
+def _gap_root(ca, am1, cb, bm1, s_lo, s_hi):
+    """Root in the logit s = log(u/(1-u)) of g on [s_lo, s_hi] (g of opposite signs at the
+    ends), by bisection to the last bit."""
+    g_lo = _gap(ca, am1, cb, bm1, -_softplus(-s_lo), -_softplus(s_lo))
+    for _ in range(2200):
+        mid = 0.5 * (s_lo + s_hi)
+        if mid <= s_lo or mid >= s_hi:
+            break
+        g = _gap(ca, am1, cb, bm1, -_softplus(-mid), -_softplus(mid))
+        if g == 0.0:
+            return mid
+        if (g > 0.0) == (g_lo > 0.0):
+            s_lo = mid
+            g_lo = g
+        else:
+            s_hi = mid
+    return 0.5 * (s_lo + s_hi)
+
+
+@njit(cache=True, error_model="numpy")
+def _xlogx_m_x(v, lv):
+    """v log v - v (0 at v = 0), from v and log v."""
+    if v == 0.0:
+        return 0.0
+    return v * lv - v
+
+
+@njit(cache=True, error_model="numpy")
+def _phi(w):
+    """w + (1 - w) log1p(-w) = sum_{k>=2} w^k / (k (k-1)) for 0 <= w <= 1/2, without
+    cancellation: minus the antiderivative of log1p(-w)."""
+    if w > 0.25:
+        return w + (1.0 - w) * math.log1p(-w)
+    s = 0.0
+    wk = w
+    for k in range(2, 80):
+        wk *= w
+        term = wk / (k * (k - 1.0))
+        s += term
+        if term <= 1e-17 * s:
+            break
+    return s
+
+
+@njit(cache=True, error_model="numpy")
+def _int_log(v0, lv0, w0, v1, lv1, w1):
+    """int_{v0}^{v1} log v dv for 0 <= v0 < v1 <= 1, from v, log v and w = 1 - v at both
+    ends; next to 1 through the complement, where the integral is of order (1 - v)^2."""
+    if v1 <= 0.5:
+        return _xlogx_m_x(v1, lv1) - _xlogx_m_x(v0, lv0)
+    if v0 >= 0.5:
+        return _phi(w1) - _phi(w0)
+    half = 0.5 * (-LN2) - 0.5
+    return (half - _xlogx_m_x(v0, lv0)) + (_phi(w1) - _phi(0.5))
+
+
+_S_MAX = 745.0  # |logit u| beyond which u or 1 - u is below the smallest subnormal
+
+
+@njit(cache=True, error_model="numpy")
+def _entropy_sum(ca, am1, cb, bm1):
+    """int_0^1 log(A + B) du for Q' = A + B, A = e^ca u^(a-1), B = e^cb (1-u)^(b-1).
+
+    Split where the terms cross (the roots of g = log A - log B, at most two since g' has
+    at most one sign change): on each piece the dominant term's logarithm is integrated in
+    closed form and log1p(e^-|g|), which carries the kink-like transition at the crossing,
+    by tanh-sinh on that piece, whose nodes cluster at both ends.
+    """
+    # breakpoints in the logit s; g'(u) = (a-1)/u + (b-1)/(1-u) vanishes at most once
+    brk = np.empty(4)
+    nb = 0
+    brk[nb] = -math.inf
+    nb += 1
+    ends = np.empty(3)
+    ne = 0
+    ends[ne] = -_S_MAX
+    ne += 1
+    if am1 * bm1 < 0.0:
+        um = am1 / (am1 - bm1)
+        sm = math.log(um) - math.log1p(-um)
+        if -_S_MAX < sm < _S_MAX:
+            ends[ne] = sm
+            ne += 1
+    ends[ne] = _S_MAX
+    ne += 1
+    for k in range(ne - 1):
+        s_lo = ends[k]
+        s_hi = ends[k + 1]
+        g_lo = _gap(ca, am1, cb, bm1, -_softplus(-s_lo), -_softplus(s_lo))
+        g_hi = _gap(ca, am1, cb, bm1, -_softplus(-s_hi), -_softplus(s_hi))
+        if (g_lo > 0.0) != (g_hi > 0.0) and g_lo != 0.0 and g_hi != 0.0:
+            brk[nb] = _gap_root(ca, am1, cb, bm1, s_lo, s_hi)
+            nb += 1
+    brk[nb] = math.inf
+    nb += 1
+    total = 0.0
+    for k in range(nb - 1):
+        s0 = brk[k]
+        s1 = brk[k + 1]
+        # piece [u0, u1] with complements c0 = 1 - u0, c1 = 1 - u1, all without rounding loss
+        if s0 == -math.inf:
+            u0, lu0, c0, lc0 = 0.0, -math.inf, 1.0, 0.0
+        else:
+            lu0 = -_softplus(-s0)
+            lc0 = -_softplus(s0)
+            u0, c0 = math.exp(lu0), math.exp(lc0)
+        if s1 == math.inf:
+            u1, lu1, c1, lc1 = 1.0, 0.0, 0.0, -math.inf
+        else:
+            lu1 = -_softplus(-s1)
+            lc1 = -_softplus(s1)
+            u1, c1 = math.exp(lu1), math.exp(lc1)
+        length = u1 - u0 if u1 <= 0.5 else c0 - c1
+        if not length > 0.0:
+            continue
+        ll = math.log(length)
+        # which term dominates: the sign of g in the middle of the piece
+        um = u0 + 0.5 * length
+        gm = _gap(ca, am1, cb, bm1, math.log(um), math.log1p(-um))
+        # log(A + B) = log(dominant) + log1p(e^(-g) or e^g): signed, so that a split a few
+        # ulps off the crossing costs nothing
+        sg = 1.0 if gm >= 0.0 else -1.0
+        if gm >= 0.0:
+            total += ca * length + am1 * _int_log(u0, lu0, c0, u1, lu1, c1)
+        else:
+            total += cb * length + bm1 * _int_log(c1, lc1, u1, c0, lc0, u0)
+        rem = 0.0
+        for j in range(_LOGU.shape[0]):
+            lw = _LOGW[j] + ll
+            if lw < -745.0:
+                continue
+            dl = _LOGU[j] + ll  # log distance to the left end
+            dr = _LOG1MU[j] + ll  # log distance to the right end
+            lu = dl if u0 == 0.0 else math.log(u0 + math.exp(dl))
+            l1 = dr if c1 == 0.0 else math.log(c1 + math.exp(dr))
+            g = _gap(ca, am1, cb, bm1, lu, l1)
+            rem += math.exp(lw) * _softplus(-sg * g)
+        total += rem
+    return total
+
+
+@njit(cache=True, error_model="numpy")
+def entropy_std(fam, a, b):
+    """Differential entropy int_0^1 log Q'(u) du of the standardized GLD."""
+    if fam == RS:
+        if (a >= 0.0 and b >= 0.0) or (a <= 0.0 and b <= 0.0):
+            # Q' = |a| u^(a-1) + |b| (1-u)^(b-1): a sum of positive terms
+            if a == 0.0:
+                return math.log(abs(b)) - (b - 1.0)
+            if b == 0.0:
+                return math.log(abs(a)) - (a - 1.0)
+            return _entropy_sum(math.log(abs(a)), a - 1.0, math.log(abs(b)), b - 1.0)
+    else:
+        return _entropy_sum(0.0, a - 1.0, 0.0, b - 1.0)
+    # RS regions 1, 2, 5, 6: Q' is a difference of two terms; tanh-sinh on (0, 1)
+    total = 0.0
+    for j in range(_LOGU.shape[0]):
+        w = math.exp(_LOGW[j])
+        if w == 0.0:
+            # node beyond the double range: log Q' may be -inf there, and the
+            # contribution (of order u log u) is below every representable weight
+            continue
+        lu = _LOGU[j]
+        l1 = _LOG1MU[j]
+        if lu <= l1:
+            lq = log_qprime_lower(fam, a, b, lu, l1)
+        else:
+            lq = log_qprime_lower(fam, b, a, l1, lu)
+        total += lq * w
+    return total
+
+
+@njit(cache=True, error_model="numpy")
 def entropy_kernel(fam, a, b, out):
     """Differential entropy int_0^1 log Q'(u) du of the standardized GLD."""
     for i in range(a.shape[0]):
-        total = 0.0
-        for j in range(_LOGU.shape[0]):
-            w = math.exp(_LOGW[j])
-            if w == 0.0:
-                # node beyond the double range: log Q' may be -inf there, and the
-                # contribution (of order u log u) is below every representable weight
-                continue
-            lu = _LOGU[j]
-            l1 = _LOG1MU[j]
-            if lu <= l1:
-                lq = log_qprime_lower(fam, a[i], b[i], lu, l1)
-            else:
-                lq = log_qprime_lower(fam, b[i], a[i], l1, lu)
-            total += lq * w
-        out[i] = total
+        out[i] = entropy_std(fam, a[i], b[i])
