@@ -13,6 +13,7 @@ from .generators import self_affine, weierstrass
 from .io import read, write
 from .result import ContactResult
 from .solver import effective_modulus, solve, solve_displacement
+from .spots import contact_spots
 from .summits import Summits, summits
 from .surface import Surface
 
@@ -24,6 +25,7 @@ __all__ = [
     "Surface",
     "TopographyFileError",
     "compare_models",
+    "contact_spots",
     "effective_modulus",
     "read",
     "self_affine",

@@ -11,8 +11,21 @@ satisfies ``g >= 0`` everywhere, ``g = 0`` where ``p > 0``, and either the total
 contact set) or the rigid-body approach ``d`` is given (displacement control). ``h`` is
 the composite height (m) of the rough surface, pointing towards the counter-face.
 
-Each iteration costs two applications of ``K`` (FFT convolutions); the rest is fused into
-a few compiled passes over the grid.
+The reference iteration (``accelerate=False``) is that of Polonsky & Keer: two
+applications of ``K`` (FFT convolutions) per iteration and a restart to steepest descent
+whenever points enter the contact set. The accelerated iteration (default) differs in two
+ways that leave the fixed point and the stopping rule unchanged:
+
+* the conjugate direction is kept when points enter the contact set (restart only when it
+  is no longer a descent direction), so the search does not fall back to steepest descent
+  for as long as the contact set is still growing: on a rough surface at a contact
+  fraction of a few per cent this halves the number of iterations;
+* the displacement ``u = K p`` is carried along: when an iteration neither clips a point
+  to zero pressure nor adds one, the new pressure is ``s (p - tau t)`` and its displacement
+  ``s (u - tau K t)`` costs no convolution (it is recomputed exactly every
+  ``_REFRESH`` such iterations and at the end).
+
+The rest of an iteration is fused into a few compiled passes over preallocated arrays.
 
 Reference: I. A. Polonsky, L. M. Keer, "A numerical method for solving rough contact
 problems based on the multi-level multi-summation and conjugate gradient techniques",
@@ -29,6 +42,9 @@ import numpy as np
 from ._bem_kernel import LinearOperator2D
 
 __all__ = ["PKOutcome", "initial_pressure", "polonsky_keer"]
+
+# consecutive carried-along displacement updates before an exact recomputation
+_REFRESH = 50
 
 
 @nb.njit(cache=True, nogil=True)
@@ -127,6 +143,74 @@ def _rescale_and_change(p_new, p, scale):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True)
+def _direction_descent(t, g, p, beta):  # pragma: no cover - compiled
+    """t = g + beta t on the contact set, 0 elsewhere; return sum(g t) on the contact set."""
+    s = 0.0
+    for i in range(t.size):
+        if p[i] > 0.0:
+            v = g[i] + beta * t[i]
+            t[i] = v
+            s += g[i] * v
+        else:
+            t[i] = 0.0
+    return s
+
+
+@nb.njit(cache=True, nogil=True)
+def _curvature(r, t, p):  # pragma: no cover - compiled
+    """Return sum(r t), sum(r) and sum(t) over the contact set and its size."""
+    rt = 0.0
+    rs = 0.0
+    ts = 0.0
+    c = 0
+    for i in range(r.size):
+        if p[i] > 0.0:
+            rt += r[i] * t[i]
+            rs += r[i]
+            ts += t[i]
+            c += 1
+    return rt, rs, ts, c
+
+
+@nb.njit(cache=True, nogil=True)
+def _update_counting(p, t, g, tau, tau_enter, valid, p_new):  # pragma: no cover - compiled
+    """As :func:`_update`, also counting the contact points clipped to zero pressure.
+
+    Returns (sum of the new pressure, points that entered, points clipped).
+    """
+    total = 0.0
+    entered = 0
+    clipped = 0
+    for i in range(p.size):
+        if p[i] > 0.0:
+            v = p[i] - tau * t[i]
+            if v <= 0.0:
+                v = 0.0
+                clipped += 1
+        elif valid[i] and g[i] < 0.0:
+            v = -tau_enter * g[i]
+            entered += 1
+        else:
+            v = 0.0
+        p_new[i] = v
+        total += v
+    return total, entered, clipped
+
+
+@nb.njit(cache=True, nogil=True)
+def _rescale_and_change_carry(p_new, p, scale, u, r, tau, carry):  # pragma: no cover - compiled
+    """p_new *= scale; if ``carry``, u = scale (u - tau r); return sum |p_new - p|."""
+    s = 0.0
+    for i in range(p.size):
+        v = p_new[i] * scale
+        p_new[i] = v
+        s += abs(v - p[i])
+        if carry:
+            u[i] = scale * (u[i] - tau * r[i])
+    return s
+
+
+@nb.njit(cache=True, nogil=True)
 def _residuals(p, g, valid):  # pragma: no cover - compiled
     """Return (max |g| on contact, max interpenetration -g off contact, sum p |g|)."""
     on = 0.0
@@ -208,6 +292,7 @@ class PKOutcome:
     reason: str
     gap_residual: float  # max |g| on the contact set, m
     penetration: float  # max interpenetration off the contact set, m
+    n_convolutions: int = 0  # applications of the compliance operator
 
 
 def polonsky_keer(
@@ -220,6 +305,7 @@ def polonsky_keer(
     tol: float = 1e-8,
     max_iter: int = 1000,
     p0: np.ndarray | None = None,
+    accelerate: bool = True,
 ) -> PKOutcome:
     """Solve the contact problem by the Polonsky–Keer constrained conjugate gradient.
 
@@ -239,12 +325,17 @@ def polonsky_keer(
         ``total_pressure`` and ``separation`` is given.
     tol : float
         Stop when the relative change of the pressure field in one iteration,
-        ``sum|p_k - p_(k-1)| / sum p_k``, falls below ``tol``.
+        ``sum|p_k - p_(k-1)| / sum p_k``, falls below ``tol`` and no point entered the
+        contact set.
     max_iter : int
         Iteration limit.
     p0 : ndarray, optional
         Initial pressure (Pa); default uniform over the valid points (load control) or
         ``max(h - d, 0)`` over the self-compliance (displacement control).
+    accelerate : bool, default True
+        True: keep the conjugate direction when points enter the contact set and carry
+        the displacement along (module docstring). False: the iteration of Polonsky &
+        Keer as published, the reference.
 
     Returns
     -------
@@ -253,13 +344,13 @@ def polonsky_keer(
     if (total_pressure is None) == (separation is None):
         raise ValueError("give exactly one of total_pressure and separation")
     shape = h.shape
-    hf = np.ascontiguousarray(h, dtype=float).ravel()
+    hf = np.ascontiguousarray(h, dtype=np.float64).ravel()
     vf = np.ascontiguousarray(valid, dtype=np.bool_).ravel()
     load_control = total_pressure is not None
     shift = 0.0 if load_control else float(separation)
 
     if p0 is not None:
-        p = np.array(p0, dtype=float).ravel()
+        p = np.array(p0, dtype=np.float64).ravel()
         p[~vf] = 0.0
         p[p < 0] = 0.0
     elif load_control:
@@ -273,40 +364,84 @@ def polonsky_keer(
             s = p.sum()
         p *= total_pressure / s
 
+    iterate = _iterate_accelerated if accelerate else _iterate_reference
+    p, g, state = iterate(op, shape, hf, vf, p, total_pressure, shift, float(tol), int(max_iter))
+
+    # final state: displacement and gap of the returned pressure, computed afresh
+    u = op.apply(p.reshape(shape)).ravel()
+    s, c = _gap(u, hf, p, vf, g, shift)
+    d = state["d"]
+    if load_control and c > 0:
+        gbar = s / c
+        d = -gbar
+        _shift_and_norm(g, gbar, p)
+    on, off, _ = _residuals(p, g, vf)
+    return PKOutcome(
+        pressure=p.reshape(shape),
+        displacement=u.reshape(shape),
+        gap=g.reshape(shape),
+        separation=float(d),
+        converged=state["converged"],
+        n_iterations=state["n_iter"],
+        history=np.asarray(state["history"], dtype=float),
+        reason=state["reason"],
+        gap_residual=float(on),
+        penetration=float(off),
+        n_convolutions=state["n_conv"] + 1,
+    )
+
+
+def _empty_contact(vf: np.ndarray, g: np.ndarray, load_control: bool, state: dict) -> bool:
+    """Handle an empty contact set; return True if the iteration must stop."""
+    if load_control:
+        state["reason"] = "contact set became empty"
+        return True
+    # displacement control with nothing in contact: p = 0 is the answer if nothing
+    # interpenetrates; otherwise the points that do enter in the update
+    if not np.any(vf & (g < 0)):
+        state["converged"] = True
+        state["reason"] = "no contact at this separation"
+        state["history"].append(0.0)
+        return True
+    return False
+
+
+def _new_state(shift: float) -> dict:
+    return {
+        "converged": False,
+        "reason": "iteration limit reached",
+        "n_iter": 0,
+        "n_conv": 0,
+        "history": [],
+        "d": shift,
+    }
+
+
+def _iterate_reference(op, shape, hf, vf, p, total_pressure, shift, tol, max_iter):
+    """The iteration of Polonsky & Keer (1999): two convolutions per iteration."""
+    load_control = total_pressure is not None
+    state = _new_state(shift)
     g = np.empty_like(p)
     t = np.zeros_like(p)
     p_new = np.empty_like(p)
-    history = []
     g_old = 1.0
     conj = False
-    converged = False
-    reason = "iteration limit reached"
-    n_iter = 0
-    d = shift
 
     for it in range(1, max_iter + 1):
-        n_iter = it
+        state["n_iter"] = it
         u = op.apply(p.reshape(shape)).ravel()
         s, c = _gap(u, hf, p, vf, g, shift)
-        if c == 0:
-            if load_control:
-                reason = "contact set became empty"
-                break
-            # displacement control with nothing in contact: p = 0 is the answer if
-            # nothing interpenetrates; otherwise restart from the local estimate
-            if not np.any(vf & (g < 0)):
-                converged = True
-                reason = "no contact at this separation"
-                history.append(0.0)
-                break
+        if c == 0 and _empty_contact(vf, g, load_control, state):
+            break
         gbar = s / c if (load_control and c > 0) else 0.0
         if load_control:
-            d = -gbar
+            state["d"] = -gbar
         gnorm = _shift_and_norm(g, gbar, p)
         beta = gnorm / g_old if conj else 0.0
         g_old = gnorm if gnorm > 0 else 1.0
         _direction(t, g, p, beta)
         r = op.apply(t.reshape(shape)).ravel()
+        state["n_conv"] += 2
         if load_control:
             rs, rc = _contact_sum(r, p)
             rbar = rs / rc if rc else 0.0
@@ -322,41 +457,88 @@ def polonsky_keer(
         conj = entered == 0
         if load_control:
             if not total > 0:
-                reason = "pressure vanished everywhere (step failure)"
+                state["reason"] = "pressure vanished everywhere (step failure)"
                 break
             scale = total_pressure / total
         else:
             scale = 1.0
         change = _rescale_and_change(p_new, p, scale)
         p, p_new = p_new, p
-        norm = p.sum()
-        err = change / norm if norm > 0 else (0.0 if change == 0 else np.inf)
-        history.append(err)
-        if not np.isfinite(err):
-            reason = "non-finite values in the iteration"
+        if _stop(p, change, entered, tol, state):
             break
-        if err < tol and entered == 0:
-            converged = True
-            reason = "relative pressure change below tolerance"
-            break
+    return p, g, state
 
-    # final state: displacement and gap of the returned pressure
-    u = op.apply(p.reshape(shape)).ravel()
-    s, c = _gap(u, hf, p, vf, g, shift)
-    if load_control and c > 0:
-        gbar = s / c
-        d = -gbar
-        _shift_and_norm(g, gbar, p)
-    on, off, _ = _residuals(p, g, vf)
-    return PKOutcome(
-        pressure=p.reshape(shape),
-        displacement=u.reshape(shape),
-        gap=g.reshape(shape),
-        separation=float(d),
-        converged=converged,
-        n_iterations=n_iter,
-        history=np.asarray(history, dtype=float),
-        reason=reason,
-        gap_residual=float(on),
-        penetration=float(off),
-    )
+
+def _stop(p: np.ndarray, change: float, entered: int, tol: float, state: dict) -> bool:
+    """Record the relative pressure change; return True when the iteration must stop."""
+    norm = p.sum()
+    err = change / norm if norm > 0 else (0.0 if change == 0 else np.inf)
+    state["history"].append(err)
+    if not np.isfinite(err):
+        state["reason"] = "non-finite values in the iteration"
+        return True
+    if err < tol and entered == 0:
+        state["converged"] = True
+        state["reason"] = "relative pressure change below tolerance"
+        return True
+    return False
+
+
+def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_iter):
+    """Conjugate directions kept across contact-set growth; displacement carried along."""
+    load_control = total_pressure is not None
+    state = _new_state(shift)
+    g = np.empty_like(p)
+    t = np.zeros_like(p)
+    p_new = np.empty_like(p)
+    u = np.empty_like(p)  # K p, carried along or recomputed
+    r = np.empty_like(p)  # K t
+    op.apply(p.reshape(shape), out=u.reshape(shape))
+    state["n_conv"] += 1
+    g_old = 1.0
+    conj = False
+    carried = 0  # carried-along updates of u since it was last computed exactly
+
+    for it in range(1, max_iter + 1):
+        state["n_iter"] = it
+        s, c = _gap(u, hf, p, vf, g, shift)
+        if c == 0 and _empty_contact(vf, g, load_control, state):
+            break
+        gbar = s / c if (load_control and c > 0) else 0.0
+        if load_control:
+            state["d"] = -gbar
+        gnorm = _shift_and_norm(g, gbar, p)
+        beta = gnorm / g_old if conj else 0.0
+        g_old = gnorm if gnorm > 0 else 1.0
+        num = _direction_descent(t, g, p, beta)
+        if beta != 0.0 and not num > 0.0:
+            # the kept direction is no longer a descent direction: restart
+            num = _direction_descent(t, g, p, 0.0)
+        op.apply(t.reshape(shape), out=r.reshape(shape))
+        state["n_conv"] += 1
+        rt, rs, ts, rc = _curvature(r, t, p)
+        # sum over the contact set of (r - rbar) t, rbar the mean of r there (load control)
+        den = rt - (rs / rc) * ts if (load_control and rc) else rt
+        tau = num / den if den > 0 else 0.0
+        tau_enter = tau if tau > 0 else 1.0 / op.self_compliance
+        total, entered, clipped = _update_counting(p, t, g, tau, tau_enter, vf, p_new)
+        conj = tau > 0
+        if load_control:
+            if not total > 0:
+                state["reason"] = "pressure vanished everywhere (step failure)"
+                break
+            scale = total_pressure / total
+        else:
+            scale = 1.0
+        carry = entered == 0 and clipped == 0 and carried < _REFRESH
+        change = _rescale_and_change_carry(p_new, p, scale, u, r, tau, carry)
+        p, p_new = p_new, p
+        if carry:
+            carried += 1
+        else:
+            op.apply(p.reshape(shape), out=u.reshape(shape))
+            state["n_conv"] += 1
+            carried = 0
+        if _stop(p, change, entered, tol, state):
+            break
+    return p, g, state

@@ -29,6 +29,11 @@ __all__ = [
     "love_coefficients",
 ]
 
+# numpy >= 2 transforms into preallocated arrays (``out=``), which spares the allocation and
+# first touch of fresh pages on every transform: about a third of the time of a
+# single-threaded convolution at 1024². scipy.fft (threads, no ``out``) otherwise.
+_NUMPY_OUT = np.lib.NumpyVersion(np.__version__) >= "2.0.0"
+
 # Beyond this distance (in units of the larger half cell side) the rectangle integral
 # is evaluated by its multipole expansion, whose truncation error there is below 1e-12
 # relative; closer in, the closed form loses fewer than four digits to cancellation.
@@ -114,7 +119,7 @@ class LinearOperator2D(Protocol):
 
     shape: tuple[int, int]
 
-    def apply(self, p: np.ndarray) -> np.ndarray: ...
+    def apply(self, p: np.ndarray, out: np.ndarray | None = None) -> np.ndarray: ...
 
     @property
     def self_compliance(self) -> float:
@@ -128,7 +133,8 @@ class NonPeriodicOperator:
     The pressure is zero-padded to ``2 nx`` by ``2 ny``, which makes the circular
     convolution of the FFT equal to the linear one on the patch. The transforms are
     pruned: the zero rows are not transformed and only the first ``nx`` rows of the
-    result are transformed back.
+    result are transformed back. The kernel is even in both offsets, so its spectrum is
+    real: it is computed once and stored as float64 (half the memory of a complex one).
 
     Parameters
     ----------
@@ -139,7 +145,12 @@ class NonPeriodicOperator:
     e_star : float
         Contact modulus ``E*`` in pascals.
     workers : int, optional
-        Threads for :mod:`scipy.fft`.
+        Threads for :mod:`scipy.fft`; None or 1 transforms on one thread into
+        preallocated work arrays (numpy >= 2).
+
+    Notes
+    -----
+    An operator holds its work arrays: use one operator per thread.
     """
 
     def __init__(self, shape, dx: float, dy: float, e_star: float, workers: int | None = None):
@@ -154,22 +165,54 @@ class NonPeriodicOperator:
         full[nx + 1 :, : ny + 1] = c[nx - 1 : 0 : -1, :]
         full[:, ny + 1 :] = full[:, ny - 1 : 0 : -1]
         self._self = float(c[0, 0])
-        self._kernel_hat = sfft.rfft2(full, workers=workers)
+        self._kernel_hat = np.ascontiguousarray(sfft.rfft2(full, workers=workers).real)
+        del full
+        self._buffers = _NUMPY_OUT and workers in (None, 1)
+        if self._buffers:
+            self._half = np.empty((nx, ny + 1), dtype=np.complex128)
+            self._spec = np.empty((2 * nx, ny + 1), dtype=np.complex128)
+            self._wide = np.empty((nx, 2 * ny), dtype=np.float64)
 
     @property
     def self_compliance(self) -> float:
         """Displacement of a cell under a unit pressure on itself, m/Pa."""
         return self._self
 
-    def apply(self, p: np.ndarray) -> np.ndarray:
-        """Displacement (m) at the grid points of the cell-wise uniform pressure ``p`` (Pa)."""
+    def apply(self, p: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        """Displacement (m) at the grid points of the cell-wise uniform pressure ``p`` (Pa).
+
+        Parameters
+        ----------
+        p : ndarray, shape (nx, ny)
+            Pressure in pascals.
+        out : ndarray, shape (nx, ny), optional
+            C-contiguous float64 array that receives the result.
+
+        Returns
+        -------
+        ndarray, shape (nx, ny)
+            Displacement in metres (``out`` when given).
+        """
         nx, ny = self.shape
-        w = self.workers
-        a = sfft.rfft(p, n=2 * ny, axis=1, workers=w)
-        a = sfft.fft(a, n=2 * nx, axis=0, workers=w, overwrite_x=True)
-        a *= self._kernel_hat
-        a = sfft.ifft(a, axis=0, workers=w, overwrite_x=True)[:nx]
-        return sfft.irfft(a, n=2 * ny, axis=1, workers=w)[:, :ny]
+        if self._buffers:
+            np.fft.rfft(p, n=2 * ny, axis=1, out=self._half)
+            spec = self._spec
+            np.fft.fft(self._half, n=2 * nx, axis=0, out=spec)
+            np.multiply(spec, self._kernel_hat, out=spec)
+            np.fft.ifft(spec, axis=0, out=spec)
+            np.fft.irfft(spec[:nx], n=2 * ny, axis=1, out=self._wide)
+            res = self._wide[:, :ny]
+        else:
+            w = self.workers
+            a = sfft.rfft(p, n=2 * ny, axis=1, workers=w)
+            a = sfft.fft(a, n=2 * nx, axis=0, workers=w, overwrite_x=True)
+            a *= self._kernel_hat
+            a = sfft.ifft(a, axis=0, workers=w, overwrite_x=True)[:nx]
+            res = sfft.irfft(a, n=2 * ny, axis=1, workers=w)[:, :ny]
+        if out is None:
+            return np.array(res)
+        out[...] = res
+        return out
 
 
 class PeriodicOperator:
@@ -178,7 +221,8 @@ class PeriodicOperator:
     Uses the Fourier transform of the half-space Green function, ``2 / (E* |q|)``
     (Stanley & Kato 1997), at the discrete wave vectors of the grid; the ``q = 0`` mode
     (a rigid-body displacement, undefined for a periodic load) is set to zero. The
-    pressure is thereby band-limited rather than cell-wise uniform.
+    pressure is thereby band-limited rather than cell-wise uniform. The spectrum is real
+    and computed once; the transforms are real-to-complex (``rfft2``/``irfft2``).
 
     Parameters
     ----------
@@ -189,7 +233,12 @@ class PeriodicOperator:
     e_star : float
         Contact modulus ``E*`` in pascals.
     workers : int, optional
-        Threads for :mod:`scipy.fft`.
+        Threads for :mod:`scipy.fft`; None or 1 transforms on one thread into
+        preallocated work arrays (numpy >= 2).
+
+    Notes
+    -----
+    An operator holds its work arrays: use one operator per thread.
     """
 
     def __init__(self, shape, dx: float, dy: float, e_star: float, workers: int | None = None):
@@ -204,15 +253,42 @@ class PeriodicOperator:
         k[nz] = 2.0 / (e_star * q[nz])
         self._kernel_hat = k
         self._self = float(sfft.irfft2(k, s=(nx, ny))[0, 0])
+        self._buffers = _NUMPY_OUT and workers in (None, 1)
+        if self._buffers:
+            self._spec = np.empty(k.shape, dtype=np.complex128)
 
     @property
     def self_compliance(self) -> float:
         """Displacement of a grid point under a unit pressure on it alone, m/Pa."""
         return self._self
 
-    def apply(self, p: np.ndarray) -> np.ndarray:
-        """Displacement (m) of the periodic pressure ``p`` (Pa), zero mean."""
+    def apply(self, p: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        """Displacement (m) of the periodic pressure ``p`` (Pa), zero mean.
+
+        Parameters
+        ----------
+        p : ndarray, shape (nx, ny)
+            Pressure in pascals.
+        out : ndarray, shape (nx, ny), optional
+            C-contiguous float64 array that receives the result.
+
+        Returns
+        -------
+        ndarray, shape (nx, ny)
+            Displacement in metres (``out`` when given).
+        """
+        if self._buffers:
+            spec = self._spec
+            np.fft.rfftn(p, axes=(0, 1), out=spec)
+            np.multiply(spec, self._kernel_hat, out=spec)
+            if out is None:
+                out = np.empty(self.shape)
+            return np.fft.irfftn(spec, s=self.shape, axes=(0, 1), out=out)
         w = self.workers
         a = sfft.rfft2(p, workers=w)
         a *= self._kernel_hat
-        return sfft.irfft2(a, s=self.shape, workers=w)
+        res = sfft.irfft2(a, s=self.shape, workers=w, overwrite_x=True)
+        if out is None:
+            return res
+        out[...] = res
+        return out
