@@ -1,10 +1,25 @@
-"""Statistics of a campaign (DESIGN §1 steps 3–9): GLD fits, bootstrap, maximal pressure,
-damage and integrity, and the validation of the predicted maximum across surfaces."""
+"""Statistics of a campaign (docs/method.md §5–§9): GLD fits, bootstrap, maximal pressure,
+damage and integrity, and their validation across held-out surfaces.
+
+Two samples are analysed per (H, load):
+
+* ``"asperity"`` (primary): the peak pressure 1.5 p_m of every asperity in contact, with the
+  number of asperities in contact per surface as a random count N. The maximum over one
+  analysed area is ``E[F(x)^N]``; the bootstrap resamples whole surfaces (their peaks and their
+  count together). The fit (parameterisation and method) is chosen inside the fitting data only,
+  by an inner split (:func:`choose_fit`).
+* ``"grid"`` (the paper's): the non-zero grid-point pressures with n = grid points in contact,
+  fitted by the paper's RS moments.
+
+Every prediction is checked on surfaces the fit did not see (two folds: even and odd surfaces):
+the maximum of each held-out surface against its predicted interval (coverage, centring test),
+and the damage probability ``P(max > Pd)`` at several hardness levels against the observed
+fraction of held-out surfaces (and of groups of k = 2, 4 surfaces for the area scaling).
+"""
 
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -13,15 +28,34 @@ import numpy as np
 from ..errors import FitError
 from .campaign import CampaignSettings
 
-__all__ = ["AnalysisSettings", "SampleAnalysis", "Validation", "analyse", "wilson_interval"]
+__all__ = [
+    "AnalysisSettings",
+    "FitChoice",
+    "SampleAnalysis",
+    "Validation",
+    "analyse",
+    "choose_fit",
+    "wilson_interval",
+]
 
 #: The two samples whose maximum is predicted: grid-point pressures (the paper's) and the
 #: peak pressure 1.5 p_m of every asperity in contact (one value per asperity).
 SAMPLES = {"grid": ("samples", "n_contact", "max_pressure"),
            "asperity": ("asperity_peak", "n_asperities", "asperity_max")}
-SAMPLE_LABELS = {"grid": "grid-point pressures", "asperity": "per-asperity peak pressures"}
+SAMPLE_LABELS = {"grid": "grid-point pressures (the paper's)",
+                 "asperity": "per-asperity peak pressures"}
+#: Fits tried for the primary sample, in order of preference on ties.
+CANDIDATES = (("rs", "moments"), ("fkml", "moments"), ("rs", "lmoments"), ("fkml", "lmoments"),
+              ("fkml", "mle"))
 #: Fallback order when the requested fit has no solution for a sample.
 FALLBACKS = (("rs", "moments"), ("fkml", "moments"), ("rs", "percentiles"), ("fkml", "lmoments"))
+#: Bootstrap resamples of a maximum-likelihood fit (each resample is an optimisation).
+MLE_RESAMPLES = 100
+#: Area factors checked by grouping held-out surfaces.
+AREA_CHECKS = (2, 4)
+#: A result "passes its check" when its predicted damage lies inside the observed Wilson
+#: interval at this fraction of the hardness levels (with the coverage and bias criteria).
+PASS_FRACTION = 0.8
 
 
 @dataclass(frozen=True)
@@ -33,9 +67,12 @@ class AnalysisSettings:
     hardness : float
         Hardness / first-yield pressure Pd in MPa.
     n_resamples : int
-        Bootstrap resamples B.
+        Bootstrap resamples B of the primary (per-asperity) sample.
+    grid_resamples : int
+        Bootstrap resamples of the secondary grid-point sample (a million values per fold:
+        its intervals are narrow and not the answer, so fewer resamples suffice).
     param, method : str
-        GLD parameterisation and fitting method (the paper: ``"rs"``, ``"moments"``).
+        GLD of the grid-point sample (the paper: ``"rs"``, ``"moments"``).
     confidence_level : float
         Level of the predicted intervals of the maximum and of the probabilities.
     test_level : float
@@ -43,13 +80,16 @@ class AnalysisSettings:
     area_factors : tuple of float
         Area factors k of the integrity-vs-area curve.
     integrity_level : float
-        Integrity probability of the guaranteed pressure ``Q(p^(1/(k n)))``.
+        Integrity probability of the guaranteed pressure.
     seed : int
         Root of the bootstrap seeds.
+    n_levels : int
+        Hardness levels of the damage check (spanning the observed per-surface maxima).
     """
 
     hardness: float = 2050.0
     n_resamples: int = 1000
+    grid_resamples: int = 50
     param: str = "rs"
     method: str = "moments"
     confidence_level: float = 0.9
@@ -57,12 +97,16 @@ class AnalysisSettings:
     area_factors: tuple[float, ...] = tuple(np.unique(np.round(np.logspace(0, 3, 31), 6)).tolist())
     integrity_level: float = 0.99
     seed: int = 2019
+    n_levels: int = 7
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.hardness) and self.hardness > 0):
-            raise ValueError(f"hardness must be a positive pressure in MPa, got {self.hardness!r}")
-        if int(self.n_resamples) != self.n_resamples or self.n_resamples < 10:
-            raise ValueError(f"n_resamples (bootstrap B) must be an integer >= 10, got {self.n_resamples!r}")
+        if not (isinstance(self.hardness, int | float) and math.isfinite(self.hardness)
+                and self.hardness > 0):
+            raise ValueError(f"hardness must be a positive finite pressure in MPa, got {self.hardness!r}")
+        for name in ("n_resamples", "grid_resamples"):
+            v = getattr(self, name)
+            if int(v) != v or v < 10:
+                raise ValueError(f"{name} (bootstrap B) must be an integer >= 10, got {v!r}")
         for name in ("confidence_level", "test_level", "integrity_level"):
             v = getattr(self, name)
             if not 0 < v < 1:
@@ -71,37 +115,36 @@ class AnalysisSettings:
             raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
         if not self.area_factors or any(not (math.isfinite(v) and v > 0) for v in self.area_factors):
             raise ValueError(f"area_factors must be positive finite numbers, got {self.area_factors!r}")
+        if int(self.n_levels) != self.n_levels or self.n_levels < 5:
+            raise ValueError(f"n_levels must be an integer >= 5, got {self.n_levels!r}")
 
 
 def wilson_interval(k: int, n: int, level: float = 0.95) -> tuple[float, float]:
-    """Wilson score interval of a binomial proportion k/n.
+    """Wilson score interval of a binomial proportion k/n (statsmodels' ``proportion_confint``).
 
     Parameters
     ----------
     k, n : int
-        Successes and trials (n >= 1).
+        Successes and trials.
     level : float
         Confidence level.
 
     Returns
     -------
     (low, high) : tuple of float
+        NaN for n < 1.
     """
-    from scipy.stats import norm
-
     if n < 1:
         return math.nan, math.nan
-    z = float(norm.isf((1 - level) / 2))
-    p = k / n
-    den = 1 + z * z / n
-    centre = (p + z * z / (2 * n)) / den
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / den
-    return max(0.0, centre - half), min(1.0, centre + half)
+    from statsmodels.stats.proportion import proportion_confint
+
+    lo, hi = proportion_confint(int(k), int(n), alpha=1 - level, method="wilson")
+    return max(0.0, float(lo)), min(1.0, float(hi))
 
 
 @dataclass
 class Validation:
-    """Observed maximum of every surface against its predicted interval.
+    """Observed maximum of every held-out surface against its predicted interval.
 
     Attributes
     ----------
@@ -109,8 +152,7 @@ class Validation:
         One row per surface: ``surface``, ``fold``, ``n`` (points or asperities), ``observed``,
         ``predicted`` (mean of the predicted maximum), ``low``, ``high`` (predicted interval),
         ``covered``; pressures in MPa. The prediction for surface i is one random maximum
-        of ``n_i`` draws per bootstrap GLD of the other fold: ``predicted`` is their mean,
-        ``low``/``high`` their equal-tailed quantiles at the confidence level.
+        of ``n_i`` draws per bootstrap GLD of the other fold.
     coverage : float
         Fraction of surfaces whose observed maximum lies in the predicted interval.
     coverage_interval : (float, float)
@@ -118,9 +160,15 @@ class Validation:
     t_statistic, t_pvalue : float
         One-sample t-test of mean(predicted − observed) = 0 (two-sided).
     w_pvalue : float
-        Wilcoxon signed-rank test (symmetry of the differences about 0), for reference.
+        Wilcoxon signed-rank test, for reference.
     reject : bool
         Whether the t-test rejects at the test level.
+    theta : float
+        Extremal index: the effective number of independent draws over the nominal n,
+        ``m / sum_i n_i (-log F(M_i))`` (1 when the n values behave as independent draws).
+    calibration : pandas.DataFrame
+        Predicted against observed damage probability per hardness level and area factor
+        (columns of ``damage_calibration.csv``).
     error : str
         Why the validation could not be done ("" when it was).
     """
@@ -132,12 +180,54 @@ class Validation:
     t_pvalue: float = math.nan
     w_pvalue: float = math.nan
     reject: bool = False
+    theta: float = math.nan
+    calibration: Any = None
     error: str = ""
+
+    def damage_hits(self) -> tuple[int, int]:
+        """(levels whose prediction lies inside the observed interval, levels) on one area."""
+        c = self.calibration
+        if c is None or len(c) == 0:
+            return 0, 0
+        one = c[c["area_factor"] == 1]
+        inside = (one["predicted"] >= one["observed_low"]) & (one["predicted"] <= one["observed_high"])
+        return int(inside.sum()), len(one)
+
+    def passes(self, level: float) -> bool:
+        """Whether the result passes its check: the coverage's Wilson interval contains the
+        nominal level, the centring test does not reject, and the predicted damage lies inside
+        the observed interval at >= 80 % of the hardness levels."""
+        if self.error or self.table is None:
+            return False
+        hits, m = self.damage_hits()
+        lo, hi = self.coverage_interval
+        return bool(lo <= level <= hi and not self.reject and m and hits >= PASS_FRACTION * m)
+
+
+@dataclass(frozen=True)
+class FitChoice:
+    """The fit chosen for a sample by an inner split of its fitting surfaces.
+
+    Attributes
+    ----------
+    param, method : str
+        The chosen parameterisation and method.
+    scores : dict
+        ``"PARAM method" -> mean log predictive density`` of the held-out half's per-surface
+        maxima (``-inf`` where a maximum lies outside the fit's support).
+    reason : str
+        The choice and why, in words.
+    """
+
+    param: str
+    method: str
+    scores: dict
+    reason: str
 
 
 @dataclass
 class SampleAnalysis:
-    """Analysis of one sample kind (grid or asperity) for one (H, load).
+    """Analysis of one sample (grid or asperity) for one (H, load).
 
     Attributes
     ----------
@@ -146,9 +236,13 @@ class SampleAnalysis:
     data : ndarray
         The pooled sample (MPa).
     n_ref : float
-        Points (or asperities) of the analysed area: the mean count per surface.
+        Mean count per surface (points or asperities in contact).
+    counts : ndarray
+        The count of every surface.
     param, method : str
-        The fit actually used (a fallback when the requested one has no solution).
+        The fit used.
+    choice : FitChoice or None
+        How the fit was chosen (the per-asperity sample).
     note : str
         Why a fallback was used, or why nothing could be fitted.
     boot : glstat.BootstrapFit or None
@@ -159,21 +253,32 @@ class SampleAnalysis:
     integrity : glstat.BootstrapProbability or None
         Integrity probability against the area factors.
     guaranteed : dict
-        Area factor -> pressure (MPa) that all points stay below with ``integrity_level``.
+        Area factor -> pressure (MPa) that the area stays below with ``integrity_level``.
+    upper_end : float
+        Upper end of the fitted GLD's support (MPa; inf when unbounded).
+    end_note : str
+        A plain warning when the hardness lies beyond or near that end point.
+    damage_curve : pandas.DataFrame or None
+        Damage probability on one area against hardness, with its interval.
     validation : Validation
     """
 
     kind: str
     data: np.ndarray
     n_ref: float
+    counts: np.ndarray = field(default_factory=lambda: np.empty(0))
     param: str = ""
     method: str = ""
+    choice: FitChoice | None = None
     note: str = ""
     boot: Any = None
     maximum: Any = None
     damage: Any = None
     integrity: Any = None
     guaranteed: dict = field(default_factory=dict)
+    upper_end: float = math.nan
+    end_note: str = ""
+    damage_curve: Any = None
     validation: Validation = field(default_factory=Validation)
 
     @property
@@ -182,27 +287,55 @@ class SampleAnalysis:
         return self.boot is not None
 
 
+# -- samples of the surfaces -------------------------------------------------------------------
+def surface_values(res: dict, kind: str) -> tuple[np.ndarray, int, float]:
+    """(values in MPa, count, observed maximum in MPa) of one surface's result."""
+    if kind == "grid":
+        return res["samples"] / 1e6, int(res["n_contact"]), float(res["max_pressure"]) / 1e6
+    peaks = res["asperity_peak"] / 1e6
+    return peaks, int(peaks.size), float(peaks.max()) if peaks.size else 0.0
+
+
+def _pool(per: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(pooled values, group label per value, count per surface) of per-surface values."""
+    data = np.concatenate([p[0] for p in per]) if per else np.empty(0)
+    counts = np.array([p[1] for p in per], dtype=np.int64)
+    labels = np.repeat(np.arange(len(per)), [p[0].size for p in per])
+    return data, labels, counts
+
+
 def _seed(a: AnalysisSettings, *key: int) -> np.random.Generator:
     return np.random.default_rng(np.random.SeedSequence(a.seed, spawn_key=(10_000, *key)))
 
 
-def _bootstrap(x: np.ndarray, a: AnalysisSettings, rng, param=None, method=None):
-    """Bootstrap with the requested fit, falling back along FALLBACKS; returns (bf, param, method, note)."""
+def _quiet(func, *args, **kwargs):
+    """Call ``func`` with the warnings it raises collected (returned), never shown."""
+    import warnings
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        out = func(*args, **kwargs)
+    return out, [str(w.message) for w in caught]
+
+
+def _bootstrap(x: np.ndarray, a: AnalysisSettings, rng, param=None, method=None, groups=None,
+               n_resamples=None):
+    """Bootstrap with the requested fit (falling back along FALLBACKS when none is forced);
+    returns (bf, param, method, note)."""
     from .. import bootstrap
 
-    order = [(param or a.param, method or a.method)] + [f for f in FALLBACKS
-                                                          if f != (param or a.param, method or a.method)]
-    if param is not None:
-        order = order[:1]
+    first = (param or a.param, method or a.method)
+    order = [first] + ([] if param is not None else [f for f in FALLBACKS if f != first])
     notes = []
     state = rng.bit_generator.state
     for p, m in order:
         rng.bit_generator.state = state
+        B = n_resamples or a.n_resamples
+        if m in ("mle", "mps", "starship"):
+            B = min(B, MLE_RESAMPLES)
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                bf = bootstrap(x, param=p, method=m, n_resamples=a.n_resamples,
-                               confidence_level=a.confidence_level, rng=rng, progress=False)
+            bf, _ = _quiet(bootstrap, x, param=p, method=m, n_resamples=B,
+                           confidence_level=a.confidence_level, rng=rng, progress=False, groups=groups)
             note = "" if not notes else "; ".join(notes) + f"; used {p.upper()} {m}"
             return bf, p, m, note
         except (FitError, ValueError) as exc:
@@ -210,64 +343,188 @@ def _bootstrap(x: np.ndarray, a: AnalysisSettings, rng, param=None, method=None)
     return None, "", "", "; ".join(notes)
 
 
-def _surface_values(res: dict, kind: str) -> tuple[np.ndarray, int, float]:
-    if kind == "grid":
-        return res["samples"] / 1e6, int(res["n_contact"]), float(res["max_pressure"]) / 1e6
-    peaks = res["asperity_peak"] / 1e6
-    return peaks, int(peaks.size), float(peaks.max()) if peaks.size else math.nan
+# -- the choice of fit ---------------------------------------------------------------------------
+def _max_log_score(dist, maxima: np.ndarray, counts: np.ndarray) -> float:
+    """Mean log density of the observed maxima under ``F^(n_i)``: ``log n + (n - 1) log F(M)
+    + log f(M)``; -inf when a maximum lies outside the support."""
+    lo, hi = dist.support()
+    if np.any((maxima < lo) | (maxima > hi)):
+        return -math.inf
+    n = np.maximum(counts.astype(float), 1.0)
+    with np.errstate(all="ignore"):
+        v = np.log(n) + (n - 1.0) * np.asarray(dist.logcdf(maxima)) + np.asarray(dist.logpdf(maxima))
+    return float(np.mean(v)) if np.all(np.isfinite(v)) else -math.inf
 
 
-def _validate(results: dict, keys: list, kind: str, a: AnalysisSettings, ih: int, il: int,
-              param: str, method: str) -> Validation:
-    """Two-fold cross-validation: a GLD fitted on the even surfaces predicts the odd ones and
-    vice versa, so no surface's maximum is predicted from a fit that saw it."""
+def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
+    """Choose the GLD fit of a sample by an inner split of its surfaces.
+
+    The surfaces are split into two halves (alternately); every candidate is fitted to one half
+    and scored on the other by the mean log density of that half's per-surface maxima under
+    ``F(x)^(n_i)`` (the quantity the study predicts), then the halves swap. The candidate with
+    the highest mean score wins (earlier candidates win ties). Only the surfaces passed in are
+    used, so a choice made on a fitting fold never sees the fold it is checked against.
+
+    Parameters
+    ----------
+    per : list of (values, count, maximum)
+        Per surface: its values (MPa), its count and its observed maximum (MPa).
+    candidates : sequence of (param, method)
+
+    Returns
+    -------
+    FitChoice
+
+    Raises
+    ------
+    FitError
+        No candidate can be fitted to either half.
+    """
+    import glstat
+
+    halves = [per[0::2], per[1::2]]
+    scores = {}
+    for p, m in candidates:
+        s = []
+        for h in (0, 1):
+            train, test = halves[h], halves[1 - h]
+            x = np.concatenate([t[0] for t in train]) if train else np.empty(0)
+            if x.size < 5 or not test:
+                continue
+            try:
+                f, _ = _quiet(glstat.fit, x, p, m)
+            except (FitError, ValueError):
+                s.append(-math.inf)
+                continue
+            s.append(_max_log_score(f.dist, np.array([t[2] for t in test]),
+                                    np.array([t[1] for t in test])))
+        scores[f"{p.upper()} {m}"] = float(np.mean(s)) if s else -math.inf
+    best = max(scores, key=lambda k: (scores[k], -list(scores).index(k)))
+    if not math.isfinite(scores[best]):
+        fitted = [k for k, v in scores.items() if v > -math.inf]
+        if not fitted:
+            p, m = candidates[0]
+            return FitChoice(p, m, scores, f"no candidate predicted the held-out maxima inside its "
+                                           f"support; {p.upper()} {m} used")
+    p, m = best.split(" ", 1)
+    ranked = sorted(scores.items(), key=lambda kv: -kv[1])
+    runner = next((k for k, v in ranked if k != best), None)
+    why = (f"{best} predicts the held-out half's maxima best (mean log density "
+           f"{scores[best]:.3g}" + (f" against {scores[runner]:.3g} for {runner})" if runner else ")"))
+    return FitChoice(p.lower(), m, scores, why)
+
+
+# -- predictions and checks ------------------------------------------------------------------------
+def hardness_levels(maxima: np.ndarray, hardness: float, n_levels: int) -> np.ndarray:
+    """Hardness levels spanning the observed per-surface maxima (quantiles 5 %–95 %) and the
+    hardness itself, in MPa (rounded to 3 significant digits)."""
+    q = np.quantile(maxima, np.linspace(0.05, 0.95, n_levels))
+    levels = np.unique(np.concatenate([[hardness], q]))
+    return np.unique(np.array([float(f"{v:.3g}") for v in levels]))
+
+
+def _validate(per: list, kind: str, a: AnalysisSettings, ih: int, il: int, param: str, method: str,
+              levels: np.ndarray) -> Validation:
+    """Two-fold validation: fits on the even surfaces predict the odd ones and vice versa."""
     import pandas as pd
     from scipy import stats
 
-    folds = [keys[0::2], keys[1::2]]
-    rows = []
+    folds = [list(range(0, len(per), 2)), list(range(1, len(per), 2))]
+    rows, cal, theta_terms = [], [], []
     for f in (0, 1):
         train, test = folds[1 - f], folds[f]
         if not train or not test:
             return Validation(error="needs at least two surfaces (one per fold)")
-        x = np.concatenate([_surface_values(results[k], kind)[0] for k in train])
+        x, labels, counts = _pool([per[i] for i in train])
         if x.size < 5:
-            return Validation(error=f"only {x.size} values in a training fold (at least 5 needed)")
-        bf, _, _, note = _bootstrap(x, a, _seed(a, ih, il, 1 if kind == "grid" else 2, f), param, method)
+            return Validation(error=f"only {x.size} values in a fitting fold (at least 5 needed)")
+        p, m = param, method
+        if kind == "asperity":
+            ch = choose_fit([per[i] for i in train])
+            p, m = ch.param, ch.method
+        grouped = kind == "asperity"
+        bf, _, _, note = _bootstrap(x, a, _seed(a, ih, il, 1 if kind == "grid" else 2, f), p, m,
+                                    groups=labels if grouped else None,
+                                    n_resamples=a.grid_resamples if kind == "grid" else None)
         if bf is None:
-            return Validation(error=f"no {param.upper()} {method} fit of a training fold: {note}")
-        # One random maximum of n_i draws per bootstrap GLD (the paper's construction):
-        # M_b = Q_b(v^(1/n)) = isf_b(1 - v^(1/n)), with 1 - v^(1/n) = -expm1(ln v / n).
-        test = [k for k in test if _surface_values(results[k], kind)[1] >= 1]
-        if not test:
-            continue
-        ns = np.array([_surface_values(results[k], kind)[1] for k in test], dtype=float)
-        obs = np.array([_surface_values(results[k], kind)[2] for k in test])
-        v = _seed(a, ih, il, 3 if kind == "grid" else 4, f).random((bf.n_successful, len(test)))
-        with np.errstate(all="ignore"):
-            draws = bf.batch().isf(-np.expm1(np.log(v) / ns[None, :]))
-        alpha = 1 - a.confidence_level
-        lo, hi = np.nanquantile(draws, [alpha / 2, 1 - alpha / 2], axis=0)
-        pred = np.nanmean(draws, axis=0)
-        for j, k in enumerate(test):
-            rows.append({"surface": k[2], "fold": f, "n": int(ns[j]), "observed": obs[j],
-                         "predicted": pred[j], "low": lo[j], "high": hi[j],
-                         "covered": bool(lo[j] <= obs[j] <= hi[j])})
+            return Validation(error=f"no {p.upper()} {m} fit of a fitting fold: {note}")
+        count_kw = {} if grouped else {"n": max(float(counts.mean()), 1.0)}
+        tested = [i for i in test if per[i][1] >= 1]
+        if tested:
+            ns = np.array([per[i][1] for i in tested], dtype=float)
+            obs = np.array([per[i][2] for i in tested])
+            v = _seed(a, ih, il, 3 if kind == "grid" else 4, f).random((bf.n_successful, len(tested)))
+            with np.errstate(all="ignore"):
+                draws = bf.batch().isf(-np.expm1(np.log(v) / ns[None, :]))
+            alpha = 1 - a.confidence_level
+            lo, hi = np.nanquantile(draws, [alpha / 2, 1 - alpha / 2], axis=0)
+            pred = np.nanmean(draws, axis=0)
+            for j, i in enumerate(tested):
+                rows.append({"surface": i, "fold": f, "n": int(ns[j]), "observed": obs[j],
+                             "predicted": pred[j], "low": lo[j], "high": hi[j],
+                             "covered": bool(lo[j] <= obs[j] <= hi[j])})
+            theta_terms.extend(ns * -np.asarray(bf.fit.dist.logcdf(obs), dtype=float))
+        # damage on one area and on k areas (groups of k held-out surfaces)
+        maxima = np.array([per[i][2] for i in test])
+        for k in (1, *AREA_CHECKS):
+            groups = len(test) // k
+            if groups < 2:
+                continue
+            gmax = maxima[: groups * k].reshape(groups, k).max(axis=1)
+            for lv in levels:
+                d = bf.damage_probability(lv, area_factor=float(k), **count_kw)
+                cal.append({"fold": f, "hardness_mpa": float(lv), "area_factor": k,
+                            "predicted": float(np.ravel(d.estimate)[0]),
+                            "hits": int(np.sum(gmax > lv)), "n_surfaces": int(groups)})
+    if not rows:
+        return Validation(error="no held-out surface has a contact")
     table = pd.DataFrame(rows).sort_values("surface", ignore_index=True)
-    k_cov, m = int(table["covered"].sum()), len(table)
+    k_cov, mcount = int(table["covered"].sum()), len(table)
     diff = (table["predicted"] - table["observed"]).to_numpy()
-    v = Validation(table=table, coverage=k_cov / m, coverage_interval=wilson_interval(k_cov, m))
-    if m >= 3 and np.ptp(diff) > 0:
+    val = Validation(table=table, coverage=k_cov / mcount,
+                     coverage_interval=wilson_interval(k_cov, mcount))
+    if mcount >= 3 and np.ptp(diff) > 0:
         t = stats.ttest_1samp(diff, 0.0)
-        v.t_statistic, v.t_pvalue = float(t.statistic), float(t.pvalue)
-        v.w_pvalue = float(stats.wilcoxon(diff).pvalue)
-        v.reject = bool(v.t_pvalue < 1 - a.test_level)
-    return v
+        val.t_statistic, val.t_pvalue = float(t.statistic), float(t.pvalue)
+        val.w_pvalue = float(stats.wilcoxon(diff).pvalue)
+        val.reject = bool(val.t_pvalue < 1 - a.test_level)
+    terms = np.asarray(theta_terms)
+    if terms.size and np.all(np.isfinite(terms)) and terms.sum() > 0:
+        val.theta = float(terms.size / terms.sum())
+    if cal:
+        c = pd.DataFrame(cal)
+        # pool the folds: predictions weighted by the surfaces they predict
+        c["wpred"] = c["predicted"] * c["n_surfaces"]
+        g = c.groupby(["hardness_mpa", "area_factor"], as_index=False)[["wpred", "hits",
+                                                                         "n_surfaces"]].sum()
+        g["predicted"] = g["wpred"] / g["n_surfaces"]
+        g["observed"] = g["hits"] / g["n_surfaces"]
+        ci = [wilson_interval(h, n) for h, n in zip(g["hits"], g["n_surfaces"], strict=True)]
+        g["observed_low"] = [c_[0] for c_ in ci]
+        g["observed_high"] = [c_[1] for c_ in ci]
+        val.calibration = g.drop(columns=["wpred", "hits"])[
+            ["hardness_mpa", "area_factor", "predicted", "observed", "observed_low", "observed_high",
+             "n_surfaces"]]
+    return val
+
+
+def _end_note(sa: SampleAnalysis, hardness: float) -> str:
+    end = sa.upper_end
+    if not math.isfinite(end):
+        return ""
+    if hardness >= end:
+        return (f"the hardness {hardness:.4g} MPa lies beyond the fitted GLD's upper end point "
+                f"{end:.4g} MPa: its damage probability is 0 by construction of the fit, not "
+                f"because the data say so")
+    if hardness >= 0.9 * end:
+        return (f"the hardness {hardness:.4g} MPa lies within 10 % of the fitted GLD's upper end "
+                f"point {end:.4g} MPa: the damage probability depends on where the fit ends")
+    return ""
 
 
 def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
                    ih: int, il: int) -> SampleAnalysis:
-    """Fit, bootstrap, maximum, damage, integrity and validation for one sample kind.
+    """Fit, bootstrap, maximum, damage, integrity and validation of one sample.
 
     Parameters
     ----------
@@ -280,26 +537,50 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
     ih, il : int
         Indices of the Hurst exponent and load (seeds).
     """
+    import pandas as pd
+
     import glstat
 
-    per = [_surface_values(results[k], kind) for k in keys]
-    data = np.concatenate([p[0] for p in per]) if per else np.empty(0)
-    n_ref = float(np.mean([p[1] for p in per])) if per else 0.0
-    sa = SampleAnalysis(kind=kind, data=data, n_ref=max(n_ref, 1.0))
+    per = [surface_values(results[k], kind) for k in keys]
+    data, labels, counts = _pool(per)
+    sa = SampleAnalysis(kind=kind, data=data, n_ref=max(float(counts.mean()) if per else 0.0, 1.0),
+                        counts=counts)
     if data.size < 5:
         sa.note = f"only {data.size} values pooled over {len(keys)} surfaces; at least 5 are needed"
         return sa
-    bf, p, m, note = _bootstrap(data, a, _seed(a, ih, il, 0 if kind == "grid" else 5))
+    grouped = kind == "asperity"
+    param = method = None
+    if grouped:
+        sa.choice = choose_fit(per)
+        param, method = sa.choice.param, sa.choice.method
+    bf, p, m, note = _bootstrap(data, a, _seed(a, ih, il, 0 if kind == "grid" else 5), param, method,
+                                groups=labels if grouped else None,
+                                n_resamples=a.grid_resamples if kind == "grid" else None)
     sa.param, sa.method, sa.note = p, m, note
     if bf is None:
         return sa
     sa.boot = bf
-    sa.maximum = bf.maximum(sa.n_ref, rng=_seed(a, ih, il, 6))
-    sa.damage = bf.damage_probability(a.hardness, sa.n_ref)
-    sa.integrity = bf.integrity_probability(a.hardness, sa.n_ref, np.asarray(a.area_factors))
+    count_kw = {} if grouped else {"n": sa.n_ref}
+    sa.maximum = bf.maximum(rng=_seed(a, ih, il, 6), **count_kw)
+    sa.damage = bf.damage_probability(a.hardness, **count_kw)
+    sa.integrity = bf.integrity_probability(a.hardness, area_factor=np.asarray(a.area_factors),
+                                            **count_kw)
+    full_kw = {"count": bf.counts} if grouped else {"n": sa.n_ref}
     for k in (1.0, 10.0, 100.0, 1000.0):
-        sa.guaranteed[k] = float(glstat.guaranteed_threshold(bf.fit.dist, sa.n_ref, a.integrity_level, k))
-    sa.validation = _validate(results, keys, kind, a, ih, il, p, m)
+        sa.guaranteed[k] = float(glstat.guaranteed_threshold(
+            bf.fit.dist, probability=a.integrity_level, area_factor=k, **full_kw))
+    sa.upper_end = float(bf.fit.dist.support()[1])
+    sa.end_note = _end_note(sa, a.hardness)
+    maxima = np.array([q[2] for q in per])
+    levels = hardness_levels(maxima, a.hardness, a.n_levels)
+    curve = []
+    for lv in np.unique(np.concatenate([levels, np.linspace(maxima.min(), maxima.max(), 25)])):
+        d = bf.damage_probability(float(lv), **count_kw)
+        curve.append({"hardness_mpa": float(lv), "damage": float(np.ravel(d.estimate)[0]),
+                      "low": float(np.ravel(d.low)[0]), "high": float(np.ravel(d.high)[0]),
+                      "observed": float(np.mean(maxima > lv))})
+    sa.damage_curve = pd.DataFrame(curve)
+    sa.validation = _validate(per, kind, a, ih, il, p, m, levels)
     return sa
 
 
@@ -324,6 +605,8 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings) -> d
                 "n_contact": float(np.mean([r["n_contact"] for r in rs])),
                 "n_asperities": float(np.mean([r["n_asperities"] for r in rs])),
                 "max_pressure": float(np.mean([r["max_pressure"] for r in rs])) / 1e6,
+                "observed_damage": float(np.mean([float(r["max_pressure"]) / 1e6 > a.hardness
+                                                  for r in rs])),
                 "force_error": float(np.max(np.abs([r["force_error"] for r in rs]))),
                 "n_in_jump": int(sum(int(r.get("in_jump", 0)) for r in rs)),
                 "max_force_jump": float(max(float(r.get("force_jump", 0.0)) for r in rs)),
