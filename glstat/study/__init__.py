@@ -1,4 +1,4 @@
-"""The study of Bigerelle et al. (2019) end to end (DESIGN §1): a parallel contact campaign
+"""The study of Bigerelle et al. (2019) end to end (docs/method.md): a parallel contact campaign
 over surfaces × Hurst exponents × loads, the GLD analysis of the contact pressures, the
 validation of the predicted maximal pressure, and the report.
 
@@ -21,7 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .analysis import AnalysisSettings, analyse, wilson_interval
+from .analysis import AnalysisSettings, analyse, choose_fit, wilson_interval
+from .answer import calibration_frame, summary_frame
 from .bem import BEMComparison, BEMSettings, compare_bem, compare_study, load_bem_maps, run_bem
 from .campaign import (
     CampaignError,
@@ -47,6 +48,8 @@ __all__ = [
     "SerialExecutor",
     "StudyResult",
     "analyse",
+    "choose_fit",
+    "rq_for_pressure",
     "compare_bem",
     "compare_study",
     "load_results",
@@ -55,11 +58,24 @@ __all__ = [
     "run_bem",
     "run_campaign",
     "run_study",
+    "scene_summary",
     "simulate_surface",
     "surface_path",
     "truncation_table",
     "wilson_interval",
 ]
+
+#: Surfaces per (H, load) compared with the elastic BEM by default.
+DEFAULT_COMPARE_BEM = 5
+
+
+def __getattr__(name):  # the scene search and the paper's tables import on first use
+    if name in ("rq_for_pressure", "scene_summary"):
+        from . import scene
+
+        return getattr(scene, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 #: Settings of the stored measurement :data:`TRUNCATION_TABLE` (lengths in m, pressure in Pa).
 TRUNCATION_REFERENCE: dict[str, float] = {
@@ -200,24 +216,14 @@ class StudyResult:
         return pd.concat(frames, ignore_index=True)
 
     def summary(self):
-        """One row per (H, load): mean pressure (MPa), 1 − α, damage probability and interval,
-        coverage of both samples (a pandas DataFrame)."""
-        import pandas as pd
+        """``summary.csv`` as a pandas DataFrame: one row per H × load × model × sample (the
+        columns are documented in :func:`glstat.study.answer.summary_frame`)."""
+        return summary_frame(self.campaign.settings, self.analysis, self.bem)
 
-        rows = []
-        for (ih, il), r in self.analysis.items():
-            row = {"hurst": self.campaign.settings.hurst[ih],
-                   "pressure_MPa": self.campaign.settings.pressures[il] / 1e6, **r["summary"]}
-            for kind in ("grid", "asperity"):
-                d, v = r[kind].damage, r[kind].validation
-                row[f"damage_{kind}"] = math.nan if d is None else float(d.estimate)
-                row[f"damage_{kind}_low"] = math.nan if d is None else float(d.low)
-                row[f"damage_{kind}_high"] = math.nan if d is None else float(d.high)
-                row[f"coverage_{kind}"] = v.coverage
-                row[f"coverage_{kind}_low"], row[f"coverage_{kind}_high"] = v.coverage_interval
-                row[f"ttest_p_{kind}"] = v.t_pvalue
-            rows.append(row)
-        return pd.DataFrame(rows)
+    def damage_calibration(self):
+        """``damage_calibration.csv`` as a pandas DataFrame: predicted against observed damage
+        probabilities on held-out surfaces (:func:`glstat.study.answer.calibration_frame`)."""
+        return calibration_frame(self.campaign.settings, self.analysis)
 
 
 def _versions() -> dict[str, str]:
@@ -243,7 +249,7 @@ def run_study(
     progress: bool = True,
     command: str = "",
     workers_label: str | None = None,
-    compare_bem: int | BEMSettings | None = None,
+    compare_bem: int | BEMSettings | None = DEFAULT_COMPARE_BEM,
 ) -> StudyResult:
     """Run (or resume) the campaign, analyse it and write the report.
 
@@ -263,16 +269,17 @@ def run_study(
         Description of the workers for the report.
     compare_bem : int or BEMSettings, optional
         Compare the asperity model with the elastic BEM on the first K surfaces of every
-        (H, load) (an int is K with the default :class:`BEMSettings`); the solves are stored
-        next to the campaign's and resumed like it; the report gets the section "Asperity
-        model vs elastic BEM".
+        (H, load) (an int is K with the default :class:`BEMSettings`; default 5; 0 or None
+        skips it); the solves are stored next to the campaign's and resumed like it; the
+        report shows the elastic damage probability next to the answer and gets the section
+        "Asperity model vs elastic BEM".
 
     Returns
     -------
     StudyResult
     """
     bsettings = None
-    if compare_bem is not None:
+    if compare_bem is not None and not (isinstance(compare_bem, int) and compare_bem == 0):
         bsettings = (compare_bem if isinstance(compare_bem, BEMSettings)
                      else BEMSettings(n_compare=compare_bem))
         if bsettings.n_compare > settings.n_surfaces:
@@ -296,6 +303,8 @@ def run_study(
     results.update(load_results(out, settings, examples, maps=True))
     t2 = time.perf_counter()
     an = analyse(results, settings, analysis)
+    if progress:
+        print("analysis: fits, bootstrap and held-out checks ...", file=sys.stderr, flush=True)
     bem = None
     if bsettings is not None:
         tc = time.perf_counter()
@@ -325,6 +334,13 @@ def run_study(
             "command": command or " ".join(sys.argv),
             "workers": workers_label or (type(executor).__name__ if executor is not None
                                          else f"{workers or os.cpu_count()} local processes")}
+    try:
+        from .paper import paper_findings
+
+        info["paper_findings"] = paper_findings(n_contact={
+            settings.hurst[ih]: r["summary"]["n_contact"] for (ih, il), r in an.items() if il == 0})
+    except Exception as exc:  # the paper's tables never stop a report
+        info["paper_findings"] = [f"the consistency check could not be computed: {exc}"]
     if bem is not None:
         info["bem"] = bem
         info["bem_settings"] = bsettings
@@ -333,4 +349,10 @@ def run_study(
     timings["report"] = time.perf_counter() - t3
     timings["total"] = time.perf_counter() - t0
     html, md = rep.write(out)
-    return StudyResult(out, html, md, an, timings, camp, bem, bem_run)
+    result = StudyResult(out, html, md, an, timings, camp, bem, bem_run)
+    from .campaign import atomic_write
+
+    atomic_write(Path(out) / "summary.csv", result.summary().to_csv(index=False).encode())
+    atomic_write(Path(out) / "damage_calibration.csv",
+                 result.damage_calibration().to_csv(index=False).encode())
+    return result

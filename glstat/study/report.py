@@ -364,6 +364,58 @@ def calibration_verdict(validation, level: float) -> str:
             "rejects)")
 
 
+def _answer_figures(rep: Report, settings, asettings, analysis: dict) -> None:
+    """Damage probability against hardness (with its band and the observed fraction) and the
+    reliability of the predicted damage probabilities, per H."""
+    import matplotlib.pyplot as plt
+
+    cases = list(analysis.items())
+    fig, axes = plt.subplots(1, len(cases), figsize=(4.2 * len(cases), 3.4), squeeze=False)
+    for ax, ((ih, il), r) in zip(axes[0], cases, strict=True):
+        c = r["asperity"].damage_curve
+        if c is None:
+            ax.set_axis_off()
+            continue
+        x = c["hardness_mpa"] / 1e3
+        ax.fill_between(x, c["low"], c["high"], alpha=0.3, label="90 % band")
+        ax.plot(x, c["damage"], label="predicted")
+        ax.step(x, c["observed"], where="post", color="k", lw=1, label="observed fraction")
+        ax.axvline(asettings.hardness / 1e3, color="r", ls="--", lw=1, label="hardness")
+        ax.set_xlabel("hardness Pd (GPa)")
+        ax.set_ylabel("P(max > Pd), one area")
+        ax.set_title(_label(settings, ih, il), fontsize=9)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    rep.figure("damage_curve", fig, "Damage probability on one analysed area against the hardness, "
+               "with its bootstrap band (per-asperity predictor), and the fraction of surfaces whose "
+               "maximal pressure exceeds it.")
+    fig, axes = plt.subplots(1, len(cases), figsize=(4.2 * len(cases), 3.6), squeeze=False)
+    for ax, ((ih, il), r) in zip(axes[0], cases, strict=True):
+        for kind, marker in (("asperity", "o"), ("grid", "s")):
+            c = r[kind].validation.calibration
+            if c is None or len(c) == 0:
+                continue
+            for k, color in ((1, "C0"), (2, "C1"), (4, "C2")):
+                ck = c[c["area_factor"] == k]
+                if not len(ck):
+                    continue
+                ax.errorbar(ck["predicted"], ck["observed"],
+                            yerr=[ck["observed"] - ck["observed_low"],
+                                  ck["observed_high"] - ck["observed"]],
+                            fmt=marker, ms=4, color=color, mfc="none" if kind == "grid" else color,
+                            label=f"{'grid (paper)' if kind == 'grid' else 'asperity'}, k = {k}")
+        ax.plot([0, 1], [0, 1], "k:", lw=1)
+        ax.set_xlabel("predicted P(max > Pd)")
+        ax.set_ylabel("observed fraction (Wilson 95 %)")
+        ax.set_title(_label(settings, ih, il), fontsize=9)
+        ax.legend(fontsize=6)
+    fig.tight_layout()
+    rep.figure("damage_reliability", fig, "Reliability of the damage probability: predicted (fit on "
+               "the other fold) against observed on held-out surfaces, at several hardness levels, "
+               "for one area (k = 1) and groups of k = 2 and 4 surfaces (the area scaling). Filled: "
+               "per-asperity predictor; open squares: the paper's grid-point predictor.")
+
+
 def build_report(settings, asettings, results: dict, analysis: dict, info: dict) -> Report:
     """Assemble the study report.
 
@@ -394,6 +446,52 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     hard = asettings.hardness
     lvl = round(100 * asettings.confidence_level)
     rep = Report("Mechanical integrity of rough surfaces in contact — study report")
+
+    # ---- the answer -------------------------------------------------------------------------
+    from .answer import check_sentence, degenerate_scene, first_screen_rows
+
+    rep.heading("The answer")
+    bem = info.get("bem")
+    warn = degenerate_scene(analysis)
+    if warn:
+        rep.paragraph("⚠ " + warn)
+    arows, acols = first_screen_rows(settings, asettings, analysis, bem)
+    rep.table(acols, arows,
+              f"Probability that the contact pressure exceeds the hardness {hard:g} MPa somewhere on "
+              f"one analysed area ({settings.length * 1e3:g} × {settings.length * 1e3:g} mm²), "
+              f"predicted from the peak pressures of the asperities in contact with their number "
+              f"per surface as a random count (docs/method.md §6), with its {lvl} % bootstrap "
+              f"interval (surfaces resampled). 'Check' is the prediction tested on held-out "
+              f"surfaces (coverage of the maximum, centring, and the damage probability at "
+              f"{asettings.n_levels}+ hardness levels). The elastic BEM column is the same "
+              f"predictor on the elastic solution of the first surfaces (per contact spot).")
+    if bem:
+        ratios = []
+        for (ih, il), c in bem.items():
+            r = c.summary().set_index("quantity")["ratio_mean"]
+            ratios.append(f"H = {settings.hurst[ih]:g}: mean pressure ×{1 / r['mean_pressure_MPa']:.2g}, "
+                          f"maximal pressure ×{1 / r['max_pressure_MPa']:.2g}")
+        rep.paragraph("Contact model error: on the same surfaces the elastic boundary-element "
+                      "solution gives " + "; ".join(ratios) + " the asperity model's (c = "
+                      f"{settings.cone_factor:g}). The asperity model neglects elastic interaction "
+                      "and prescribes the pressure shape; the damage verdict depends on the model.")
+    notes = [f"H = {settings.hurst[ih]:g}: {r['asperity'].end_note}" for (ih, il), r in analysis.items()
+             if r["asperity"].end_note]
+    if notes:
+        rep.paragraph("⚠ Fitted end point: " + "; ".join(notes) + ".")
+    choices = [f"H = {settings.hurst[ih]:g}: {r['asperity'].choice.reason}"
+               for (ih, il), r in analysis.items() if r["asperity"].choice is not None]
+    if choices:
+        rep.paragraph("Fit of the peak pressures, chosen on an inner split of the surfaces (never on "
+                      "the surfaces it is checked against): " + "; ".join(choices) + ".")
+    rep.paragraph("Checks on held-out surfaces: " + check_sentence(settings, asettings, analysis))
+    _answer_figures(rep, settings, asettings, analysis)
+    paper = info.get("paper_findings")
+    if paper:
+        rep.heading("Consistency with the paper")
+        rep.paragraph("Computed from the paper's Table 1 by this run (docs/method.md §11):")
+        for line in paper:
+            rep.paragraph("• " + line)
 
     # ---- summary ---------------------------------------------------------------------------
     rep.heading("Main results")
@@ -446,7 +544,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     if calib:
         rep.paragraph("Calibration of the predicted maximum (calibrated = coverage consistent with "
                       "the nominal level, i.e. the level inside the Wilson interval, and the "
-                      "centring t-test at the test level not rejecting; DESIGN §1 step 9): "
+                      "centring t-test at the test level not rejecting; docs/method.md §9): "
                       + "; ".join(calib) + ".")
 
     # ---- settings ---------------------------------------------------------------------------

@@ -1,0 +1,226 @@
+"""The study's answer as tables (``summary.csv``, ``damage_calibration.csv``) and as the
+report's first screen: per H, the damage probability at the hardness on one analysed area
+with its interval and whether it passed its check, beside the paper's numbers and the elastic
+model's (docs/study.md, "Reading the report")."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .analysis import SAMPLE_LABELS
+
+__all__ = ["calibration_frame", "degenerate_scene", "fmt_mpa", "fmt_probability", "summary_frame"]
+
+#: Columns of ``summary.csv`` (one row per H × load × model × sample).
+SUMMARY_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "mean_pressure_mpa",
+                   "asperities_per_surface", "points_in_contact_per_surface", "fit", "damage",
+                   "damage_low", "damage_high", "observed_damage", "coverage", "coverage_low",
+                   "coverage_high", "bias_p_value", "theta", "damage_levels_inside",
+                   "passes_check", "upper_end_mpa", "n_surfaces")
+#: Columns of ``damage_calibration.csv``.
+CALIBRATION_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "hardness_mpa", "area_factor",
+                       "predicted", "observed", "observed_low", "observed_high", "n_surfaces")
+#: The paper's damage verdicts at 2050 MPa (its section 4), by H.
+PAPER_VERDICTS = {0.0: "certain", 0.5: "≈ 1 %", 1.0: "impossible"}
+#: The paper's mean contact pressures (Table 1), MPa, by H.
+PAPER_MEAN_MPA = {0.0: 1724.0, 0.5: 1369.0, 1.0: 1108.0}
+
+
+def fmt_mpa(v: float) -> str:
+    """A pressure in MPa with three significant digits ('—' when missing)."""
+    if v is None or not math.isfinite(v):
+        return "—" if v is None or math.isnan(v) else ("∞" if v > 0 else "−∞")
+    return f"{v:.3g} MPa" if abs(v) < 1000 else f"{v / 1000:.3g} GPa"
+
+
+def fmt_probability(p: float) -> str:
+    """A probability as a percentage with up to three significant digits."""
+    if p is None or not math.isfinite(p):
+        return "—"
+    pc = 100 * p
+    if pc == 0:
+        return "0 %"
+    if pc == 100:
+        return "100 %"
+    if pc < 0.01:
+        return f"{pc:.2g} %"
+    if pc > 99.9:
+        return f"{pc:.4g} %"
+    return f"{pc:.3g} %"
+
+
+def _scalar(a) -> float:
+    return float(np.ravel(a)[0])
+
+
+def summary_frame(settings, analysis: dict, bem: dict | None = None):
+    """``summary.csv``: one row per H × load × model × sample (pandas DataFrame).
+
+    Columns (pressures in MPa, probabilities as fractions): ``hurst``, ``pressure_mpa`` (nominal),
+    ``model`` ("asperity", or "bem" for the elastic comparison), ``sample`` ("asperity" for
+    per-asperity / per-spot peaks, "grid" for grid-point pressures), ``mean_pressure_mpa`` (mean
+    contact pressure per surface), ``asperities_per_surface`` (asperities or contact spots in
+    contact), ``points_in_contact_per_surface``, ``fit`` (GLD used), ``damage``, ``damage_low``,
+    ``damage_high`` (P(max > hardness) on one analysed area with its bootstrap interval),
+    ``observed_damage`` (fraction of the surfaces whose maximum exceeds the hardness),
+    ``coverage``, ``coverage_low``, ``coverage_high`` (held-out coverage of the predicted
+    interval of the maximum and its Wilson interval), ``bias_p_value`` (centring t-test),
+    ``theta`` (extremal index), ``damage_levels_inside`` (hardness levels at which the predicted
+    damage lies inside the observed interval, "k of m"), ``passes_check``, ``upper_end_mpa``
+    (upper end of the fitted GLD), ``n_surfaces``. NaN where a quantity does not apply (the
+    elastic model is compared on a few surfaces, without held-out checks).
+    """
+    import pandas as pd
+
+    rows = []
+    for (ih, il), r in analysis.items():
+        s = r["summary"]
+        for kind in ("asperity", "grid"):
+            sa = r[kind]
+            v = sa.validation
+            d = sa.damage
+            hits, m = v.damage_hits()
+            rows.append({
+                "hurst": settings.hurst[ih], "pressure_mpa": settings.pressures[il] / 1e6,
+                "model": "asperity", "sample": kind, "mean_pressure_mpa": s["mean_pressure"],
+                "asperities_per_surface": s["n_asperities"],
+                "points_in_contact_per_surface": s["n_contact"],
+                "fit": f"{sa.param.upper()} {sa.method}" if sa.ok else "none",
+                "damage": math.nan if d is None else _scalar(d.estimate),
+                "damage_low": math.nan if d is None else _scalar(d.low),
+                "damage_high": math.nan if d is None else _scalar(d.high),
+                "observed_damage": s.get("observed_damage", math.nan),
+                "coverage": v.coverage, "coverage_low": v.coverage_interval[0],
+                "coverage_high": v.coverage_interval[1], "bias_p_value": v.t_pvalue,
+                "theta": v.theta, "damage_levels_inside": f"{hits} of {m}" if m else "",
+                "passes_check": v.passes(getattr(sa.boot, "confidence_level", 0.9))
+                if sa.ok else False,
+                "upper_end_mpa": sa.upper_end, "n_surfaces": s["n_surfaces"]})
+        if bem and (ih, il) in bem:
+            c = bem[(ih, il)]
+            f = c.fits["bem"]
+            surf = c.surfaces[c.surfaces["model"] == "bem"]
+            d = f.damage
+            rows.append({
+                "hurst": settings.hurst[ih], "pressure_mpa": settings.pressures[il] / 1e6,
+                "model": "bem", "sample": "asperity",
+                "mean_pressure_mpa": float(surf["mean_pressure_MPa"].mean()),
+                "asperities_per_surface": float(surf["n_clusters"].mean()),
+                "points_in_contact_per_surface": float(surf["n_contact"].mean()),
+                "fit": f"{f.param.upper()} {f.method}" if f.ok else "none",
+                "damage": math.nan if d is None else _scalar(d.estimate),
+                "damage_low": math.nan if d is None else _scalar(d.low),
+                "damage_high": math.nan if d is None else _scalar(d.high),
+                "observed_damage": float(np.mean(surf["max_pressure_MPa"] > c.hardness)),
+                "coverage": math.nan, "coverage_low": math.nan, "coverage_high": math.nan,
+                "bias_p_value": math.nan, "theta": math.nan, "damage_levels_inside": "",
+                "passes_check": False, "upper_end_mpa": math.nan, "n_surfaces": len(surf)})
+    return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
+
+
+def calibration_frame(settings, analysis: dict):
+    """``damage_calibration.csv``: predicted against observed damage probabilities.
+
+    One row per H × load × model × sample × hardness level × area factor: ``hardness_mpa``,
+    ``area_factor`` (1: one analysed area; 2 and 4: groups of held-out surfaces),
+    ``predicted`` (P(max > hardness) from the fit of the other fold, averaged over the two
+    folds), ``observed`` (fraction of held-out surfaces or groups whose maximum exceeds it),
+    ``observed_low``/``observed_high`` (Wilson 95 % interval), ``n_surfaces`` (surfaces or
+    groups).
+    """
+    import pandas as pd
+
+    frames = []
+    for (ih, il), r in analysis.items():
+        for kind in ("asperity", "grid"):
+            c = r[kind].validation.calibration
+            if c is None or len(c) == 0:
+                continue
+            c = c.copy()
+            c.insert(0, "sample", kind)
+            c.insert(0, "model", "asperity")
+            c.insert(0, "pressure_mpa", settings.pressures[il] / 1e6)
+            c.insert(0, "hurst", settings.hurst[ih])
+            frames.append(c)
+    if not frames:
+        return pd.DataFrame(columns=list(CALIBRATION_COLUMNS))
+    return pd.concat(frames, ignore_index=True)[list(CALIBRATION_COLUMNS)]
+
+
+def degenerate_scene(analysis: dict) -> str:
+    """A plain warning when the scene cannot answer the question ("" otherwise): fewer than
+    3 asperities per surface on average, or a damage probability of 0 or 1 for every H."""
+    msgs = []
+    few = [r["summary"]["n_asperities"] for r in analysis.values()]
+    if few and min(few) < 3:
+        msgs.append(f"only {min(few):.2g} asperities per surface are in contact on average for at "
+                    "least one H: one or two asperities carry the load, the pressure statistics "
+                    "describe those few contacts and the maximum is barely random")
+    dmg = [r["asperity"].damage for r in analysis.values() if r["asperity"].damage is not None]
+    vals = [_scalar(d.estimate) for d in dmg]
+    if vals and (all(v >= 1 - 1e-12 for v in vals) or all(v <= 1e-12 for v in vals)):
+        msgs.append("the damage probability is " + ("1" if vals[0] >= 0.5 else "0") + " for every H: "
+                    "the hardness does not discriminate between the surfaces at this scene")
+    if not msgs:
+        return ""
+    return ("Degenerate scene: " + "; ".join(msgs) + ". Place the scene at the paper's pressure "
+            "level with --rq or --target-pressure (docs/method.md §10).")
+
+
+def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None) -> list[list[Any]]:
+    """Rows of the report's first table, one per (H, load)."""
+    lvl = round(100 * asettings.confidence_level)
+    rows = []
+    for (ih, il), r in analysis.items():
+        h = settings.hurst[ih]
+        sa = r["asperity"]
+        d = sa.damage
+        v = sa.validation
+        if d is None:
+            answer = f"no fit ({sa.note[:80]})"
+        else:
+            answer = (f"{fmt_probability(_scalar(d.estimate))} [{fmt_probability(_scalar(d.low))}, "
+                      f"{fmt_probability(_scalar(d.high))}]")
+        check = ("passed" if v.passes(asettings.confidence_level) else "failed") if sa.ok else "—"
+        if v.error:
+            check = f"not checked ({v.error})"
+        elastic = "—"
+        if bem and (ih, il) in bem and bem[(ih, il)].fits["bem"].damage is not None:
+            de = bem[(ih, il)].fits["bem"].damage
+            elastic = fmt_probability(_scalar(de.estimate))
+        rows.append([
+            f"H = {h:g}" + (f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1
+                            else ""),
+            answer, check, fmt_probability(r["summary"].get("observed_damage", math.nan)),
+            elastic, fmt_mpa(r["summary"]["mean_pressure"]),
+            PAPER_VERDICTS.get(h, "—") if abs(asettings.hardness - 2050) < 1e-9 else "—",
+            fmt_mpa(PAPER_MEAN_MPA.get(h, math.nan)) if h in PAPER_MEAN_MPA else "—",
+        ])
+    return rows, ["case", f"damage probability at {asettings.hardness:g} MPa, one area "
+                          f"[{lvl} % interval]", "check on held-out surfaces",
+                  "observed fraction of surfaces damaged", "elastic BEM", "mean contact pressure",
+                  "paper: damage", "paper: mean pressure"]
+
+
+def check_sentence(settings, asettings, analysis: dict) -> str:
+    """What the check on held-out surfaces found, per H, for both samples."""
+    parts = []
+    for (ih, il), r in analysis.items():
+        for kind in ("asperity", "grid"):
+            v = r[kind].validation
+            if v.table is None:
+                continue
+            hits, m = v.damage_hits()
+            lo, hi = v.coverage_interval
+            parts.append(
+                f"H = {settings.hurst[ih]:g}, {SAMPLE_LABELS[kind]}: coverage of the "
+                f"{round(100 * asettings.confidence_level)} % interval {100 * v.coverage:.0f} % "
+                f"[{100 * lo:.0f}, {100 * hi:.0f}], centring test p = {v.t_pvalue:.2g}, predicted "
+                f"damage inside the observed interval at {hits} of {m} hardness levels"
+                + (f", extremal index θ = {v.theta:.2g}" if kind == "grid" and math.isfinite(v.theta)
+                   else "")
+                + (" — passes" if v.passes(asettings.confidence_level) else " — fails"))
+    return "; ".join(parts) + "."
