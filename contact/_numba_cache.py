@@ -30,7 +30,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-__all__ = ["cache_dir", "cache_is_cold", "package_dirs"]
+__all__ = ["cache_dir", "cache_is_cold", "compile_note", "package_dirs"]
 
 #: Folders whose numba functions this module places (``glstat`` and ``contact``).
 _ROOT = Path(__file__).resolve().parent.parent
@@ -135,6 +135,22 @@ def cache_is_cold() -> bool:
     except OSError:
         return True
     return True
+
+
+def compile_note() -> str | None:
+    """A sentence for the command line when the kernels must first be compiled, else None.
+
+    Returns
+    -------
+    str or None
+        Says that numba compiles the kernels once (about a minute) and where they are kept,
+        when :func:`cache_is_cold`; None otherwise.
+    """
+    if not cache_is_cold():
+        return None
+    where = cache_dir()
+    kept = f"kept in {where} for the next runs" if where else "not cached: no writable folder"
+    return f"first run: compiling the numerical kernels with numba (about a minute; {kept})"
 
 
 def _install() -> None:

@@ -92,6 +92,15 @@ def _number_in(low: float, high: float, *, low_open: bool = False, high_open: bo
 
 
 def _study_parser() -> argparse.ArgumentParser:
+    class _DefaultsFormatter(argparse.ArgumentDefaultsHelpFormatter):
+        """Adds "(default: ...)" only to options with a value whose help does not state it."""
+
+        def _get_help_string(self, action):
+            text = action.help or ""
+            if "default" in text.lower() or action.default in (None, False, argparse.SUPPRESS):
+                return text
+            return super()._get_help_string(action)
+
     p = argparse.ArgumentParser(
         prog="glstat study",
         description="Contact study of Bigerelle et al. (2019): Weierstrass surfaces pressed by a rigid "
@@ -99,7 +108,7 @@ def _study_parser() -> argparse.ArgumentParser:
                     "probability at the hardness, integrity against area, and the validation of the "
                     "predicted maximum across surfaces. Writes report.html and report.md into --out. "
                     "An interrupted run resumes: rerun the same command.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        formatter_class=_DefaultsFormatter)
     p.add_argument("--quick", action="store_true",
                    help=f"a version that finishes in about a minute ({QUICK['surfaces']} surfaces of "
                         f"{QUICK['grid']}² per H, {QUICK['bootstrap']} bootstrap resamples, out "
@@ -141,13 +150,18 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--force", action="store_true",
                    help="reuse an output directory holding a campaign with other settings "
                         "(its surfaces are discarded)")
-    p.add_argument("--compare-bem", type=_positive(int), nargs="?", const=DEFAULT_COMPARE_BEM,
-                   default=None, metavar="K",
-                   help=f"also solve the first K surfaces of every H with the elastic boundary-element "
-                        f"method and compare it with the asperity model (K = {DEFAULT_COMPARE_BEM} "
-                        f"when given without a value; off by default); adds the report section "
-                        f"'Asperity model vs elastic BEM'")
+    p.add_argument("--compare-bem", type=_number_in(0, math.inf, high_open=True, kind=int), nargs="?",
+                   const=DEFAULT_COMPARE_BEM, default=DEFAULT_COMPARE_BEM, metavar="K",
+                   help=f"solve the first K surfaces of every H with the elastic boundary-element "
+                        f"method too, and show its damage probability next to the answer (default "
+                        f"{DEFAULT_COMPARE_BEM}; 0 skips it)")
+    p.add_argument("--target-pressure", type=_positive(float), metavar="MPA",
+                   help="choose Rq so that the asperity model's mean contact pressure is MPA "
+                        "(one Rq for all H, found on a few seeds; replaces --rq)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--wait", action="store_true",
+                   help="when another campaign runs in the output directory, wait for it to end "
+                        "instead of refusing to start")
     return p
 
 
@@ -182,44 +196,95 @@ def study_main(argv: list[str]) -> int:
             n_surfaces=surfaces, grid=grid, length=length, rq=args.rq * 1e-6, gamma=args.gamma,
             n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
             cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
+        if args.target_pressure is not None:
+            import dataclasses
+
+            from .study import rq_for_pressure
+
+            print(f"glstat study: finding the Rq that gives a mean contact pressure of "
+                  f"{args.target_pressure:g} MPa ...", file=sys.stderr, flush=True)
+            rq = float(rq_for_pressure(args.target_pressure * 1e6, settings=settings))
+            print(f"glstat study: Rq = {rq * 1e6:.4g} µm", file=sys.stderr, flush=True)
+            settings = dataclasses.replace(settings, rq=rq)
         asettings = AnalysisSettings(hardness=args.hardness, n_resamples=boot, seed=args.seed)
-        if args.compare_bem is not None and args.compare_bem > surfaces:
+        if args.compare_bem > surfaces and not any(a.startswith("--compare-bem") for a in argv):
+            args.compare_bem = surfaces  # the default K on a small campaign
+        if args.compare_bem > surfaces:
             raise ValueError(f"--compare-bem K = {args.compare_bem} cannot exceed the {surfaces} "
                              f"surfaces per H (--surfaces); lower K or add surfaces")
     except ValueError as exc:
         print(f"glstat study: error: {exc}", file=sys.stderr)
         return 2
+    import signal
+    import threading
+
+    from contact._numba_cache import compile_note
+
+    from .study.campaign import lock_directory
+
+    class _Terminated(BaseException):
+        """SIGTERM, raised in the main thread so that the run stops as on Ctrl-C."""
+
+    def _on_sigterm(signum, frame):
+        raise _Terminated
+
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, _on_sigterm) if main_thread else None
     shutdown = None
     try:
-        executor = None
-        label = None
-        if args.scheduler:
-            executor, shutdown = make_executor(scheduler=args.scheduler, timeout=args.scheduler_timeout)
-            label = f"Dask scheduler {args.scheduler}"
-        elif args.workers == 1:
-            label = "1 (serial, in-process)"
-        t0 = time.perf_counter()
-        res = run_study(settings, asettings, out, executor=executor, workers=args.workers,
-                        force=args.force, progress=not args.no_progress,
-                        command="glstat study " + " ".join(argv), workers_label=label,
-                        compare_bem=args.compare_bem)
+        with lock_directory(out, wait=args.wait, on_wait=lambda holder: print(
+                f"glstat study: waiting for the campaign running in {out} ({holder})",
+                file=sys.stderr, flush=True)):
+            note = compile_note()
+            if note:
+                print(f"glstat study: {note}", file=sys.stderr, flush=True)
+            executor = None
+            label = None
+            if args.scheduler:
+                executor, shutdown = make_executor(scheduler=args.scheduler,
+                                                   timeout=args.scheduler_timeout)
+                label = f"Dask scheduler {args.scheduler}"
+            elif args.workers == 1:
+                label = "1 (serial, in-process)"
+            t0 = time.perf_counter()
+            res = run_study(settings, asettings, out, executor=executor, workers=args.workers,
+                            force=args.force, progress=not args.no_progress,
+                            command="glstat study " + " ".join(argv), workers_label=label,
+                            compare_bem=args.compare_bem)
     except CampaignError as exc:
         print(f"glstat study: error: {exc}", file=sys.stderr)
         return 1
+    except (KeyboardInterrupt, _Terminated) as exc:
+        how, status = (("interrupted (Ctrl-C)", 130) if isinstance(exc, KeyboardInterrupt)
+                       else ("terminated (SIGTERM)", 143))
+        print(f"glstat study: {how}; the surfaces finished so far are saved in {out}; rerun the "
+              f"same command to resume", file=sys.stderr)
+        return status
     finally:
+        if main_thread:
+            signal.signal(signal.SIGTERM, previous)
         if shutdown is not None:
             shutdown()
     print(f"study finished in {time.perf_counter() - t0:.1f} s "
           f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
+    from .study.answer import degenerate_scene, fmt_mpa, fmt_probability
+
     table = res.summary()
-    for _, r in table.iterrows():
-        print(f"H = {r['hurst']:g}, {r['pressure_MPa']:g} MPa: mean contact pressure "
-              f"{_num(r['mean_pressure'], '.4g')} MPa, 1 - alpha {_num(r['contact_fraction'], '.3g')}, "
-              f"damage P at {args.hardness:g} MPa {_num(r['damage_grid'], '.4g')} "
-              f"[{_num(r['damage_grid_low'], '.4g')}, {_num(r['damage_grid_high'], '.4g')}] (grid) "
-              f"{_num(r['damage_asperity'], '.4g')} (asperity); coverage grid "
-              f"{_num(r['coverage_grid'], '.0f', 100, ' %')}, asperity "
-              f"{_num(r['coverage_asperity'], '.0f', 100, ' %')}")
+    lvl = round(100 * asettings.confidence_level)
+    print(f"Probability that the contact pressure exceeds {args.hardness:g} MPa somewhere on one "
+          f"{args.size:g} x {args.size:g} mm² area ({lvl} % interval):")
+    for _, r in table[table["sample"] == "asperity"].iterrows():
+        model = "asperity model" if r["model"] == "asperity" else "elastic BEM   "
+        check = ("" if r["model"] != "asperity" else
+                 ("  check on held-out surfaces: passed" if r["passes_check"] else
+                  "  check on held-out surfaces: failed"))
+        print(f"  H = {r['hurst']:g}, {model}: {fmt_probability(r['damage'])} "
+              f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}]; observed "
+              f"{fmt_probability(r['observed_damage'])} of {r['n_surfaces']} surfaces; mean contact "
+              f"pressure {fmt_mpa(r['mean_pressure_mpa'])}{check}")
+    warn = degenerate_scene(res.analysis)
+    if warn:
+        print(f"warning: {warn}")
     if res.bem:
         run = res.bem_run
         print(f"BEM comparison: {len(run.computed)} surfaces solved, {run.skipped} reused")
@@ -268,6 +333,15 @@ def main(argv: list[str] | None = None) -> int:
     if not argv or argv[0] in ("-h", "--help"):
         print(USAGE)
         return 0 if argv else 2
+    if argv[0] in ("-V", "--version"):
+        import importlib.metadata as md
+
+        try:
+            version = md.version("glstat")
+        except md.PackageNotFoundError:  # run from a source tree that is not installed
+            from . import __version__ as version
+        print(f"glstat {version}")
+        return 0
     cmd, rest = argv[0], argv[1:]
     if cmd == "study":
         return study_main(rest)

@@ -1,11 +1,11 @@
 """The asperity model against the elastic boundary-element reference (``glstat study
 --compare-bem``, and :func:`compare_bem` for a user's own surfaces).
 
-The asperity model of :func:`contact.solve` (DESIGN §3.3) neglects the elastic interaction
+The asperity model of :func:`contact.solve` (docs/method.md §3) neglects the elastic interaction
 between asperities and prescribes the pressure shape on every contact patch;
 :func:`contact.solve_bem` solves the full elastic contact problem on the same grid. Both are run
 on the same surfaces at the same nominal pressure, and the comparison covers the contact
-fraction, the mean and maximal pressure, the GLD of each model's grid-point pressures (fitted
+fraction, the mean and maximal pressure, the GLD of each model's contact-spot peak pressures (fitted
 as in the study) and the damage probability at the hardness predicted from each.
 
 In a study the first K surfaces of every (H, load) are solved again with both models (the
@@ -37,8 +37,12 @@ from .campaign import (
     _npz_has,
     atomic_write,
     compute_and_save,
+    lock_directory,
     split_stored,
     surface_path,
+    task_failure,
+    task_stamp,
+    write_failure,
 )
 
 __all__ = [
@@ -224,8 +228,12 @@ def _bem_task(settings: CampaignSettings, bsettings: BEMSettings, key: tuple[int
     return key, out, time.perf_counter() - t0
 
 
-def _bem_complete(path: Path) -> bool:
-    return _npz_has(path, ("bem_samples", "asperity_samples"))
+def _bem_complete(path: Path, key: tuple[int, int, int] | None = None,
+                  stamp: dict[str, Any] | None = None) -> bool:
+    """Whether ``path`` holds the finished comparison of surface ``key`` (files written
+    before the key was stored are accepted when no ``stamp`` is given)."""
+    expect = None if key is None or stamp is None else {"task_key": key, **stamp}
+    return _npz_has(path, ("bem_samples", "asperity_samples"), expect=expect)
 
 
 # -- the study's comparison ------------------------------------------------------------------
@@ -265,7 +273,11 @@ def _prepare_bem(root: Path, bsettings: BEMSettings, force: bool) -> None:
     mpath = root / MANIFEST
     if not mpath.is_file():
         raise CampaignError(f"{mpath} is missing: run the campaign before the BEM comparison")
-    manifest = json.loads(mpath.read_text())
+    try:
+        manifest = json.loads(mpath.read_text())
+    except (OSError, ValueError) as exc:
+        raise CampaignError(f"{mpath} is not a readable campaign manifest ({exc}); run the "
+                            f"campaign again (the same glstat study command)") from None
     old = manifest.get("compare_bem")
     ident = bsettings.identity()
     if old is not None and old != ident:
@@ -282,7 +294,10 @@ def _prepare_bem(root: Path, bsettings: BEMSettings, force: bool) -> None:
                 f.unlink()
     manifest["compare_bem"] = ident
     manifest["compare_bem_surfaces"] = int(bsettings.n_compare)
-    atomic_write(mpath, json.dumps(manifest, indent=2).encode())
+    try:
+        atomic_write(mpath, json.dumps(manifest, indent=2).encode())
+    except OSError as exc:
+        raise CampaignError(write_failure(exc, mpath) + "; nothing was computed") from None
 
 
 def run_bem(
@@ -294,6 +309,7 @@ def run_bem(
     workers: int | None = None,
     force: bool = False,
     progress: bool = True,
+    wait: bool = False,
 ) -> BEMRun:
     """Solve the first K surfaces of every (H, load) with both models, saving each as it finishes.
 
@@ -309,6 +325,8 @@ def run_bem(
         As for :func:`glstat.study.run_campaign`.
     force : bool
         Discard stored BEM solves computed with other BEM settings (without it they are refused).
+    wait : bool
+        When another campaign runs in ``out``, wait for it to end instead of refusing.
 
     Returns
     -------
@@ -331,25 +349,32 @@ def run_bem(
     t0 = time.perf_counter()
     root = Path(out)
     keys = _keys(settings, bsettings)
-    _prepare_bem(root, bsettings, force)
-    run = BEMRun()
-    def path_of(key):
-        return bem_path(root, settings, *key)
+    with lock_directory(root, wait=wait):
+        _prepare_bem(root, bsettings, force)
+        run = BEMRun()
+        stamp = task_stamp(settings)
 
-    todo = split_stored(keys, path_of, _bem_complete, run)
-    if not todo:
-        run.wall_time = time.perf_counter() - t0
-        return run
-    exc = compute_and_save(_bem_task, (settings, bsettings), todo, path_of, run, total=len(keys),
-                           executor=executor, workers=workers,
-                           limit=max(4, 2 * (workers or os.cpu_count() or 1)),
-                           desc="BEM comparison", progress=progress)
-    if exc is not None:
-        n_saved = run.skipped + len(run.computed)
-        raise CampaignError(
-            f"a BEM comparison task failed ({type(exc).__name__}: {exc}); {n_saved} of {len(keys)} "
-            f"comparisons are saved in {root}; rerun the same command to compute only the missing ones"
-        ) from exc
+        def path_of(key):
+            return bem_path(root, settings, *key)
+
+        def complete(path, key):
+            return _bem_complete(path, key, stamp)
+
+        todo = split_stored(keys, path_of, complete, run)
+        if not todo:
+            run.wall_time = time.perf_counter() - t0
+            return run
+        exc = compute_and_save(_bem_task, (settings, bsettings), todo, path_of, run,
+                               total=len(keys), executor=executor, workers=workers,
+                               limit=max(4, 2 * (workers or os.cpu_count() or 1)),
+                               desc="BEM comparison", progress=progress, stamp=stamp)
+        if exc is not None:
+            n_saved = run.skipped + len(run.computed)
+            raise CampaignError(
+                f"{task_failure(exc, 'a BEM comparison task')}; {n_saved} of {len(keys)} "
+                f"comparisons are saved in {root}; rerun the same command to compute only the "
+                f"missing ones"
+            ) from exc
     run.wall_time = time.perf_counter() - t0
     return run
 
@@ -443,23 +468,25 @@ def compare_study(out: str | os.PathLike, settings: CampaignSettings, bsettings:
 # -- the comparison itself --------------------------------------------------------------------
 @dataclass
 class ModelFit:
-    """GLD of one model's grid-point pressures and the damage probability predicted from it.
+    """GLD of one model's contact-spot peak pressures and the damage probability predicted from it.
 
     Attributes
     ----------
     model : str
         ``"asperity"`` or ``"bem"``.
     data : ndarray
-        Non-zero grid-point pressures pooled over the surfaces (MPa).
+        The peak pressure of every contact spot (8-connected region of the contact set),
+        pooled over the surfaces (MPa).
     n_ref : float
-        Points in contact per surface (mean): the n of the maximum and of the damage.
+        Contact spots per surface (mean); the damage uses the spots of every surface as a
+        random count (surfaces resampled by the bootstrap).
     param, method : str
         The fit used (the requested one, or a fallback as in the study).
     note : str
         Why a fallback was used, or why nothing could be fitted.
     boot : glstat.BootstrapFit or None
     damage : glstat.BootstrapProbability or None
-        ``1 − F(Pd)^n`` at the hardness Pd with its bootstrap interval.
+        ``1 − E[F(Pd)^N]`` at the hardness Pd with its bootstrap interval.
     """
 
     model: str
@@ -579,17 +606,22 @@ def _compare(entries: list[tuple[Any, dict[str, dict[str, np.ndarray]]]], a: Ana
     surfaces = pd.DataFrame(rows)
     fits = {}
     for j, m in enumerate(MODELS):
-        data = np.concatenate([np.asarray(rec[m]["samples"], dtype=float) for _, rec in entries]) / 1e6
-        n_ref = max(float(np.mean([int(rec[m]["n_contact"]) for _, rec in entries])), 1.0)
+        # the peak pressure of every contact spot, with the spots per surface as a random count:
+        # the study's primary predictor applied to each model alike
+        peaks = [np.asarray(rec[m]["cluster_peaks"], dtype=float) / 1e6 for _, rec in entries]
+        data = np.concatenate(peaks)
+        labels = np.repeat(np.arange(len(peaks)), [p.size for p in peaks])
+        n_ref = max(float(np.mean([p.size for p in peaks])), 1.0)
         f = ModelFit(model=m, data=data, n_ref=n_ref)
-        if data.size < 5:
-            f.note = f"only {data.size} pressures pooled over {len(entries)} surfaces; at least 5 are needed"
+        if data.size < 5 or len(peaks) < 2:
+            f.note = (f"only {data.size} spot peaks on {len(entries)} surfaces; at least 5 on two "
+                      f"surfaces are needed")
         else:
-            bf, p, meth, note = _bootstrap(data, a, _seed(a, *key, _SEED_SLOT + j))
+            bf, p, meth, note = _bootstrap(data, a, _seed(a, *key, _SEED_SLOT + j), groups=labels)
             f.param, f.method, f.note = p, meth, note
             if bf is not None:
                 f.boot = bf
-                f.damage = bf.damage_probability(a.hardness, n_ref)
+                f.damage = bf.damage_probability(a.hardness)
         fits[m] = f
     return BEMComparison(surfaces=surfaces, fits=fits, hardness=a.hardness,
                          confidence_level=a.confidence_level)
@@ -612,7 +644,7 @@ def compare_bem(
     """Compare the asperity model with the elastic BEM on your own surfaces.
 
     Each surface is solved with :func:`contact.solve` and :func:`contact.solve_bem` at the same
-    nominal pressure; the grid-point pressures of each model, pooled over the surfaces, get a
+    nominal pressure; the contact-spot peak pressures of each model, pooled over the surfaces, get a
     GLD by the study's method with a bootstrap, from which the damage probability at the
     hardness follows.
 

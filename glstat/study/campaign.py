@@ -8,18 +8,25 @@ it arrives, atomically, so an interrupted campaign resumes by computing only wha
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import datetime as _dt
+import errno
+import hashlib
 import io
 import json
 import math
 import os
+import socket
 import sys
 import tempfile
+import threading
 import time
 import warnings
 import zipfile
 from collections.abc import Callable, Iterable
-from concurrent.futures import Executor, Future, as_completed
+from concurrent.futures import CancelledError, Executor, Future, as_completed
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -31,6 +38,7 @@ __all__ = [
     "CampaignSettings",
     "SerialExecutor",
     "load_results",
+    "lock_directory",
     "make_executor",
     "run_campaign",
     "simulate_surface",
@@ -40,6 +48,8 @@ __all__ = [
 #: Version of the on-disk layout; part of the manifest.
 FORMAT_VERSION = 1
 MANIFEST = "manifest.json"
+#: The lock file of an output directory (holds the running campaign's pid, host, start, command).
+LOCK_FILE = ".glstat-lock"
 
 
 class CampaignError(RuntimeError):
@@ -68,7 +78,8 @@ class CampaignSettings:
         Frequency ratio of the Weierstrass series.
     n_terms : tuple of (int or None)
         Weierstrass terms per axis for each H (highest frequency ``gamma^(n_terms-1) / length``);
-        None means every frequency up to the grid's Nyquist limit.
+        None means every frequency up to the grid's Nyquist limit. One value applies to every H
+        (the default, 6, is repeated for as many exponents as ``hurst`` holds).
     E : float
         Young's modulus of the rough body in pascals.
     nu : float
@@ -88,7 +99,7 @@ class CampaignSettings:
     length: float = 1e-3
     rq: float = 1.6e-6
     gamma: float = 1.5
-    n_terms: tuple[int | None, ...] = (6, 6, 6)
+    n_terms: tuple[int | None, ...] = (6,)
     E: float = 210e9
     nu: float = 0.3
     cone_factor: float = 0.2
@@ -282,13 +293,203 @@ def atomic_write(path: str | os.PathLike, data: bytes) -> None:
         raise
 
 
+# -- the lock of an output directory ------------------------------------------------------------
+_HELD: dict[str, dict[str, Any]] = {}  # directories locked by this process: fd, depth, thread
+_HELD_GUARD = threading.Lock()
+
+
+def _lock_info() -> dict[str, Any]:
+    return {"pid": os.getpid(), "host": socket.gethostname(),
+            "started": _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat(),
+            "command": " ".join([os.path.basename(sys.argv[0] or "python"), *sys.argv[1:]])}
+
+
+def _describe_holder(path: Path) -> str:
+    try:
+        info = json.loads(path.read_text(encoding="utf-8") or "{}")
+    except (OSError, ValueError):
+        info = {}
+    if not isinstance(info, dict) or "pid" not in info:
+        return "another process (its description is not readable)"
+    return (f"pid {info.get('pid')} on {info.get('host')}, started {info.get('started')}, "
+            f"command: {info.get('command')}")
+
+
+def _try_lock(fd: int) -> bool:
+    """Take the exclusive lock on ``fd`` without waiting; False when another process holds it."""
+    try:
+        if os.name == "nt":  # pragma: no cover - Windows
+            import msvcrt
+
+            msvcrt.locking(fd, msvcrt.LK_NBLCK, 1)
+        else:
+            import fcntl
+
+            # a POSIX record lock: owned by this process, not inherited by worker processes,
+            # released by the system when the process ends (kill -9 included)
+            fcntl.lockf(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError as exc:
+        if exc.errno in (errno.EACCES, errno.EAGAIN) or isinstance(exc, BlockingIOError):
+            return False
+        if exc.errno in (errno.ENOLCK, errno.EOPNOTSUPP, errno.ENOSYS):
+            print(f"note: the file system does not support locks ({exc.strerror}); make sure no "
+                  f"other campaign uses this output directory", file=sys.stderr)
+            return True
+        raise
+    return True
+
+
+@contextlib.contextmanager
+def lock_directory(root: str | os.PathLike, *, wait: bool = False, poll: float = 0.5,
+                   on_wait: Callable[[str], None] | None = None):
+    """Hold the exclusive lock of a campaign's output directory for the ``with`` block.
+
+    Parameters
+    ----------
+    root : path
+        The output directory (created if needed).
+    wait : bool
+        When another campaign holds the lock, wait until it ends instead of refusing.
+    poll : float
+        Seconds between two attempts while waiting.
+    on_wait : callable, optional
+        Called once with the description of the running campaign when waiting starts.
+
+    Raises
+    ------
+    CampaignError
+        Another process (or another thread of this one) holds the lock and ``wait`` is
+        False; the message names it (pid, host, start time and command). Or the directory
+        cannot be created or written.
+
+    Notes
+    -----
+    The lock is re-entrant in the thread that holds it (``glstat study`` holds it for the
+    whole run; :func:`run_campaign` and the BEM comparison take it again). On Linux and macOS
+    it is a POSIX record lock (``fcntl.lockf``) of ``<root>/.glstat-lock``: the system
+    releases it when the process ends, however it ends, so a killed campaign leaves no stale
+    lock. Network file systems without lock support get a note and no protection. On
+    Windows it is an ``msvcrt.locking`` byte lock.
+    """
+    root = Path(root)
+    _check_writable(root)
+    key = os.path.realpath(root)
+    me = threading.get_ident()
+    announced = False
+    while True:
+        with _HELD_GUARD:
+            held = _HELD.get(key)
+            if held is None:
+                path = root / LOCK_FILE
+                try:
+                    fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0), 0o644)
+                except OSError as exc:
+                    raise CampaignError(f"cannot create the lock file {path} ({exc.strerror or exc}); "
+                                        f"choose a writable --out") from None
+                if _try_lock(fd):
+                    data = json.dumps(_lock_info()).encode()
+                    os.ftruncate(fd, 0)
+                    os.pwrite(fd, data, 0) if hasattr(os, "pwrite") else os.write(fd, data)
+                    _HELD[key] = {"fd": fd, "depth": 1, "thread": me}
+                    break
+                os.close(fd)
+                holder = _describe_holder(path)
+            elif held["thread"] == me:
+                held["depth"] += 1
+                break
+            else:
+                holder = f"another thread of this process (pid {os.getpid()})"
+        if not wait:
+            raise CampaignError(
+                f"{root} is in use by another campaign ({holder}); wait for it to end, pass "
+                f"--wait (wait=True) to start when it does, or choose another --out"
+            )
+        if not announced and on_wait is not None:
+            on_wait(holder)
+        announced = True
+        time.sleep(poll)
+    try:
+        yield
+    finally:
+        with _HELD_GUARD:
+            held = _HELD[key]
+            held["depth"] -= 1
+            if held["depth"] == 0:
+                del _HELD[key]
+                fd = held["fd"]
+                try:
+                    os.ftruncate(fd, 0)
+                except OSError:
+                    pass
+                os.close(fd)  # closing releases the lock
+
+
+def _holds_lock(root: Path) -> bool:
+    with _HELD_GUARD:
+        held = _HELD.get(os.path.realpath(root))
+    return held is not None and held["thread"] == threading.get_ident()
+
+
+def _remove_stale_temporaries(root: Path) -> int:
+    """Delete the temporary files an interrupted run left (``.<name>.<random>.tmp``); the
+    caller holds the directory's lock, so no running write owns them."""
+    n = 0
+    for folder in (root, *root.glob("H*_P*MPa")):
+        for f in folder.glob(".*.tmp"):
+            try:
+                f.unlink()
+                n += 1
+            except OSError:
+                pass
+        for f in folder.glob(".write-test.*"):
+            with contextlib.suppress(OSError):
+                f.unlink()
+    return n
+
+
+def write_failure(exc: OSError, path: str | os.PathLike) -> str:
+    """A sentence on a failed write: the file, the system's reason, and what to do."""
+    reason = exc.strerror or str(exc)
+    hint = {errno.ENOSPC: "free some disk space", errno.EDQUOT: "free some of your disk quota",
+            errno.EROFS: "the file system is read-only; choose another --out",
+            errno.EACCES: "check the directory's permissions",
+            errno.EPERM: "check the directory's permissions"}.get(exc.errno, "check the disk")
+    return f"cannot write {path} ({reason}): {hint}"
+
+
+def _create_exclusive(path: Path, data: bytes) -> None:
+    """Create ``path`` holding ``data``, atomically and only if it does not exist (a complete
+    file appears at once, through a hard link of a temporary file, or ``O_EXCL``)."""
+    fd, tmp = tempfile.mkstemp(prefix="." + path.name + ".", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
+        os.chmod(tmp, 0o644)
+        try:
+            os.link(tmp, path)
+        except FileExistsError:
+            raise
+        except OSError:  # no hard links on this file system
+            fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+            with os.fdopen(fd, "wb") as f:
+                f.write(data)
+                f.flush()
+                os.fsync(f.fileno())
+    finally:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+
+
 #: Arrays every stored surface holds (the analysis reads them); ``in_jump`` and
 #: ``force_jump`` are optional (files written before they existed lack them).
 SURFACE_ARRAYS = ("samples", "asperity_peak", "max_pressure", "mean_pressure", "alpha",
                   "n_contact", "n_points", "n_asperities", "force_error")
 
 
-def _npz_problem(path: Path, names: tuple[str, ...]) -> str | None:
+def _npz_problem(path: Path, names: tuple[str, ...],
+                 expect: dict[str, Any] | None = None) -> str | None:
     """Why ``path`` is not a readable .npz archive holding every array of ``names``.
 
     Every member of the archive is read, so a damaged file (a bad CRC, a truncated or
@@ -300,11 +501,14 @@ def _npz_problem(path: Path, names: tuple[str, ...]) -> str | None:
         The archive.
     names : tuple of str
         Array names (without ``.npy``) it must hold.
+    expect : dict, optional
+        Arrays that identify the result (``task_key``, ``task_seed``, ``campaign_id``) and
+        their expected values.
 
     Returns
     -------
     str or None
-        None for a complete file; ``"missing"`` when there is no file; otherwise the
+        None for a complete file of the expected result; ``"missing"`` when there is no file; otherwise the
         problem as the end of a sentence about the file (the error met while reading, or
         the arrays it lacks).
     """
@@ -312,17 +516,33 @@ def _npz_problem(path: Path, names: tuple[str, ...]) -> str | None:
         return "missing"
     try:
         with np.load(path, allow_pickle=False) as z:
-            for name in z.files:
-                z[name]
+            arrays = {name: z[name] for name in z.files}
             lacking = [name for name in names if name not in z.files]
     except Exception as exc:
         return f"is unreadable ({type(exc).__name__}: {exc})"
     if lacking:
         return f"lacks the array(s) {', '.join(lacking)}"
+    return _identity_problem(arrays, expect)
+
+
+def _identity_problem(arrays: dict[str, np.ndarray], expect: dict[str, Any] | None) -> str | None:
+    """Why stored ``arrays`` are not the result ``expect`` describes (``task_key``,
+    ``task_seed``, ``campaign_id``), or None."""
+    if not expect:
+        return None
+    if "task_key" not in arrays:
+        return "does not record which surface it holds (written by an earlier version)"
+    for name, want in expect.items():
+        got = arrays.get(name)
+        if got is None or np.asarray(got).tolist() != np.asarray(want).tolist():
+            shown = None if got is None else np.asarray(got).tolist()
+            return (f"holds another result ({name} {shown!r} instead of "
+                    f"{np.asarray(want).tolist()!r}; a file copied or moved over it?)")
     return None
 
 
-def _npz_has(path: Path, names: tuple[str, ...], note: bool = True) -> bool:
+def _npz_has(path: Path, names: tuple[str, ...], note: bool = True,
+             expect: dict[str, Any] | None = None) -> bool:
     """Whether ``path`` is a readable .npz archive holding every array of ``names``.
 
     Parameters
@@ -334,20 +554,18 @@ def _npz_has(path: Path, names: tuple[str, ...], note: bool = True) -> bool:
     note : bool
         Print a one-line note to stderr when the file exists but is damaged or incomplete
         (it is then computed again and replaced).
+    expect : dict, optional
+        The identity the file must record (see :func:`_npz_problem`).
 
     Returns
     -------
     bool
         False for a missing, truncated or unreadable file, or one without some of ``names``.
     """
-    problem = _npz_problem(path, names)
+    problem = _npz_problem(path, names, expect)
     if problem is not None and problem != "missing" and note:
         print(f"note: {path} {problem}; computing it again", file=sys.stderr)
     return problem is None
-
-
-def _is_complete(path: Path) -> bool:
-    return _npz_has(path, SURFACE_ARRAYS)
 
 
 def _check_writable(root: Path) -> None:
@@ -364,8 +582,12 @@ def _check_writable(root: Path) -> None:
 
 
 def _prepare_dir(root: Path, settings: CampaignSettings, force: bool) -> None:
-    _check_writable(root)
+    """Check (or create) the manifest of a campaign in ``root``, whose lock the caller holds."""
     mpath = root / MANIFEST
+    n_stale = _remove_stale_temporaries(root)
+    if n_stale:
+        print(f"note: removed {n_stale} temporary file(s) left in {root} by an interrupted run",
+              file=sys.stderr)
     ident = settings.identity()
     old = None
     if mpath.exists():
@@ -393,12 +615,26 @@ def _prepare_dir(root: Path, settings: CampaignSettings, force: bool) -> None:
             for sub in root.glob("H*_P*MPa"):
                 for f in [*sub.glob("surface_*"), *sub.glob("bem_*")]:
                     f.unlink()
+            old = {}
     manifest = {"campaign": ident, "created": time.strftime("%Y-%m-%dT%H:%M:%S")}
-    if old == ident:
-        previous = json.loads(mpath.read_text())
-        # Keep the other sections (the BEM comparison's settings) of a resumed campaign.
-        manifest = {**previous, **manifest, "created": previous.get("created", manifest["created"])}
-    atomic_write(mpath, json.dumps(manifest, indent=2).encode())
+    try:
+        if old is None:
+            try:
+                _create_exclusive(mpath, json.dumps(manifest, indent=2).encode())
+            except FileExistsError:
+                raise CampaignError(
+                    f"{mpath} appeared while this campaign was starting: another campaign uses "
+                    f"{root}; wait for it to end or choose another --out"
+                ) from None
+            return
+        if old == ident:
+            previous = json.loads(mpath.read_text())
+            # Keep the other sections (the BEM comparison's settings) of a resumed campaign.
+            manifest = {**previous, **manifest,
+                        "created": previous.get("created", manifest["created"])}
+        atomic_write(mpath, json.dumps(manifest, indent=2).encode())
+    except OSError as exc:
+        raise CampaignError(write_failure(exc, mpath) + "; nothing was computed") from None
 
 
 # -- executors -----------------------------------------------------------------------------------
@@ -457,8 +693,43 @@ def make_executor(workers: int | None = None, scheduler: str | None = None,
         return ex, ex.shutdown
     from concurrent.futures import ProcessPoolExecutor
 
-    ex = ProcessPoolExecutor(n)
+    ex = ProcessPoolExecutor(n, initializer=_init_worker, initargs=(os.getpid(),))
     return ex, lambda: ex.shutdown(cancel_futures=True)
+
+
+def _init_worker(parent: int) -> None:
+    """Set up a local worker process: it ends with its parent and leaves Ctrl-C to it.
+
+    On Linux the kernel sends the worker SIGKILL when the parent dies (``PR_SET_PDEATHSIG``),
+    so ``kill -9`` of a campaign leaves no worker behind. Elsewhere a daemon thread checks
+    the parent once a second and ends the worker when it is gone. Ctrl-C (SIGINT, sent to
+    the whole process group) is ignored by the workers: the parent stops the campaign and
+    reports it once. These settings belong to the worker process alone.
+    """
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            pr_set_pdeathsig = 1
+            libc.prctl(pr_set_pdeathsig, signal.SIGKILL, 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+        else:
+            if os.getppid() != parent:  # the parent died before the request took effect
+                os._exit(1)
+            return
+
+    def watch():
+        while True:
+            if os.getppid() != parent:
+                os._exit(1)
+            time.sleep(1.0)
+
+    threading.Thread(target=watch, name="glstat-parent-watch", daemon=True).start()
 
 
 # -- the campaign --------------------------------------------------------------------------------
@@ -498,6 +769,7 @@ def run_campaign(
     force: bool = False,
     progress: bool = True,
     max_pending: int | None = None,
+    wait: bool = False,
 ) -> CampaignRun:
     """Run (or resume) a campaign of contact simulations, saving every surface as it finishes.
 
@@ -521,6 +793,8 @@ def run_campaign(
         Show a tqdm progress bar.
     max_pending : int, optional
         Tasks in flight at once (default 4 per worker, at least 8).
+    wait : bool
+        When another campaign runs in ``out``, wait for it to end instead of refusing.
 
     Returns
     -------
@@ -529,8 +803,11 @@ def run_campaign(
     Raises
     ------
     CampaignError
-        Unwritable directory, a manifest with different settings, or a failed task (the
-        surfaces finished before it are kept; rerunning the same call resumes).
+        Another campaign runs in ``out`` (the message names it), unwritable directory, a
+        manifest with different settings, a failed task, a lost Dask scheduler or worker
+        pool, or a failed write (disk full, read-only file system). The surfaces finished
+        before are kept, those in flight are saved where possible, and rerunning the same
+        call resumes.
 
     Notes
     -----
@@ -539,34 +816,69 @@ def run_campaign(
     ``SeedSequence(seed).spawn`` produces at that position of the nested spawn — so its
     result does not depend on the executor, the worker count or the order of completion.
     Results are written by the calling process (workers need no shared file system).
+    Each file also stores ``task_key`` (ih, il, i), ``task_seed`` and ``campaign_id``
+    (:func:`task_stamp`), checked when the campaign resumes and when results are loaded.
+    The output directory is locked for the call (:func:`lock_directory`); temporary files
+    left by an interrupted run are removed when it resumes.
     """
     t0 = time.perf_counter()
     root = Path(out)
-    _prepare_dir(root, settings, force)
-    run = CampaignRun(out=root, settings=settings)
-    def path_of(key):
-        return surface_path(root, settings, *key)
+    with lock_directory(root, wait=wait):
+        _prepare_dir(root, settings, force)
+        run = CampaignRun(out=root, settings=settings)
+        stamp = task_stamp(settings)
 
-    todo = split_stored(settings.tasks(), path_of, _is_complete, run)
-    if not todo:
-        run.wall_time = time.perf_counter() - t0
-        return run
-    n_workers = workers or os.cpu_count() or 1
-    exc = compute_and_save(_task, (settings,), todo, path_of, run, total=len(settings.tasks()),
-                           executor=executor, workers=workers,
-                           limit=max_pending or max(8, 4 * n_workers), desc="surfaces",
-                           progress=progress)
-    if exc is not None:
-        _record_times(root, run.task_times)
+        def path_of(key):
+            return surface_path(root, settings, *key)
+
+        def complete(path, key):
+            return _npz_has(path, SURFACE_ARRAYS, expect={"task_key": key, **stamp})
+
+        todo = split_stored(settings.tasks(), path_of, complete, run)
+        if not todo:
+            run.wall_time = time.perf_counter() - t0
+            return run
+        n_workers = workers or os.cpu_count() or 1
+        exc = compute_and_save(_task, (settings,), todo, path_of, run, total=len(settings.tasks()),
+                               executor=executor, workers=workers,
+                               limit=max_pending or max(8, 4 * n_workers), desc="surfaces",
+                               progress=progress, stamp=stamp)
         n_saved = run.skipped + len(run.computed)
-        raise CampaignError(
-            f"a surface task failed ({type(exc).__name__}: {exc}); {n_saved} of "
-            f"{len(settings.tasks())} surfaces are saved in {root}; rerun the same "
-            f"command to compute only the missing ones"
-        ) from exc
-    _record_times(root, run.task_times)
+        _record_times(root, run.task_times, exc is None)
+        if exc is not None:
+            raise CampaignError(
+                f"{task_failure(exc, 'a surface task')}; {n_saved} of {len(settings.tasks())} "
+                f"surfaces are saved in {root}; rerun the same command to compute only the "
+                f"missing ones"
+            ) from exc
     run.wall_time = time.perf_counter() - t0
     return run
+
+
+def task_stamp(settings: CampaignSettings) -> dict[str, np.ndarray]:
+    """The arrays that tie a stored result to its campaign (besides its ``task_key``).
+
+    ``task_seed`` is the campaign's root seed and ``campaign_id`` a digest of
+    :meth:`CampaignSettings.identity`; with ``task_key`` = (ih, il, i) they identify the
+    surface a file holds, so a file copied over another is detected when it is loaded.
+    """
+    digest = hashlib.sha256(json.dumps(settings.identity(), sort_keys=True).encode()).hexdigest()
+    return {"task_seed": np.int64(settings.seed), "campaign_id": np.str_(digest[:16])}
+
+
+def task_failure(exc: BaseException, what: str) -> str:
+    """The first part of the message of a campaign that stopped on ``exc``."""
+    if isinstance(exc, OSError) and getattr(exc, "filename", None) and exc.errno is not None:
+        return write_failure(exc, exc.filename)
+    if isinstance(exc, BrokenProcessPool):
+        return ("a worker process died (killed, or out of memory) and the local process pool "
+                "stopped")
+    if isinstance(exc, CancelledError):
+        return ("the executor cancelled the tasks still running: the Dask scheduler (or the "
+                "worker pool) was lost; check that the scheduler is running")
+    if isinstance(exc, KeyboardInterrupt):
+        return "interrupted"
+    return f"{what} failed ({type(exc).__name__}: {exc})"
 
 
 def execute_tasks(executor: Executor, fn: Callable, args: tuple, todo: Iterable, save: Callable,
@@ -591,8 +903,16 @@ def execute_tasks(executor: Executor, fn: Callable, args: tuple, todo: Iterable,
     Returns
     -------
     Exception or None
-        The first failure. Tasks not yet started are then cancelled, and those that finish
-        anyway are saved before returning, so nothing computed is lost.
+        The first failure: of a task, of the executor (a lost Dask scheduler cancels the
+        tasks, a dead worker breaks a process pool) or of a write (``OSError``: disk full,
+        read-only file system). Tasks not yet started are then cancelled, and those that
+        finish anyway are saved before returning (when the disk allows), so nothing computed
+        is lost.
+
+    Raises
+    ------
+    KeyboardInterrupt
+        After saving the tasks already finished.
     """
     pending: set[Future] = set()
     queue = iter(todo)
@@ -603,28 +923,50 @@ def execute_tasks(executor: Executor, fn: Callable, args: tuple, todo: Iterable,
             if len(pending) >= limit:
                 break
 
-    fill()
-    while pending:
-        done = next(as_completed(pending))
-        pending.discard(done)
-        try:
-            key, arrays, seconds = done.result()
-        except Exception as exc:
-            for f in pending:
-                f.cancel()
-            for f in pending:
-                if f.cancelled():
-                    continue
-                try:
-                    key, arrays, seconds = f.result()
-                except Exception:
-                    continue
+    def drain(stop_saving: bool) -> None:
+        for f in pending:
+            f.cancel()
+        for f in pending:
+            if f.cancelled():
+                continue
+            try:
+                key, arrays, seconds = f.result()
+            except Exception:  # every failure is already reported
+                continue
+            if stop_saving:
+                continue
+            try:
                 save(key, arrays, seconds)
-            return exc
-        save(key, arrays, seconds)
-        if bar is not None:
-            bar.update(1)
+            except OSError:
+                stop_saving = True
+
+    try:
         fill()
+        while pending:
+            done = next(as_completed(pending))
+            pending.discard(done)
+            try:
+                key, arrays, seconds = done.result()
+            except Exception as exc:  # CancelledError and BrokenProcessPool included
+                drain(False)
+                return exc
+            try:
+                save(key, arrays, seconds)
+            except OSError as exc:
+                drain(False)
+                return exc
+            if bar is not None:
+                bar.update(1)
+            fill()
+    except KeyboardInterrupt:
+        for f in pending:
+            f.cancel()
+        for f in pending:
+            if f.done() and not f.cancelled() and f.exception() is None:
+                key, arrays, seconds = f.result()
+                with contextlib.suppress(OSError):
+                    save(key, arrays, seconds)
+        raise
     return None
 
 
@@ -638,7 +980,7 @@ def split_stored(keys: Iterable, path_of: Callable, complete: Callable, run: Any
     path_of : callable
         ``path_of(key)``, the file of one result.
     complete : callable
-        ``complete(path)``, whether that file holds a finished result.
+        ``complete(path, key)``, whether that file holds the finished result of ``key``.
     run : CampaignRun or BEMRun
         The record of the call; its ``skipped`` is increased.
 
@@ -649,7 +991,7 @@ def split_stored(keys: Iterable, path_of: Callable, complete: Callable, run: Any
     """
     todo = []
     for key in keys:
-        if complete(path_of(key)):
+        if complete(path_of(key), key):
             run.skipped += 1
         else:
             todo.append(key)
@@ -658,7 +1000,8 @@ def split_stored(keys: Iterable, path_of: Callable, complete: Callable, run: Any
 
 def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, run: Any, *,
                      total: int, executor: Executor | None, workers: int | None, limit: int,
-                     desc: str, progress: bool) -> BaseException | None:
+                     desc: str, progress: bool,
+                     stamp: dict[str, np.ndarray] | None = None) -> BaseException | None:
     """Compute the results of ``todo`` with :func:`execute_tasks` and write each atomically.
 
     Parameters
@@ -686,11 +1029,15 @@ def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, r
         Label of the progress bar.
     progress : bool
         Show a tqdm progress bar.
+    stamp : dict of ndarray, optional
+        Arrays stored in every file besides the result and its ``task_key``
+        (:func:`task_stamp`).
 
     Returns
     -------
     Exception or None
-        The first failure of a task (results finished before and around it are saved).
+        The first failure of a task, of the executor or of a write (results finished before
+        and around it are saved where possible).
     """
     shutdown = None
     if executor is None:
@@ -701,7 +1048,8 @@ def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, r
                disable=not progress, leave=False)
 
     def save(key, arrays, seconds):
-        atomic_write(path_of(key), _npz_bytes(arrays))
+        stored = {**arrays, "task_key": np.asarray(key, dtype=np.int64), **(stamp or {})}
+        atomic_write(path_of(key), _npz_bytes(stored))
         run.computed.append(key)
         run.task_times[key] = seconds
 
@@ -713,16 +1061,23 @@ def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, r
             shutdown()
 
 
-def _record_times(root: Path, times: dict) -> None:
+def _record_times(root: Path, times: dict, strict: bool = True) -> None:
+    """Add the seconds per task to ``timings.json`` (``strict``: a failed write is a
+    CampaignError; otherwise, when the run already failed, it is left out)."""
     path = root / "timings.json"
     old = {}
     if path.exists():
         try:
             old = json.loads(path.read_text())
-        except ValueError:
+        except (OSError, ValueError):
             old = {}
     old.update({"/".join(map(str, k)): v for k, v in times.items()})
-    atomic_write(path, json.dumps(old, indent=1, sort_keys=True).encode())
+    try:
+        atomic_write(path, json.dumps(old, indent=1, sort_keys=True).encode())
+    except OSError as exc:
+        if strict:
+            raise CampaignError(write_failure(exc, path) + "; the surfaces are saved, rerun the "
+                                "same command once the problem is fixed") from None
 
 
 def load_results(out: str | os.PathLike, settings: CampaignSettings,
@@ -743,11 +1098,14 @@ def load_results(out: str | os.PathLike, settings: CampaignSettings,
     Raises
     ------
     CampaignError
-        A requested surface is missing, unreadable or lacks an array the analysis needs (the
-        message names the file; rerunning the campaign computes it again).
+        A requested surface is missing, unreadable, lacks an array the analysis needs, or
+        holds another surface or campaign than its name says (the message names the file;
+        rerunning the campaign computes it again).
     """
     res = {}
+    stamp = task_stamp(settings)
     for key in settings.tasks() if keys is None else keys:
+        key = tuple(int(v) for v in key)
         path = surface_path(out, settings, *key)
         if not path.is_file():
             raise CampaignError(f"{path} is missing: run the campaign (it resumes) before analysing")
@@ -764,5 +1122,11 @@ def load_results(out: str | os.PathLike, settings: CampaignSettings,
             raise CampaignError(
                 f"{path} lacks the array(s) {', '.join(lacking)}; rerun the campaign (the same "
                 f"glstat study command) to compute this surface again"
+            )
+        problem = _identity_problem(res[key], {"task_key": key, **stamp})
+        if problem is not None:
+            raise CampaignError(
+                f"{path} {problem}; rerun the campaign (the same glstat study command) to "
+                f"compute this surface again"
             )
     return res
