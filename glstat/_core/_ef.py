@@ -86,6 +86,17 @@ def dd_root(s, t, a):
     ``eps * |log(result)|`` of relative accuracy; the power itself is one libm ``pow``.
     Returns (value, log_value).
     """
+    if 0.99999 < s < 1.00001:
+        # s + t = 1 + W with |W| < 1e-5 (tiny shapes): log1p(W) by its series as a
+        # double-double and divided by a with an exact remainder, so that the result keeps
+        # its relative accuracy instead of eps * |log(result)|
+        w_hi, w_lo = two_sum(s - 1.0, t)
+        c = w_hi * (-0.5 + w_hi * (1.0 / 3.0 + w_hi * (-0.25 + w_hi * 0.2)))
+        l_hi, l_lo = fast_two_sum(w_hi, w_lo + w_hi * c)
+        q = l_hi / a
+        pp, pe = two_prod(q, a)
+        q_lo = (((l_hi - pp) - pe) + l_lo) / a
+        return math.exp(q) * math.exp(q_lo), q + q_lo
     e_hi, e_lo = reciprocal_dd(a)
     ls = math.log(s)
     corr = e_hi * math.log1p(t / s) + e_lo * ls

@@ -90,6 +90,16 @@ def _em(lam, logx):
 
 
 @njit(cache=True, error_model="numpy")
+def _l1pd(lam, w):
+    """log1p(lam w)/lam, with the limit w at lam = 0 and a series for |lam w| < 1e-5 (where
+    the product would lose relative accuracy for a subnormal lam)."""
+    m = lam * w
+    if abs(m) < 1e-5:
+        return w * (1.0 + m * (-0.5 + m * (1.0 / 3.0 + m * (-0.25 + m * 0.2))))
+    return math.log1p(m) / lam
+
+
+@njit(cache=True, error_model="numpy")
 def _inv_diff_dd(a, b):
     """1/b - 1/a as a double-double (a, b > 0 with finite reciprocals)."""
     ra_hi, ra_lo = reciprocal_dd(a)
@@ -193,25 +203,64 @@ def _lower_end_offset(case, a, y):
     return y, 0.0
 
 
-@njit(cache=True, error_model="numpy")
-def _fkml_target(a, b, z_hi, z_lo):
-    """w = z - 1/b as a double-double, z = y + 1/a (FKML, a, b > 0): the target of the power
-    part p**a/a - (1-p)**b/b of Q."""
-    rb_hi, rb_lo = reciprocal_dd(b)
-    w_hi, w_lo = two_sum(z_hi, -rb_hi)
-    return fast_two_sum(w_hi, w_lo + (z_lo - rb_lo))
+# |y - C| below which the power-form residual is taken in logarithms (the powers that
+# balance it are then near or below the subnormal range)
+_TINY_TARGET = 1e-250
 
 
 @njit(cache=True, error_model="numpy")
-def _fkml_pow_residual(a, b, z_hi, z_lo, t, p, l1):
-    """FKML residual where both powers are below 1/2: p**a/a - (1-p)**b/b - (z - 1/b)."""
-    w_hi, w_lo = _fkml_target(a, b, z_hi, z_lo)
-    pa = math.exp(a * t)
-    pb = math.exp(b * l1)
-    r = ((pa / a - pb / b) - w_hi) - w_lo
-    dh = p * math.exp((b - 1.0) * l1)
-    k = min(dh / pa, pa / dh)
-    return r, pa + dh, EPS * (pa / a + pb / b + abs(w_hi)), k
+def _pow_target(fam, a, b, y, y_lo):
+    """w = y - C as a double-double for the power form Q = C + alpha p**a - beta (1-p)**b
+    (RS region 3: C = 0, alpha = beta = 1; FKML, a, b > 0: C = 1/b - 1/a, alpha = 1/a,
+    beta = 1/b)."""
+    if fam == RS:
+        return fast_two_sum(y, y_lo) if abs(y) >= abs(y_lo) else two_sum(y, y_lo)
+    c_hi, c_lo = _inv_diff_dd(a, b)
+    w_hi, w_lo = two_sum(y, -c_hi)
+    return fast_two_sum(w_hi, w_lo + (y_lo - c_lo))
+
+
+@njit(cache=True, error_model="numpy")
+def _pow_logres(fam, a, b, w, t, p, l1):
+    """The power-form residual alpha p**a - beta (1-p)**b - w in logarithms (increasing in
+    t, same sign), with its t-derivative: exact where the powers underflow."""
+    la = a * t
+    lb = b * l1
+    if fam == FKML:
+        la -= math.log(a)
+        lb -= math.log(b)
+    db = b * p / (1.0 - p)
+    if w > 0.0:
+        lw = math.log(w)
+        hi = max(lw, lb)
+        m = hi + math.log1p(math.exp(min(lw, lb) - hi))
+        return la - m, a + math.exp(lb - m) * db, EPS * (abs(la) + abs(m))
+    if w < 0.0:
+        lw = math.log(-w)
+        hi = max(lw, la)
+        m = hi + math.log1p(math.exp(min(lw, la) - hi))
+        return m - lb, math.exp(la - m) * a + db, EPS * (abs(lb) + abs(m))
+    return la - lb, a + db, EPS * (abs(la) + abs(lb))
+
+
+@njit(cache=True, error_model="numpy")
+def _pow_residual(fam, a, b, y, y_lo, t, p, l1):
+    """Residual where both powers are below 1/2 (large shapes): alpha p**a - beta (1-p)**b - w
+    taken in logarithms, where it is close to linear in t (the powers themselves vary like
+    exp(a t) and may underflow). The contraction is that of the direct form, so that the
+    closed-form steps of `_fixed_point` polish the root where the powers are representable."""
+    w_hi, _ = _pow_target(fam, a, b, y, y_lo)
+    r, dr, noise = _pow_logres(fam, a, b, w_hi, t, p, l1)
+    if abs(w_hi) < _TINY_TARGET:
+        return r, dr, noise, 1.0
+    al = 1.0 / a if fam == FKML else 1.0
+    be = 1.0 / b if fam == FKML else 1.0
+    dh = be * b * p * math.exp((b - 1.0) * l1)
+    da = al * a * math.exp(a * t)
+    k = min(dh / da, da / dh)
+    if not k == k:
+        k = 1.0
+    return r, dr, noise, k
 
 
 @njit(cache=True, error_model="numpy")
@@ -263,13 +312,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         h = -math.expm1(b * l1) if b != 0.0 else 0.0
         if a * t < -LN2 and b * l1 < -LN2:
             # both powers below 1/2: difference of the powers themselves, no cancellation
-            pa = math.exp(a * t)
-            pb = math.exp(b * l1)
-            r = ((pa - pb) - y) - y_lo
-            dh = b * p * math.exp((b - 1.0) * l1)
-            da = a * pa
-            k = min(dh / da, da / dh)
-            return r, da + dh, EPS * (pa + pb + abs(y)), k
+            return _pow_residual(RS, a, b, y, y_lo, t, p, l1)
         r = ((ema + h) - y) - y_lo
         pa = ema + 1.0
         dh = b * p * math.exp((b - 1.0) * l1)
@@ -277,10 +320,10 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         k = min(dh / da, da / dh)
         return r, da + dh, EPS * (abs(ema) + h + abs(y)), k
     if (case == _FPD or case == _FPOS) and _fkml_both_small(a, b, t, l1):
-        return _fkml_pow_residual(a, b, z_hi, z_lo, t, p, l1)
+        return _pow_residual(FKML, a, b, y, y_lo, t, p, l1)
     if case == _FPD:
-        g = math.expm1(a * t) / a
-        h = -math.expm1(b * l1) / b if b != 0.0 else -l1
+        g = _em(a, t)
+        h = -_em(b, l1)
         r = ((g + h) - y) - y_lo
         pa = math.exp(a * t)
         dh = p * math.exp((b - 1.0) * l1)
@@ -288,7 +331,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         return r, pa + dh, EPS * (abs(g) + h + abs(y)), k
     if case == _FPOS:
         pa = math.exp(a * t)
-        h = -math.expm1(b * l1) / b if b != 0.0 else -l1
+        h = -_em(b, l1)
         d = pa / a + h
         r = (d - z_hi) - z_lo
         dh = p * math.exp((b - 1.0) * l1)
@@ -296,11 +339,22 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         return r, pa + dh, EPS * (d + abs(z_hi)), k
     # _FINF
     g = _em(a, t)
-    h = -math.expm1(b * l1) / b if b != 0.0 else -l1
+    h = -_em(b, l1)
     r = ((g + h) - y) - y_lo
     dg = math.exp(a * t)
     dh = p * math.exp((b - 1.0) * l1)
     return r, dg + dh, EPS * (abs(g) + h + abs(y)), dh / dg
+
+
+@njit(cache=True, error_model="numpy")
+def _small_root(a, w_hi, w_lo):
+    """(p, log p) with p**a = 1 + a w, i.e. log p = w * log1p(a w)/(a w), for |a w| < 1e-5:
+    the product a w only enters the series correction, so that tiny and subnormal a keep
+    full accuracy (and a = 0 gives p = e^w)."""
+    m = a * w_hi
+    c = m * (-0.5 + m * (1.0 / 3.0 + m * (-0.25 + m * 0.2)))
+    t_lo = w_lo + w_hi * c
+    return math.exp(w_hi) * math.exp(t_lo), w_hi + t_lo
 
 
 @njit(cache=True, error_model="numpy")
@@ -353,6 +407,8 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         # whichever power dominates, with the other moved to the target side
         pa = math.exp(a * t)
         pb = math.exp(b * l1)
+        if abs(y) < _TINY_TARGET and a * t < -LN2 and b * l1 < -LN2:
+            return p, t  # the logarithmic residual has no closed-form step
         if b == 0.0 or a * pa >= b * p * math.exp((b - 1.0) * l1):
             s1, e1 = two_sum(y, pb)
             e1 += y_lo
@@ -377,8 +433,10 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
             return math.nan, math.nan
         return dd_root(b_hi, b_e + w_lo, a)
     if (case == _FPOS or case == _FPD) and _fkml_both_small(a, b, t, l1):
-        # both powers below 1/2: p^a/a - (1-p)^b/b = w = z - 1/b, no 1/a or 1/b offsets
-        w_hi, w_lo = _fkml_target(a, b, z_hi, z_lo)
+        # both powers below 1/2: p^a/a - (1-p)^b/b = w = y - (1/b - 1/a), no 1/a offsets
+        w_hi, w_lo = _pow_target(FKML, a, b, y, y_lo)
+        if abs(w_hi) < _TINY_TARGET:
+            return p, t  # the logarithmic residual has no closed-form step
         pa = math.exp(a * t)
         pb = math.exp(b * l1)
         if pa >= p * math.exp((b - 1.0) * l1):
@@ -397,11 +455,13 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         # drop the digits of y once 1/a is large)
         case = _FPD
     if case == _FPD:
-        h = -math.expm1(b * l1) / b if b != 0.0 else -l1
+        h = -_em(b, l1)
         if math.exp(a * t) >= p * math.exp((b - 1.0) * l1):
             # p^a = 1 + a (y - H), through a double-double 1 + m (exact also for tiny a)
             w_hi, w_lo = two_sum(y, -h)
             w_lo += y_lo
+            if abs(a * w_hi) < 1e-5:
+                return _small_root(a, w_hi, w_lo)
             m_hi, m_lo = two_prod(a, w_hi)
             m_lo += a * w_lo
             b_hi, b_e = two_sum(1.0, m_hi)
@@ -410,11 +470,11 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
             return dd_root(b_hi, b_e + m_lo, a)
         w = (y - _em(a, t)) + y_lo
         if b != 0.0:
-            return _from_p(-math.expm1(math.log1p(-b * w) / b))
+            return _from_p(-math.expm1(-_l1pd(-b, w)))
         return _from_p(-math.expm1(-w))
     if case == _FPOS:
         pa = math.exp(a * t)
-        h = -math.expm1(b * l1) / b if b != 0.0 else -l1
+        h = -_em(b, l1)
         if pa >= p * math.exp((b - 1.0) * l1):
             s1, e1 = two_sum(z_hi, -h)
             e1 += z_lo
@@ -425,18 +485,18 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
             return dd_root(m_hi, m_lo, a)
         if z_hi * a >= 0.5:
             # far from the lower end point: H = y - G with G = expm1(a t)/a, no 1/a offsets
-            w = (y - math.expm1(a * t) / a) + y_lo
+            w = (y - _em(a, t)) + y_lo
         else:
             w = (z_hi - pa / a) + z_lo
         if b != 0.0:
-            return _from_p(-math.expm1(math.log1p(-b * w) / b))
+            return _from_p(-math.expm1(-_l1pd(-b, w)))
         return _from_p(-math.expm1(-w))
     # _FINF
-    h = -math.expm1(b * l1) / b if b != 0.0 else -l1
+    h = -_em(b, l1)
     w_hi, w_lo = two_sum(y, -h)
     w_lo += y_lo
-    if a == 0.0:
-        return math.exp(w_hi) * (1.0 + w_lo), w_hi + w_lo
+    if abs(a * w_hi) < 1e-5:
+        return _small_root(a, w_hi, w_lo)
     m_hi, m_lo = two_prod(a, w_hi)
     m_lo += a * w_lo
     b_hi, b_e = two_sum(1.0, m_hi)
@@ -618,8 +678,14 @@ def _invert(fam, a, b, y, y_lo=0.0):
             return p, lp, False, st, a, b
         q, lq, st = _root_of_zero_r3(b, a)
         return q, lq, True, st, b, a
-    med = median_std(fam, a, b)
-    if y <= med:
+    if a > 1.0 and b > 1.0 and (fam == FKML or rs_sign(a, b) > 0.0):
+        # both powers below 1/2 at the median, which may underflow: the side from the sign of
+        # the power-form residual at p = 1/2, taken in logarithms
+        w_hi, _ = _pow_target(fam, a, b, y, y_lo)
+        lower = _pow_logres(fam, a, b, w_hi, -LN2, 0.5, -LN2)[0] >= 0.0
+    else:
+        lower = y <= median_std(fam, a, b)
+    if lower:
         p, lp, st = solve_lower(fam, a, b, y, y_lo)
         return p, lp, False, st, a, b
     q, lq, st = solve_lower(fam, b, a, -y, -y_lo)
@@ -762,10 +828,22 @@ def quantile_kernel(u, a, b, fam, what, out, loc=0.0, inv_scale=1.0):
 
 @njit(cache=True, error_model="numpy")
 def support_kernel(a, b, fam, lo, hi):
-    """Standardized support end points."""
+    """Standardized support end points, rounded outwards: a finite FKML end point -1/lambda3
+    (1/lambda4) is not a double, and its nearest double may lie inside the support, where the
+    generic scipy API would report F = 0 (or 1) at it."""
     for i in range(a.shape[0]):
-        lo[i] = q_lower(fam, a[i], b[i], -math.inf, 0.0)
-        hi[i] = -q_lower(fam, b[i], a[i], -math.inf, 0.0)
+        lo[i] = _end_outward(fam, a[i], b[i])
+        hi[i] = -_end_outward(fam, b[i], a[i])
+
+
+@njit(cache=True, error_model="numpy")
+def _end_outward(fam, a, b):
+    """Lower end point Q(0), or the double just below it when Q(0) is not a double."""
+    end = q_lower(fam, a, b, -math.inf, 0.0)
+    if fam == FKML and a > 0.0 and math.isfinite(end):
+        if reciprocal_dd(a)[1] > 0.0:
+            end = np.nextafter(end, -math.inf)
+    return end
 
 
 def as_1d(x):

@@ -16,11 +16,15 @@ def q_mp(fam, a, b, t, l1):
     b = mp.mpf(b)
     if fam == 0:
         s = 1 if (a >= 0 and b >= 0) else -1
-        if a > 0 and b > 0:
-            # region 3: the powers themselves (mpmath has the exponent range), no cancellation
-            # even where both are tiny (large shapes)
+        if a > 0 and b > 0 and a * t < -1 and b * l1 < -1:
+            # region 3 with both powers small (large shapes): the powers themselves (mpmath
+            # has the exponent range); elsewhere the expm1 form keeps tiny shapes exact
             return s * (mp.exp(a * t) - mp.exp(b * l1))
         return s * (mp.expm1(a * t) - mp.expm1(b * l1))
+    if a > 0 and b > 0 and a * t < -1 and b * l1 < -1:
+        # both powers small (large shapes): (1/b - 1/a) + u^a/a - (1-u)^b/b, an algebraic
+        # identity whose power terms keep every digit in mpmath's exponent range
+        return (1 / b - 1 / a) + mp.exp(a * t) / a - mp.exp(b * l1) / b
     ea = mp.expm1(a * t) / a if a != 0 else t
     eb = mp.expm1(b * l1) / b if b != 0 else l1
     return ea - eb
