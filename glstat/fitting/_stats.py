@@ -16,12 +16,66 @@ _NAN_POLICIES = ("raise", "omit", "propagate")
 def prepare_data(data, nan_policy: str = "raise") -> tuple[np.ndarray | None, int]:
     """Sorted finite copy of ``data`` (never the caller's array), or None for ``propagate``.
 
-    Returns the sorted sample (None when ``nan_policy="propagate"`` meets a non-finite value)
-    and the number of non-finite values removed.
+    Parameters
+    ----------
+    data : array_like
+        Real numbers (integers or floats; a pandas Series or array of a numeric dtype, whose
+        missing values count as NaN). The masked entries of a :class:`numpy.ma.MaskedArray`
+        are missing values and are always left out (they are counted with the non-finite
+        values removed).
+    nan_policy : {"raise", "omit", "propagate"}
+        What to do with NaN and infinite values.
+
+    Returns
+    -------
+    x : ndarray or None
+        The sorted sample (None when ``nan_policy="propagate"`` meets a non-finite value).
+    nbad : int
+        Number of masked and non-finite values removed.
+
+    Raises
+    ------
+    TypeError
+        Complex numbers, dates or times, booleans, strings, or objects that are not real
+        numbers (``None``, ``pandas.NA``, ...).
+    ValueError
+        Non-finite values with ``nan_policy="raise"``, or an unknown ``nan_policy``.
+    FitError
+        Fewer than ``MIN_N`` values, or all equal.
     """
     if nan_policy not in _NAN_POLICIES:
         raise ValueError(f"nan_policy must be one of {_NAN_POLICIES}, got {nan_policy!r}")
-    x = np.array(data, dtype=float, copy=True).ravel()
+    nmasked = 0
+    if isinstance(data, np.ma.MaskedArray):
+        keep = ~np.ma.getmaskarray(data).ravel()
+        nmasked = int(keep.size - keep.sum())
+        data = np.ma.getdata(data).ravel()[keep]
+    elif hasattr(data, "to_numpy") and hasattr(data, "dtype") and not isinstance(data, np.ndarray):
+        kind = getattr(getattr(data, "dtype", None), "kind", "O")
+        if kind in "iuf":  # pandas numeric data, nullable dtypes included: NA becomes NaN
+            data = data.to_numpy(dtype=float, na_value=np.nan)
+    arr = np.asarray(data)
+    kind = arr.dtype.kind
+    if kind == "c":
+        raise TypeError(f"data are complex ({arr.dtype}); a GLD is fitted to real numbers: pass "
+                        "the real part, the modulus or another real quantity explicitly")
+    if kind in "mM":
+        raise TypeError(f"data are dates or times ({arr.dtype}), not numbers; convert them to a "
+                        "real quantity (e.g. durations in seconds) first")
+    if kind in "bSUV":
+        raise TypeError(f"data must be real numbers, got an array of dtype {arr.dtype}")
+    if kind == "O":
+        try:
+            x = np.array(arr, dtype=float).ravel()
+        except (TypeError, ValueError):
+            flat = arr.ravel()
+            bad = next((v for v in flat if not isinstance(v, int | float | np.integer | np.floating)
+                        or isinstance(v, bool)), None)
+            raise TypeError(f"data must be real numbers, got an object array holding {bad!r} "
+                            f"({type(bad).__name__}); convert missing values to NaN first (e.g. "
+                            "series.to_numpy(dtype=float, na_value=np.nan))") from None
+    else:
+        x = np.array(arr, dtype=float, copy=True).ravel()
     bad = ~np.isfinite(x)
     nbad = int(bad.sum())
     if nbad:
@@ -37,12 +91,13 @@ def prepare_data(data, nan_policy: str = "raise") -> tuple[np.ndarray | None, in
         raise FitError(
             f"a GLD fit needs at least {MIN_N} finite data points, got {x.size}"
             + (f" ({nbad} non-finite value(s) omitted)" if nbad else "")
+            + (f" ({nmasked} masked value(s) left out)" if nmasked else "")
         )
     x.sort()
     if x[0] == x[-1]:
         raise FitError(f"the {x.size} data points are all equal to {x[0]!r}: a constant sample has no "
                        "GLD fit (zero variance)")
-    return x, nbad
+    return x, nbad + nmasked
 
 
 def sample_moments(x: np.ndarray) -> tuple[float, float, float, float]:
