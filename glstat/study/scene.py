@@ -94,29 +94,27 @@ class _Unreachable(Exception):
     pass
 
 
-def _settings_for(settings: CampaignSettings | None, hurst) -> CampaignSettings:
-    """The settings restricted to ``hurst`` (seeds and truncation follow the campaign's)."""
+def _settings_for(settings: CampaignSettings | None, hurst) -> tuple[CampaignSettings, list[int]]:
+    """The settings and the indices of ``hurst`` in them. Exponents of the settings keep their
+    index, hence the campaign's seeds and truncation; for others the settings are replaced by
+    ones with exactly ``hurst`` (seeds of a campaign with those exponents)."""
     s = settings if settings is not None else CampaignSettings()
     if not isinstance(s, CampaignSettings):
         raise TypeError(f"settings must be a CampaignSettings, got {type(s).__name__}")
     if hurst is None:
-        return s
+        return s, list(range(len(s.hurst)))
     hs = tuple(float(v) for v in np.atleast_1d(np.asarray(hurst, dtype=float)))
-    if hs == s.hurst:
-        return s
-    nt = []
-    for h in hs:
-        if h in s.hurst:
-            nt.append(s.n_terms[s.hurst.index(h)])
-        elif len(set(s.n_terms)) == 1:
-            nt.append(s.n_terms[0])
-        else:
-            raise ValueError(
-                f"hurst {h:g} is not one of the settings' exponents {s.hurst} and their n_terms "
-                f"{s.n_terms} differ, so its truncation is undefined; add it to the settings"
-            )
-    return dataclasses.replace(s, hurst=hs, n_terms=tuple(nt), n_examples=0,
-                               n_surfaces=max(s.n_surfaces, 1))
+    if len(set(hs)) != len(hs):
+        raise ValueError(f"hurst exponents must be distinct, got {hs!r}")
+    if all(h in s.hurst for h in hs):
+        return s, [s.hurst.index(h) for h in hs]
+    if len(set(s.n_terms)) != 1:
+        raise ValueError(
+            f"hurst {hs} are not all among the settings' exponents {s.hurst} and their n_terms "
+            f"{s.n_terms} differ, so the truncation is undefined; add them to the settings"
+        )
+    s2 = dataclasses.replace(s, hurst=hs, n_terms=s.n_terms[:1], n_examples=0)
+    return s2, list(range(len(hs)))
 
 
 def _solve_one(settings: CampaignSettings, ih: int, il: int, i: int, rq: float, grid: int,
@@ -354,7 +352,8 @@ def rq_for_pressure(
         Table 1 of the paper: 1.724e9, 1.369e9, 1.108e9 Pa for H = 0, 0.5, 1).
     hurst : float or sequence of float, optional
         Hurst exponents (default: the settings'). Exponents of the settings keep their seeds
-        and truncation.
+        and truncation (those of the campaign); otherwise the surfaces are those of a campaign
+        with exactly these exponents (one truncation for all of them).
     settings : CampaignSettings, optional
         The campaign (default ``CampaignSettings()``); its ``rq`` is the starting point.
     n_seeds : int
@@ -408,7 +407,7 @@ def rq_for_pressure(
     True
     """
     t0 = time.perf_counter()
-    s = _settings_for(settings, hurst)
+    s, idx = _settings_for(settings, hurst)
     if isinstance(n_seeds, bool) or int(n_seeds) != n_seeds or n_seeds < 1:
         raise ValueError(f"n_seeds must be a positive integer, got {n_seeds!r}")
     n_seeds = int(n_seeds)
@@ -417,7 +416,7 @@ def rq_for_pressure(
     lo_b, hi_b = (float(v) for v in rq_bounds)
     if not (math.isfinite(lo_b) and math.isfinite(hi_b) and 0 < lo_b < hi_b):
         raise ValueError(f"rq_bounds must be 0 < low < high (m), got {rq_bounds!r}")
-    targets = _as_targets(target_mean_pressure, len(s.hurst))
+    targets = _as_targets(target_mean_pressure, len(idx))
     load = s.pressures[0]
     if (targets <= load).any():
         t = targets[targets <= load][0]
@@ -428,15 +427,18 @@ def rq_for_pressure(
         )
     tol = math.log1p(rtol)
     record: list = []
-    groups = [[i] for i in range(len(s.hurst))] if per_hurst else [list(range(len(s.hurst)))]
+    # groups of positions k in idx solved together (one Rq each)
+    groups = [[k] for k in range(len(idx))] if per_hurst else [list(range(len(idx)))]
     use_coarse = (coarse_grid is not None and s.grid >= 2 * int(coarse_grid)
-                  and all(nt is not None and nt <= nyquist_terms(int(coarse_grid), s.length, s.gamma)
-                          for nt in s.n_terms))
-    rq_out = [math.nan] * len(s.hurst)
-    ach, na, nc = [math.nan] * len(s.hurst), [math.nan] * len(s.hurst), [math.nan] * len(s.hurst)
+                  and all(s.n_terms[i] is not None
+                          and s.n_terms[i] <= nyquist_terms(int(coarse_grid), s.length, s.gamma)
+                          for i in idx))
+    n = len(idx)
+    rq_out, ach, na, nc = [math.nan] * n, [math.nan] * n, [math.nan] * n, [math.nan] * n
     converged = True
-    for ihs in groups:
-        tg = targets[ihs]
+    for ks in groups:
+        ihs = [idx[k] for k in ks]
+        tg = targets[ks]
         x0 = math.log(min(max(s.rq, lo_b), hi_b))
         fine = _Evaluator(s, ihs, 0, n_seeds, s.grid, load, record)
         try:
@@ -453,19 +455,20 @@ def rq_for_pressure(
                                                   load)) from None
         converged &= ok
         p, a_, c_, _ = fine(math.exp(x))  # cached: the evaluation that gave x
-        for k, i in enumerate(ihs):
-            rq_out[i] = math.exp(x)
-            ach[i], na[i], nc[i] = p[k], a_[k], c_[k]
+        for j, k in enumerate(ks):
+            rq_out[k] = math.exp(x)
+            ach[k], na[k], nc[k] = p[j], a_[j], c_[j]
+    hs = tuple(s.hurst[i] for i in idx)
     if not converged:
         warnings.warn(
             "rq_for_pressure: the mean contact pressure at the returned Rq differs from the "
             "target by more than rtol = " + f"{rtol:g} (" + ", ".join(
                 f"H = {h:g}: {a / 1e6:.6g} vs {t / 1e6:.6g} MPa"
-                for h, a, t in zip(s.hurst, ach, targets, strict=True))
+                for h, a, t in zip(hs, ach, targets, strict=True))
             + "); the mean pressure jumps when an asperity enters or leaves the contact: "
             "average more surfaces (n_seeds) or loosen rtol",
             _convergence_warning(), stacklevel=2)
-    out = RqSearch(rq=tuple(rq_out), hurst=tuple(s.hurst), target=tuple(float(v) for v in targets),
+    out = RqSearch(rq=tuple(rq_out), hurst=hs, target=tuple(float(v) for v in targets),
                    achieved=tuple(ach), n_asperities=tuple(na), n_contact=tuple(nc),
                    converged=bool(converged), rtol=float(rtol), grid=s.grid, n_seeds=n_seeds,
                    nominal_pressure=load, evaluations=record, seconds=time.perf_counter() - t0)
