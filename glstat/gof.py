@@ -22,6 +22,7 @@ from scipy import stats
 
 from .fitting import GLDFit
 from .fitting import fit as _gld_fit
+from .fitting._eval import gld_evaluate
 from .gld import GLD
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -44,16 +45,27 @@ _LOG_HALF = math.log(0.5)
 # ---------------------------------------------------------------------------------------------
 # EDF statistics
 # ---------------------------------------------------------------------------------------------
+def _quiet(dist, what: str, x) -> np.ndarray:
+    """``dist.<what>(x)`` as a float array, without warnings and without touching the
+    process-wide warning filters (this runs in the bootstrap replicates, possibly in worker
+    threads): a GLD is evaluated by the compiled kernels directly (points where the inversion
+    of Q reached its limit keep the best estimate), other distributions under
+    ``numpy.errstate`` (thread-local)."""
+    if isinstance(dist, GLD) and what in ("cdf", "sf", "logcdf", "logsf", "pdf", "logpdf"):
+        return gld_evaluate(dist.param, what, x, dist.lambdas)[0]
+    with np.errstate(all="ignore"):
+        return np.asarray(getattr(dist, what)(x), dtype=float)
+
+
 def _pit(dist, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Probability integral transform of sorted ``x``: (u, log F, log(1 - F)).
 
     ``u`` is taken from log F below the median and from log(1 - F) above it, so that it
     carries the accuracy of whichever tail it lies in.
     """
-    with np.errstate(all="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        logf = np.asarray(dist.logcdf(x), dtype=float).reshape(x.shape)
-        logs = np.asarray(dist.logsf(x), dtype=float).reshape(x.shape)
+    logf = _quiet(dist, "logcdf", x).reshape(x.shape)
+    logs = _quiet(dist, "logsf", x).reshape(x.shape)
+    with np.errstate(all="ignore"):
         u = np.where(logf <= _LOG_HALF, np.exp(logf), -np.expm1(logs))
     return u, logf, logs
 
@@ -145,9 +157,8 @@ def _chi2(dist, x: np.ndarray, bins) -> tuple[float, int]:
     n = x.size
     if isinstance(bins, np.ndarray):
         cuts = bins
-        with np.errstate(all="ignore"):
-            cdf = np.asarray(dist.cdf(cuts), dtype=float)
-            sf = np.asarray(dist.sf(cuts), dtype=float)
+        cdf = _quiet(dist, "cdf", cuts)
+        sf = _quiet(dist, "sf", cuts)
         # cell probabilities from the cdf below the median and the sf above it
         p = np.empty(cuts.size + 1)
         p[0] = cdf[0]
@@ -158,8 +169,7 @@ def _chi2(dist, x: np.ndarray, bins) -> tuple[float, int]:
         m = _n_cells(n, bins)
         if m < 2:
             return math.nan, 0
-        with np.errstate(all="ignore"):
-            cuts = np.asarray(dist.ppf(np.arange(1, m) / m), dtype=float)
+        cuts = _quiet(dist, "ppf", np.arange(1, m) / m)
         expected = np.full(m, n / m)
     observed = np.diff(np.concatenate(([0], np.searchsorted(x, cuts, side="right"), [n])))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -216,15 +226,15 @@ def _family_name(dist) -> str:
 
 def _gld_refit(param: str, method: str, options: dict) -> Callable[[np.ndarray], Any]:
     def refit(sample: np.ndarray):
-        return _gld_fit(sample, param=param, method=method, **options).dist
+        # a poor or unconverged refit is part of the null distribution: nothing to warn
+        return _gld_fit(sample, param=param, method=method, warn=False, **options).dist
 
     return refit
 
 
 def _scipy_refit(gen) -> Callable[[np.ndarray], Any]:
     def refit(sample: np.ndarray):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
+        with np.errstate(all="ignore"):
             return gen(*gen.fit(sample))
 
     return refit
@@ -347,17 +357,14 @@ def _qdev(dist, x: np.ndarray) -> tuple[float, float, float]:
     if grid.size == 0 or not iqr > 0:
         return math.nan, math.nan, iqr
     emp = np.quantile(x, grid, method="weibull")
-    with np.errstate(all="ignore"):
-        mod = np.asarray(dist.ppf(grid), dtype=float)
+    mod = _quiet(dist, "ppf", grid)
     dev = np.abs(emp - mod) / iqr
     j = int(np.nanargmax(dev)) if np.any(np.isfinite(dev)) else 0
     return float(dev[j]), float(grid[j]), iqr
 
 
 def _loglik(dist, x: np.ndarray) -> float:
-    with np.errstate(all="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        lp = np.asarray(dist.logpdf(x), dtype=float)
+    lp = _quiet(dist, "logpdf", x)
     if np.any(np.isnan(lp)):
         return math.nan
     return float(math.fsum(lp)) if np.all(np.isfinite(lp)) else float(np.sum(lp))
@@ -387,10 +394,10 @@ def _bootstrap_pvalues(model: _Model, observed: dict, n: int, bins, n_resamples:
     for _ in range(n_resamples):
         sim = np.sort(np.asarray(model.dist.rvs(size=n, random_state=rng), dtype=float))
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                dist_b = _as_dist(model.refit(sim))
-                s = _statistics(dist_b, sim, bins)
+            # no warning filters here: the default refits do not warn, and this loop may run
+            # in a worker thread, where changing the process-wide filters is not safe
+            dist_b = _as_dist(model.refit(sim))
+            s = _statistics(dist_b, sim, bins)
         except Exception as exc:  # a refit that fails is counted and reported, never hidden
             failed += 1
             last_error = f"{type(exc).__name__}: {exc}"
@@ -634,8 +641,7 @@ def _mle(gen, x: np.ndarray, starts: list[tuple | None], fixed: dict[str, float]
     best, best_ll, errors = None, -math.inf, []
     for start in starts:
         try:
-            with warnings.catch_warnings(), np.errstate(all="ignore"):
-                warnings.simplefilter("ignore", RuntimeWarning)
+            with np.errstate(all="ignore"):
                 if start is None:
                     par = gen.fit(x, **fixed)
                 elif len(start) == gen.numargs:
@@ -662,7 +668,7 @@ def _fit_family(name: str, x: np.ndarray, gld_method: str) -> _Model:
     """Fit one family to sorted ``x``; raises on failure."""
     if name in ("gld_rs", "gld_fkml"):
         param = name[4:]
-        res = _gld_fit(x, param=param, method=gld_method)
+        res = _gld_fit(x, param=param, method=gld_method, warn=False)
         return _Model(f"GLD-{param.upper()} ({gld_method})", name, gld_method, res.dist, 4, True,
                       _gld_refit(param, gld_method, dict(res.options)))
     gen = getattr(stats, name, None)
@@ -743,9 +749,7 @@ def compare_families(data, families: Sequence[str] = DEFAULT_FAMILIES, gld_metho
             models.append(_Model(str(name), str(name), "", None, 0, True, None))
             continue
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                models.append(_fit_family(str(name), x, gld_method))
+            models.append(_fit_family(str(name), x, gld_method))
         except Exception as exc:  # one family failing must not stop the comparison
             errors[str(name)] = f"{type(exc).__name__}: {exc}"
     ok = [m for m in models if m.dist is not None] if x is not None else []

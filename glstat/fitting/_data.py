@@ -7,7 +7,6 @@ compiled kernels of :mod:`glstat.fitting._likelihood`.
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
@@ -157,7 +156,7 @@ def _no_start_hint(x: np.ndarray, param: str, med: float, iqr: float, z: np.ndar
     why = []
     for meth in ("percentiles", "lmoments"):
         try:
-            fit(x, param, meth)
+            fit(x, param, meth, warn=False)
         except FitError as exc:
             why.append(f"{meth}: {exc}")
     hint = f"param='{other}' has none either"
@@ -212,8 +211,30 @@ def _refine_bfgs(kind, fam, z, th0, w, maxiter, unit):
     return th, val, ok, nit
 
 
+def _guess_theta(start, param: str, fam: int, med: float, iqr: float, z: np.ndarray):
+    """Standardized, covering theta of a guess (lambda1, lambda2, lambda3, lambda4); None when
+    the guess is no valid GLD (it is then ignored)."""
+    try:
+        lams = tuple(float(v) for v in start)
+    except (TypeError, ValueError):
+        raise ValueError(f"start must be (lambda1, lambda2, lambda3, lambda4), got {start!r}") from None
+    if len(lams) != 4:
+        raise ValueError(f"start must be (lambda1, lambda2, lambda3, lambda4), got {start!r}")
+    _, l2, a, b = lams
+    if not (all(math.isfinite(v) for v in lams) and l2 != 0.0 and K.shape_valid(fam, a, b)):
+        return None
+    return cover_theta(_std_theta(lams, med, iqr), fam, float(z[0]), float(z[-1]))
+
+
+def _same_basin(th, others) -> bool:
+    """True when the shapes of ``th`` lie within ``_SAME_BASIN`` (in asinh) of one of ``others``."""
+    a, b = np.arcsinh(th[2:])
+    return any(max(abs(a - a2), abs(b - b2)) < _SAME_BASIN for a2, b2 in
+               (np.arcsinh(o[2:]) for o in others))
+
+
 def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | None = None,
-                       starts: int = 2, optimizer: str = "bfgs"):
+                       starts: int = 2, optimizer: str = "bfgs", start=None):
     """ML, MPS or starship fit of sorted, checked data ``x`` (see :func:`glstat.fit`).
 
     Starts (:func:`_starting_points`): every valid root of the percentile and L-moment
@@ -225,8 +246,17 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     interquartile range, by the compiled BFGS with the analytic gradient
     (``optimizer="bfgs"``) or by scipy's Nelder–Mead (``"nelder-mead"``). Infeasible
     parameters (support missing a data point) are rejected, so every iterate covers the data.
+
+    ``start`` (lambdas) is one more start, refined after the others (with the budget of a
+    later start) unless its shapes lie within ``_SAME_BASIN`` of a refined start or of a
+    candidate already found; the usual candidates are computed exactly as without it, so
+    the selected objective is never worse.
+
+    The selected candidate is the valid, covering one with the lowest objective. Nothing is
+    warned: an optimiser that stopped at ``maxiter`` is reported in ``GLDFit.issues``
+    (:func:`glstat.fit` emits the issues).
     """
-    from .core import _candidate, _make_fit, _select
+    from .core import FitIssue, _candidate, _make_fit, _select
 
     if optimizer not in OPTIMIZERS:
         raise ValueError(f"optimizer must be one of {OPTIMIZERS}, got {optimizer!r}")
@@ -245,8 +275,9 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     z = (x - med) / iqr
     w0 = np.log((np.arange(n) + 0.5) / (n - np.arange(n) - 0.5))
 
+    guess = None if start is None else _guess_theta(start, param, fam, med, iqr, z)
     start_thetas = _starting_points(x, param, fam, med, iqr, z)
-    if not start_thetas:
+    if not start_thetas and guess is None:
         raise FitError(f"no {param.upper()} starting point for {method!r}: neither the percentile nor "
                        f"the L-moment equations have a valid root for these data; "
                        f"{_no_start_hint(x, param, med, iqr, z)}")
@@ -261,19 +292,25 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     # same basin (the percentile and L-moment roots often pair up)
     distinct = []
     for item in scored:
-        a, b = np.arcsinh(item[1][2:])
-        if all(max(abs(a - a2), abs(b - b2)) >= _SAME_BASIN for a2, b2 in
-               (np.arcsinh(d[1][2:]) for d in distinct)):
+        if not _same_basin(item[1], [d[1] for d in distinct]):
             distinct.append(item)
-    scored = distinct
+    queue = [(th0, w, False) for _, th0, w in distinct[:starts]]
+    if guess is not None:
+        w = w0.copy()
+        val = L.objective(kind, fam, guess[2], guess[3], guess[0], math.exp(guess[1]), z, w)
+        if math.isfinite(val):
+            queue.append((guess, w, True))
     # objective unit: one data point's share (tolerances are per point)
     unit = float(n) if kind == L.MLE else 1.0 / (n + 1) if kind == L.MPS else 1.0 / n
     shift = n * math.log(iqr) if kind == L.MLE else 0.0
     rows = []
     flags = []
+    found = []
     best_val = math.inf
     cap = maxiter
-    for i, (_, th0, w) in enumerate(scored[:starts]):
+    for i, (th0, w, is_guess) in enumerate(queue):
+        if is_guess and _same_basin(th0, [q[0] for q in queue[:-1]] + found):
+            break
         abandoned = False
         if optimizer == "bfgs":
             # later starts get a few times the iterations of the first; one still worse than
@@ -291,6 +328,7 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
         else:
             th, val, ok = _refine_nelder_mead(kind, fam, z, th0, w, maxiter, n)
         best_val = min(best_val, val)
+        found.append(th)
         lams = _to_lambdas(th, param, med, iqr)
         obj = float(val) + shift
         rows.append(_candidate(lams, param, math.isfinite(obj) and not abandoned, obj, x))
@@ -298,11 +336,15 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     sel = _select(rows, True, by_objective=True)
     if sel < 0:
         raise FitError(f"the {method} optimisation found no valid {param.upper()} GLD covering the data")
+    issues = []
     if not flags[sel]:
-        warnings.warn(f"{method} fit: the {optimizer} optimiser reached maxiter={maxiter}; the result "
-                      "is the best point found", ConvergenceWarning, stacklevel=3)
+        issues.append(FitIssue(ConvergenceWarning, f"{method} fit: the {optimizer} optimiser reached "
+                               f"maxiter={maxiter}; the result is the best point found"))
+    options = {"maxiter": maxiter, "starts": starts, "optimizer": optimizer}
+    if start is not None:
+        options["start"] = tuple(float(v) for v in start)
     return _make_fit(rows, sel, param, method, n, {_OBJECTIVE_NAME[method]: rows[sel]["objective"]},
-                     {"maxiter": maxiter, "starts": starts, "optimizer": optimizer})
+                     options, issues)
 
 
 def scipy_fitstart(data, param: str) -> tuple[float, float, float, float] | None:
@@ -320,7 +362,7 @@ def scipy_fitstart(data, param: str) -> tuple[float, float, float, float] | None
     fam = RS if param == "rs" else FKML
     for method in ("percentiles", "lmoments"):
         try:
-            res = _fit(x, param=param, method=method)
+            res = _fit(x, param=param, method=method, warn=False)
         except FitError:
             continue
         med = float(np.median(x))
@@ -332,3 +374,34 @@ def scipy_fitstart(data, param: str) -> tuple[float, float, float, float] | None
         l1, l2, a, b = _to_lambdas(th, param, med, iqr)
         return float(a), float(b), float(l1), 1.0 / abs(l2)
     return None
+
+
+def scipy_guess(data, param: str, shapes, loc, scale, numargs: int = 2):
+    """Lambdas (lambda1, lambda2, lambda3, lambda4) of scipy-style initial guesses.
+
+    ``shapes`` (lam3, lam4, possibly fewer), ``loc`` and ``scale`` are what scipy's
+    ``rv_continuous.fit(data, *shapes, loc=..., scale=...)`` receives as guesses; missing
+    entries come from :func:`scipy_fitstart`. None when nothing is guessed or the guess is
+    no usable GLD (then the fit runs from its usual starts only).
+    """
+    shapes = tuple(shapes)
+    if len(shapes) > numargs:
+        raise TypeError(f"too many positional arguments: at most {numargs} shape guesses (lam3, lam4)")
+    if not shapes and loc is None and scale is None:
+        return None
+    if len(shapes) < 2 or loc is None or scale is None:
+        default = scipy_fitstart(data, param)
+        if default is None:
+            return None
+        shapes = shapes + tuple(default[len(shapes):2])
+        loc = default[2] if loc is None else loc
+        scale = default[3] if scale is None else scale
+    try:
+        a, b, loc, scale = (float(v) for v in (*shapes, loc, scale))
+    except (TypeError, ValueError):
+        raise ValueError(f"initial guesses must be real numbers, got shapes {shapes!r}, loc {loc!r}, "
+                         f"scale {scale!r}") from None
+    if not (scale > 0 and math.isfinite(scale)):
+        return None
+    s = float(rs_sign(a, b)) if param == "rs" else 1.0
+    return (loc, s / scale, a, b)
