@@ -286,8 +286,14 @@ def test_findings_name_the_sign_flip_and_the_invalid_row(consistency):
 
 
 def test_n_contact_and_hardness_are_checked(synthetic):
-    with pytest.raises(ValueError, match=r"no count for H = 0\.5"):
-        damage_claims(synthetic, n_contact={0.0: 1e4, 1.0: 1e4})
+    # an H missing from the mapping takes the stored count of the default scene
+    d = damage_claims(synthetic, n_contact={0.0: 1e4, 1.0: 2e4})
+    assert d.groupby("hurst")["n_contact"].first().to_dict() == {
+        0.0: 1e4, 0.5: SCENE_N_CONTACT[0.5], 1.0: 2e4}
+    with pytest.raises(ValueError, match=r"no count for H = 0\.25"):
+        damage_claims([{"hurst": 0.25, "mean_mpa": 1500.0, "lambda1_mpa": 1500.0,
+                        "lambda2_per_mpa": 0.001, "lambda3": 0.1, "lambda4": 0.1}],
+                      n_contact={0.0: 1e4})
     with pytest.raises(ValueError, match=">= 1"):
         damage_claims(synthetic, n_contact=0.5)
     with pytest.raises(ValueError, match="hardness_mpa"):

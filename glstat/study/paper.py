@@ -6,7 +6,7 @@ Hurst exponent H, the moments of the contact-pressure sample (mean α1, standard
 skewness α3, kurtosis α4) and the Ramberg–Schmeiser (RS) λ's fitted to them by the method of
 moments; the paper's damage claims at the hardness 2050 MPa (impossible / about 1 % / certain
 for H = 1 / 0.5 / 0) rest on them. This module holds the table as data (:data:`TABLE1`) and
-checks it with glstat's own GLD machinery (docs/method.md §10):
+checks it with glstat's own GLD machinery (docs/method.md §11):
 
 - :func:`moment_fit_roots` — every RS root of the printed moments, its support end points and
   whether the hardness lies beyond the upper end point (then damage is 0 for any n);
@@ -470,9 +470,13 @@ def _n_for(n_contact, hurst: float) -> float:
     if n_contact is None:
         n_contact = SCENE_N_CONTACT
     if isinstance(n_contact, Mapping):
-        if float(hurst) not in {float(k) for k in n_contact}:
+        counts = {float(k): v for k, v in n_contact.items()}
+        if float(hurst) in counts:
+            n = counts[float(hurst)]
+        elif float(hurst) in SCENE_N_CONTACT:  # e.g. a campaign without this H
+            n = SCENE_N_CONTACT[float(hurst)]
+        else:
             raise ValueError(f"n_contact has no count for H = {hurst:g} (keys {list(n_contact)})")
-        n = {float(k): v for k, v in n_contact.items()}[float(hurst)]
     else:
         n = n_contact
     n = float(n)
@@ -525,8 +529,9 @@ def damage_claims(table=None, n_contact=None, hardness_mpa: float = HARDNESS_MPA
         Table 1 (see :func:`table1`); default :data:`TABLE1`.
     n_contact : float, mapping or None
         n, the grid points in contact per surface: one number for every H, or ``{H: n}``
-        (e.g. a campaign's mean ``n_contact`` per H). Default :data:`SCENE_N_CONTACT`, measured
-        at the study's default scene (1.3–2.0 × 10⁴).
+        (e.g. a campaign's mean ``n_contact`` per H; an H of the table missing from it takes
+        its :data:`SCENE_N_CONTACT` value). Default :data:`SCENE_N_CONTACT`, measured at the
+        study's default scene (1.3–2.0 × 10⁴).
     hardness_mpa : float
         Hardness Pd, MPa.
     roots : DataFrame, optional

@@ -2,7 +2,7 @@
 
 The paper (Bigerelle et al., Coatings 10(1):15, 2019) prints Rq = 50 µm on 1 mm², yet its mean
 contact pressures (1.1–1.7 GPa) imply surface slopes about 30 times smaller than such surfaces
-have (docs/method.md §9). The asperity model's mean contact pressure grows with the roughness
+have (docs/method.md §10). The asperity model's mean contact pressure grows with the roughness
 at fixed everything else (roughly in proportion to the slopes), so the roughness that gives a
 requested pressure level is a one-dimensional root: :func:`rq_for_pressure` finds it on the
 campaign's own surfaces, and :func:`scene_summary` states what a scene implies (rms slope,
