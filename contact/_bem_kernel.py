@@ -26,6 +26,7 @@ __all__ = [
     "LinearOperator2D",
     "NonPeriodicOperator",
     "PeriodicOperator",
+    "inverse_stencil",
     "love_coefficients",
 ]
 
@@ -114,10 +115,47 @@ def love_coefficients(nx: int, ny: int, dx: float, dy: float) -> np.ndarray:
     return out
 
 
+def inverse_stencil(dx: float, dy: float, e_star: float, radius: int = 1) -> np.ndarray:
+    """Local stencil of the inverse compliance of the half-space, for preconditioning.
+
+    The inverse of the Boussinesq operator has the symbol ``E* |q| / 2`` (a half-order
+    derivative, Stanley & Kato 1997), whose real-space kernel decays as ``1 / r^3``. Its
+    values at offsets up to ``radius`` are taken from the discrete kernel on a 128-point
+    periodic grid of the same spacing (the centre is the mean of the symbol over the
+    Brillouin zone; neighbours are negative). Truncated, the stencil stays diagonally
+    dominant, hence symmetric positive definite, also on any subset of the grid.
+
+    Parameters
+    ----------
+    dx, dy : float
+        Grid spacing in metres.
+    e_star : float
+        Contact modulus in pascals.
+    radius : int, default 1
+        Offsets ``-radius..radius`` along both axes.
+
+    Returns
+    -------
+    ndarray, shape (2 radius + 1, 2 radius + 1)
+        Stencil in Pa/m, centred: pressure (Pa) per unit displacement (m).
+    """
+    m = 128
+    qx = 2.0 * np.pi * sfft.fftfreq(m, d=dx)
+    qy = 2.0 * np.pi * sfft.fftfreq(m, d=dy)
+    kernel = np.real(sfft.ifft2(0.5 * e_star * np.hypot(qx[:, None], qy[None, :])))
+    idx = np.arange(-radius, radius + 1) % m
+    return np.ascontiguousarray(kernel[np.ix_(idx, idx)])
+
+
 class LinearOperator2D(Protocol):
     """Compliance operator: ``apply(p)`` is the surface displacement (m) of pressure ``p`` (Pa)."""
 
     shape: tuple[int, int]
+    periodic: bool
+
+    def inverse_stencil(self) -> np.ndarray:
+        """Local stencil of the inverse operator (Pa/m), see :func:`inverse_stencil`."""
+        ...
 
     def apply(self, p: np.ndarray, out: np.ndarray | None = None) -> np.ndarray: ...
 
@@ -157,6 +195,8 @@ class NonPeriodicOperator:
         nx, ny = shape
         self.shape = (nx, ny)
         self.workers = workers
+        self.periodic = False
+        self._spacing = (float(dx), float(dy), float(e_star))
         c = love_coefficients(nx, ny, dx, dy) / (np.pi * e_star)
         # circulant embedding: offsets 0..n, then -(n-1)..-1; a linear convolution of n
         # points never reaches offset n, whose entry is only a filler
@@ -172,6 +212,10 @@ class NonPeriodicOperator:
             self._half = np.empty((nx, ny + 1), dtype=np.complex128)
             self._spec = np.empty((2 * nx, ny + 1), dtype=np.complex128)
             self._wide = np.empty((nx, 2 * ny), dtype=np.float64)
+
+    def inverse_stencil(self) -> np.ndarray:
+        """3 x 3 stencil of the inverse compliance (Pa/m), see :func:`inverse_stencil`."""
+        return inverse_stencil(*self._spacing)
 
     @property
     def self_compliance(self) -> float:
@@ -245,6 +289,8 @@ class PeriodicOperator:
         nx, ny = shape
         self.shape = (nx, ny)
         self.workers = workers
+        self.periodic = True
+        self._spacing = (float(dx), float(dy), float(e_star))
         qx = 2.0 * np.pi * sfft.fftfreq(nx, d=dx)
         qy = 2.0 * np.pi * sfft.rfftfreq(ny, d=dy)
         q = np.hypot(qx[:, None], qy[None, :])
@@ -256,6 +302,10 @@ class PeriodicOperator:
         self._buffers = _NUMPY_OUT and workers in (None, 1)
         if self._buffers:
             self._spec = np.empty(k.shape, dtype=np.complex128)
+
+    def inverse_stencil(self) -> np.ndarray:
+        """3 x 3 stencil of the inverse compliance (Pa/m), see :func:`inverse_stencil`."""
+        return inverse_stencil(*self._spacing)
 
     @property
     def self_compliance(self) -> float:

@@ -196,11 +196,11 @@ def solve_bem(
         Threads for :mod:`scipy.fft` (its convention: negative counts from the number of
         CPUs); None uses scipy's default (one).
     accelerate : bool, default True
-        True: the accelerated iteration (conjugate directions kept while the contact set
-        grows, displacement carried along between convolutions; 2-4 times fewer
-        convolutions on rough surfaces). False: the iteration of Polonsky & Keer (1999) as
-        published, for reference. Both stop on the same criterion and reach the same
-        solution to within ``tol``.
+        True: the accelerated iteration (directions preconditioned by a local stencil of
+        the inverse compliance and kept while the contact set grows, displacement carried
+        along between convolutions; 3-5 times fewer convolutions on rough surfaces).
+        False: the iteration of Polonsky & Keer (1999) as published, for reference. Both
+        stop on the same criterion and reach the same solution to within about ``tol``.
 
     Returns
     -------

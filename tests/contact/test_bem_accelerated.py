@@ -15,7 +15,7 @@ import pytest
 
 from contact import Surface
 from contact._bem_core import initial_pressure, polonsky_keer
-from contact._bem_kernel import NonPeriodicOperator, PeriodicOperator
+from contact._bem_kernel import NonPeriodicOperator, PeriodicOperator, inverse_stencil
 from contact.bem import BEMConvergenceWarning, solve_bem, solve_bem_displacement
 
 E, NU = 210e9, 0.3
@@ -137,3 +137,19 @@ def test_accelerate_must_be_a_bool():
         solve_bem(_rough(16), 5e6, E, NU, accelerate="yes")
     with pytest.raises(TypeError, match="accelerate"):
         solve_bem_displacement(_rough(16), 0.0, E, NU, accelerate=1)
+
+
+@pytest.mark.parametrize(("dx", "dy"), [(1e-6, 1e-6), (1e-6, 3e-6)])
+def test_inverse_stencil_is_a_positive_definite_local_inverse(dx, dy):
+    s = inverse_stencil(dx, dy, E_STAR)
+    assert s.shape == (3, 3)
+    np.testing.assert_allclose(s, s[::-1, ::-1], rtol=1e-12)
+    centre = s[1, 1]
+    off = np.delete(s.ravel(), 4)
+    # positive centre, negative neighbours, diagonally dominant: SPD on any subset
+    assert centre > 0 and (off < 0).all() and centre > np.abs(off).sum()
+    # centre = mean of the symbol E* |q| / 2 over the Brillouin zone (128-point grid)
+    qx = 2 * np.pi * np.fft.fftfreq(128, d=dx)
+    qy = 2 * np.pi * np.fft.fftfreq(128, d=dy)
+    mean = np.mean(0.5 * E_STAR * np.hypot(qx[:, None], qy[None, :]))
+    assert centre == pytest.approx(mean, rel=1e-12)
