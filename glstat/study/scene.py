@@ -230,11 +230,11 @@ def _root(ev: _Evaluator, targets: np.ndarray, x0: float, bounds: tuple[float, f
     if a is None or b is None:
         return best[1], best[2], False
     # Illinois regula falsi on the bracket (bisection while an end is infeasible)
-    side = 0
-    while n_eval < max_eval + 4 or not math.isfinite(ga):
+    side, n_rf = 0, 0
+    while n_rf < max_eval or not math.isfinite(ga):
         if abs(b - a) <= 1e-7:
             break
-        if not math.isfinite(ga) and b - a < 1e-3:
+        if not math.isfinite(ga) and abs(b - a) < 1e-3:
             # the root sits at the smallest Rq that carries the load: the target is lower
             # than any mean pressure the model reaches
             raise _Unreachable("below", b)
@@ -245,7 +245,7 @@ def _root(ev: _Evaluator, targets: np.ndarray, x0: float, bounds: tuple[float, f
         else:
             x = 0.5 * (a + b)
         gx = g(x)
-        n_eval += 1
+        n_rf += 1
         if abs(gx) < best[0]:
             best = (abs(gx), x, gx)
         if abs(gx) <= tol:
@@ -374,7 +374,8 @@ def rq_for_pressure(
         truncation fits under its Nyquist limit; None to search on the settings' grid only.
     max_evaluations : int
         Evaluations on the settings' grid after the root is bracketed (each one solves
-        ``n_seeds`` surfaces per H).
+        ``n_seeds`` surfaces per H); the steps that bracket it are limited to three times as
+        many.
     full_output : bool
         Return an :class:`RqSearch` with the achieved pressures, counts and every evaluation.
 
