@@ -372,6 +372,16 @@ def moment_fit_roots(table=None, hardness_mpa: float = HARDNESS_MPA):
         any n), ``mean_mpa``, ``sd_mpa``, ``skewness``, ``kurtosis`` of the root (computed from
         its λ's, a check of the fit) and ``note`` (why a row has no root: moments not stored,
         or the :class:`glstat.FitError` text).
+
+    Examples
+    --------
+    The moments of the standard normal (in "MPa") have four RS roots, all bounded:
+
+    >>> from glstat.study.paper import moment_fit_roots
+    >>> r = moment_fit_roots([{"hurst": 1.0, "mean_mpa": 0.0, "sd_mpa": 1.0, "skewness": 0.0,
+    ...                        "kurtosis": 3.0}])
+    >>> r[["selected", "lambda3", "upper_mpa"]].round(4).values.tolist()[0]
+    [True, 0.1349, 5.0645]
     """
     import pandas as pd
 
@@ -433,6 +443,15 @@ def printed_lambda_check(table=None):
         moments, relative), ``skewness_diff`` and ``mirrored_skewness_diff`` (absolute), and
         ``sign_flip`` (the printed λ's give a skewness of the opposite sign to the printed
         one while the mirror's is closer to it).
+
+    Examples
+    --------
+    >>> from glstat.study.paper import printed_lambda_check
+    >>> p = printed_lambda_check([{"hurst": 1.0, "mean_mpa": 1100.0, "sd_mpa": 150.0,
+    ...     "skewness": 0.5, "kurtosis": 3.2, "lambda1_mpa": 1050.0, "lambda2_per_mpa": 0.001,
+    ...     "lambda3": 0.1, "lambda4": 0.05}])
+    >>> p[["mean_mpa", "skewness", "mirrored_skewness", "valid"]].round(3).values.tolist()
+    [[1006.71, -0.475, 0.475, True]]
     """
     import pandas as pd
 
@@ -546,6 +565,18 @@ def damage_claims(table=None, n_contact=None, hardness_mpa: float = HARDNESS_MPA
         (``1 − F(Pd)^n``), ``claim`` (the paper's), ``reproduced`` (damage inside
         :data:`CLAIM_RANGES` of the claim), ``n_low``, ``n_high`` (the n ≥ 1 for which the
         claim is reproduced; NaN when no n is).
+
+    Examples
+    --------
+    A region-3 GLD ends at λ1 + 1/λ2 = 1500 MPa: no point exceeds 2050 MPa, whatever n —
+    "impossible" for every n ≥ 1:
+
+    >>> from glstat.study.paper import damage_claims
+    >>> d = damage_claims([{"hurst": 1.0, "mean_mpa": 1000.0, "lambda1_mpa": 1000.0,
+    ...                     "lambda2_per_mpa": 0.002, "lambda3": 0.1, "lambda4": 0.1}],
+    ...                   n_contact=2e4)
+    >>> d[["source", "upper_mpa", "damage", "reproduced", "n_high"]].values.tolist()[0]
+    ['printed', 1500.0, 0.0, True, inf]
     """
     import pandas as pd
 
@@ -718,6 +749,12 @@ def paper_findings(consistency: PaperConsistency | None = None, **kwargs) -> lis
     list of str
         One sentence or short paragraph per finding, for a report section "Consistency with
         the paper".
+
+    Examples
+    --------
+    >>> from glstat.study.paper import paper_findings
+    >>> paper_findings()[0][:60]
+    "Table 1's mean contact pressures (1724 / 1369 / 1108 MPa for"
     """
     from contact import effective_modulus
 
