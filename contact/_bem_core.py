@@ -558,7 +558,7 @@ def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_i
     stencil = op.inverse_stencil()
     stencil_centre = float(stencil[stencil.shape[0] // 2, stencil.shape[1] // 2])
     nx, ny = shape
-    z = np.empty_like(p)
+    z = r  # the preconditioned gap is used up before K t is computed into the same array
     gz_old = 1.0
     conj = False
     carried = 0  # carried-along updates of u since it was last computed exactly
