@@ -128,6 +128,35 @@ class GLD(rv_continuous_frozen):
         """Inverse survival function Q(1 - q), accurate for small q."""
         return self._quantile(q, True)
 
+    def stats(self, moments="mv"):
+        """Mean, variance, skewness and/or excess kurtosis (letters of ``moments``, as scipy).
+
+        For RS shapes below 1e-20 in magnitude the variance of the standardized distribution
+        (of order lambda**2) can lie below the double range although the variance itself,
+        (c/|lambda2|)**2 times a scale-free factor with c = max(|lambda3|, |lambda4|), does
+        not; it is formed in that order here.
+        """
+        res = super().stats(moments=moments)
+        _, l2, l3, l4 = self._lambdas
+        if "v" not in moments or not _gld.rs_tiny(self._family, l3, l4):
+            return res
+        from ._core.moments import scaled_central_moment
+
+        c, mu2 = scaled_central_moment(self._family, l3, l4, 2)
+        var = np.float64(c / abs(l2)) ** 2 * mu2
+        out = list(res) if isinstance(res, tuple) else [res]
+        # scipy returns the requested statistics in the fixed order m, v, s, k
+        out[1 if "m" in moments else 0] = var
+        return tuple(out) if isinstance(res, tuple) else out[0]
+
+    def var(self):
+        """Variance."""
+        return self.stats(moments="v")
+
+    def std(self):
+        """Standard deviation."""
+        return np.sqrt(self.var())
+
     # -- extras ---------------------------------------------------------------------------
     def lmoments(self, r: int = 4) -> np.ndarray:
         """L-moments lambda_1 .. lambda_r (closed form; NaN when the mean does not exist).

@@ -599,6 +599,7 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
         rcase = _FPD
     status = NOCONV
     k = 1.0
+    t_first = t
     creep = 0
     last_sign = 0.0
     for _ in range(MAXIT):
@@ -623,7 +624,8 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
             creep = 0
         if not newton:
             if t_lo == -math.inf:
-                t_new = t_hi - max(2.0 * (t_hi - t), 1.0) if r > 0.0 else 0.5 * (t + t_hi)
+                # no lower bracket yet: double the distance travelled from the first guess
+                t_new = t - max(t_first - t, 1.0) if r > 0.0 else 0.5 * (t + t_hi)
             else:
                 t_new = 0.5 * (t_lo + t_hi)
         # converged: an accepted Newton step below the root's rounding uncertainty at this
@@ -760,6 +762,124 @@ def end_density(what, fam, ae, be, ys, ys_lo, loc, inv_scale, log_scale):
     return 0.0 if what == 4 else -math.inf
 
 
+# RS shapes below this magnitude: u**lam - 1 = lam log u to double precision over the whole
+# double range of u, so Q = c (A log u - B log(1-u)) with c = max(|lam3|, |lam4|)
+RS_TINY = 1e-20
+
+
+@njit(cache=True, error_model="numpy")
+def rs_tiny(fam, a, b):
+    """True for RS shapes in the linear regime (both |lambda| < RS_TINY, not both 0)."""
+    c = max(abs(a), abs(b))
+    return fam == RS and c < RS_TINY and c > 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _ratio_dd(num, den):
+    """num/den as a double-double for positive num, den of any magnitude (subnormals too):
+    both are brought next to 1 by the same power of two first. Returns (hi, lo); (inf, 0)
+    when the quotient overflows."""
+    _, e = math.frexp(den)
+    ns = math.ldexp(num, -e)
+    ds = math.ldexp(den, -e)
+    if not math.isfinite(ns):
+        return math.inf, 0.0
+    hi = ns / ds
+    if not math.isfinite(hi) or hi == 0.0:
+        return hi, 0.0
+    pp, pe = two_prod(hi, ds)
+    return hi, ((ns - pp) - pe) / ds
+
+
+@njit(cache=True, error_model="numpy")
+def _linear_root(pc_hi, pc_lo, rc, w_hi, w_lo):
+    """Root t = log p of P t - R log1p(-e^t) = w (P = pc_hi + pc_lo >= 0, R >= 0, t <= -ln 2
+    expected), returned as (p, t_hi + t_lo) with a final double-double correction."""
+    if pc_hi == 0.0:
+        # no p-dependent term on this side but (1-p): -R log1p(-p) = w
+        if not w_hi > 0.0:
+            return 0.0, -math.inf
+        p = -math.expm1(-(w_hi + w_lo) / rc)
+        return p, math.log(p)
+    t = min(w_hi / pc_hi, -LN2)
+    for _ in range(200):
+        p = math.exp(t)
+        l1 = math.log1p(-p)
+        g = pc_hi * t - rc * l1 - w_hi
+        dg = pc_hi + rc * p / (1.0 - p)
+        t_new = t - g / dg
+        if t_new > -LN2:
+            t_new = -LN2
+        if abs(t_new - t) <= 2.0 * EPS * max(1.0, abs(t)):
+            t = t_new
+            break
+        t = t_new
+    p = math.exp(t)
+    l1 = math.log1p(-p)
+    m_hi, m_lo = two_prod(pc_hi, t)
+    g = ((m_hi - w_hi) + (m_lo + pc_lo * t - w_lo)) - rc * l1
+    dg = pc_hi + rc * p / (1.0 - p)
+    d = -g / dg
+    return p * math.exp(d), t + d
+
+
+@njit(cache=True, error_model="numpy")
+def rs_tiny_point(what, a, b, x, loc, inv_scale):
+    """cdf-type quantity ``what`` of an RS GLD with tiny shapes (`rs_tiny`) at x.
+
+    Q = c (A log u - B log(1-u)) with c = max(|a|, |b|), A = |a|/c, B = |b|/c, so the point
+    is standardized by inv_scale/c (a double-double, exact for subnormal shapes and scales)
+    instead of forming the tiny, possibly subnormal Q. Returns NaN when the point lies
+    outside the linear regime (|a log p| >= 1e-17 at the root), for the general solver.
+    """
+    c = max(abs(a), abs(b))
+    ah, al = _ratio_dd(abs(a), c)
+    bh, bl = _ratio_dd(abs(b), c)
+    d_hi, d_lo = two_sum(x, -loc)
+    if not math.isfinite(d_hi):
+        return math.nan
+    # v = d * inv_scale / c through the binary mantissas: neither inv_scale/c nor the
+    # standardized point d * inv_scale (subnormal for subnormal scales) is ever formed
+    r_hi, r_lo = _ratio_dd(math.frexp(inv_scale)[0], math.frexp(c)[0])
+    ex = math.frexp(inv_scale)[1] - math.frexp(c)[1]
+    if d_hi == 0.0:
+        v_hi, v_lo = 0.0, 0.0
+    else:
+        md, ed = math.frexp(d_hi)
+        v_hi, e = two_prod(md, r_hi)
+        v_lo = e + md * r_lo + math.ldexp(d_lo, -ed) * r_hi
+        v_hi, v_lo = fast_two_sum(v_hi, v_lo)
+        v_hi = math.ldexp(v_hi, ed + ex)
+        v_lo = math.ldexp(v_lo, ed + ex)
+    if not math.isfinite(v_hi):
+        return math.nan
+    lr = math.log(r_hi) + r_lo / r_hi + ex * LN2  # log(inv_scale / c)
+    r_hi = math.ldexp(r_hi, ex)
+    upper = v_hi > (bh - ah) * LN2
+    if upper:
+        p, t = _linear_root(bh, bl, ah, -v_hi, -v_lo)
+        pc = bh
+        rc = ah
+    else:
+        p, t = _linear_root(ah, al, bh, v_hi, v_lo)
+        pc = ah
+        rc = bh
+    if not (c * abs(t) < 1e-17):
+        return math.nan
+    if what <= 3:
+        want_small = (what == 0 or what == 2) != upper
+        if what < 2:
+            return p if want_small else 1.0 - p
+        return t if want_small else math.log1p(-p)
+    # f = (inv_scale/c) / (P/p + R/(1-p)) = r p / (P + R p/(1-p))
+    if t == -math.inf:
+        return 0.0 if what == 4 else -math.inf
+    lq = math.log(pc + rc * p / (1.0 - p)) - t
+    if what == 5:
+        return lr - lq
+    return _scaled_exp(lq, r_hi, lr)
+
+
 # what = 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf
 @njit(cache=True, error_model="numpy")
 def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
@@ -781,6 +901,11 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
         if yi != yi or ai != ai or bi != bi:
             out[i] = math.nan
             continue
+        if rs_tiny(fam, ai, bi) and math.isfinite(y[i]):
+            v = rs_tiny_point(what, ai, bi, y[i], loc, inv_scale)
+            if v == v:
+                out[i] = v
+                continue
         if yi == -math.inf or yi == math.inf:
             out[i] = emit(what, fam, ai, bi, 0.0, -math.inf, yi > 0.0, inv_scale, log_scale)
             continue
@@ -820,7 +945,14 @@ def quantile_kernel(u, a, b, fam, what, out, loc=0.0, inv_scale=1.0):
         else:
             t = math.log(small)
             l1 = math.log1p(-small)
-        if lower:
+        if rs_tiny(fam, ai, bi) and small > 0.0:
+            # Q = c (A log u - B log(1-u)): the factor c/inv_scale applied last, so that a
+            # subnormal Q never forms
+            c = max(abs(ai), abs(bi))
+            tl, tu = (t, l1) if lower else (l1, t)
+            qs = (abs(ai) / c) * tl - (abs(bi) / c) * tu
+            out[i] = loc + qs * (c / inv_scale) if c / inv_scale > 0.0 else loc + qs * c / inv_scale
+        elif lower:
             out[i] = loc + q_lower(fam, ai, bi, t, l1) / inv_scale
         else:
             out[i] = loc - q_lower(fam, bi, ai, t, l1) / inv_scale

@@ -22,9 +22,11 @@ from ._gld import (
     _residual,
     emit,
     end_density,
+    invert_kernel,
     q_lower,
     qprime_lower,
     rs_sign,
+    rs_tiny,
     solve_lower,
     standardize,
 )
@@ -212,6 +214,10 @@ def _lookup2(y, y_lo, d_ys, d_pl, o_ys, o_pl, y0):
 @njit(cache=True, error_model="numpy")
 def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
     """Same contract as ``_gld.invert_kernel`` for scalar shapes a, b and many points."""
+    if rs_tiny(fam, a, b):
+        # the linear regime of tiny RS shapes has its own per-point solver
+        invert_kernel(y, np.array([a]), np.array([b]), fam, what, out, status, loc, inv_scale)
+        return
     log_scale = math.log(inv_scale)
     l_ys, l_pl, _ = build_table(fam, a, b, False)
     u_ys, u_pl, _ = build_table(fam, b, a, False)

@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._gld import LN2, RS, log_qprime_lower, q_lower, rs_sign
+from ._gld import LN2, RS, log_qprime_lower, q_lower, rs_sign, rs_tiny
 
 # tanh-sinh nodes on (0, 1) in log space
 _H = 1.0 / 32.0
@@ -125,15 +125,47 @@ def _central_quad(fam, a, b, k, m, logu, log1mu, logw):
 
 
 @njit(cache=True, error_model="numpy")
+def _central_linear(A, B, k):
+    """E[(Y - E Y)^k] for Y = A log U - B log(1 - U) (the RS GLD with tiny shapes, divided
+    by c = max(|lambda3|, |lambda4|)), by the tanh-sinh rule in log space."""
+    m = B - A
+    total = 0.0
+    for j in range(_LOGU.shape[0]):
+        d = A * _LOGU[j] - B * _LOG1MU[j] - m
+        if d == 0.0:
+            continue
+        v = math.exp(k * math.log(abs(d)) + _LOGW[j])
+        total += -v if (d < 0.0 and k % 2 == 1) else v
+    return total
+
+
+@njit(cache=True, error_model="numpy")
+def scaled_central_moment(fam, a, b, k):
+    """(c, mu) with the k-th central moment (k >= 2) = c**k * mu: c = max(|a|, |b|) for RS
+    shapes below 1e-20 (where Q = c (A log u - B log(1-u)) and the moment itself may be
+    below the double range), else c = 1."""
+    if rs_tiny(fam, a, b):
+        c = max(abs(a), abs(b))
+        return c, _central_linear(abs(a) / c, abs(b) / c, k)
+    return 1.0, central_moment(fam, a, b, k)
+
+
+@njit(cache=True, error_model="numpy")
 def central_moment(fam, a, b, k):
     """k-th central moment (k >= 2) of the standardized GLD; inf/NaN when it does not exist."""
     if not moment_exists(a, b, k):
         return math.inf if k % 2 == 0 else math.nan
+    if rs_tiny(fam, a, b):
+        c = max(abs(a), abs(b))
+        return c**k * _central_linear(abs(a) / c, abs(b) / c, k)
     m = mean_std(fam, a, b)
     val, rel = _central_closed(fam, a, b, k, m)
     if rel <= _CLOSED_FORM_RTOL:
         return val
     quad, err = _central_quad(fam, a, b, k, m, _LOGU, _LOG1MU, _LOGW)
+    if not rel < math.inf:
+        # the closed form overflowed (1/lambda for FKML shapes below ~1e-75): quadrature
+        return quad
     if quad != 0.0 and err / abs(quad) < rel:
         return quad
     return val
@@ -163,18 +195,20 @@ def mvsk_kernel(fam, a, b, out):
             out[i, 2] = math.nan
             out[i, 3] = math.nan
             continue
-        v = central_moment(fam, ai, bi, 2)
-        out[i, 1] = v
+        # skewness and kurtosis from the scaled moments: finite also where the variance
+        # of the standardized distribution is below the double range (tiny RS shapes)
+        c, v = scaled_central_moment(fam, ai, bi, 2)
+        out[i, 1] = c * c * v
         if not v > 0.0:
             out[i, 2] = math.nan
             out[i, 3] = math.nan
             continue
         if moment_exists(ai, bi, 3):
-            out[i, 2] = central_moment(fam, ai, bi, 3) / v**1.5
+            out[i, 2] = scaled_central_moment(fam, ai, bi, 3)[1] / v**1.5
         else:
             out[i, 2] = math.nan
         if moment_exists(ai, bi, 4):
-            out[i, 3] = central_moment(fam, ai, bi, 4) / (v * v) - 3.0
+            out[i, 3] = scaled_central_moment(fam, ai, bi, 4)[1] / (v * v) - 3.0
         else:
             out[i, 3] = math.inf if moment_exists(ai, bi, 3) else math.nan
 

@@ -141,6 +141,11 @@ def _lmoments(x, c, m, out):
     d2 = (m - 1.0) * (m - 2.0)
     d3 = (m - 1.0) * (m - 2.0) * (m - 3.0)
     pos = 0
+    # deviations from a central data value: exact under a common offset (1e9 + N(0, 1)),
+    # where sums of the raw data would lose the digits that l2, l3 and l4 are made of
+    ctr = x[x.size // 2] if x.size > 0 else 0.0
+    if x.size > 0 and not (math.isfinite(x[0] - ctr) and math.isfinite(x[x.size - 1] - ctr)):
+        ctr = 0.0
     for i in range(x.size):
         w = c[i]
         if w == 0:
@@ -154,7 +159,7 @@ def _lmoments(x, c, m, out):
             w1 += fr
             w2 += fr * (fr - 1.0)
             w3 += fr * (fr - 1.0) * (fr - 2.0)
-        xi = x[i]
+        xi = x[i] - ctr
         b0 += w * xi
         b1 += w1 * xi
         b2 += w2 * xi
@@ -167,7 +172,7 @@ def _lmoments(x, c, m, out):
     l2 = 2.0 * b1 - b0
     l3 = 6.0 * b2 - 6.0 * b1 + b0
     l4 = 20.0 * b3 - 30.0 * b2 + 12.0 * b1 - b0
-    out[0] = b0
+    out[0] = b0 + ctr
     out[1] = l2
     if l2 > 0.0:
         out[2] = l3 / l2

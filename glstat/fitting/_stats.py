@@ -100,19 +100,46 @@ def prepare_data(data, nan_policy: str = "raise") -> tuple[np.ndarray | None, in
     return x, nbad + nmasked
 
 
+def _centre(x: np.ndarray) -> tuple[float, np.ndarray]:
+    """A data value ``c`` near the middle of ``x`` and the deviations ``y = x - c``.
+
+    For data under a large common offset (1e9 + N(0, 1)) the subtraction of a data value of
+    the same magnitude is exact, so every statistic accumulated from ``y`` is what the
+    shifted data would give; the mean of ``x`` itself would carry an absolute rounding error
+    of eps * |offset| into every central moment.
+    """
+    c = float(np.partition(x, x.size // 2)[x.size // 2]) if x.size else 0.0
+    y = x - c
+    if not np.all(np.isfinite(y)):
+        # the differences overflowed (data spanning the whole double range): no shift
+        return 0.0, np.asarray(x, dtype=float)
+    return c, y
+
+
+def _mean(y: np.ndarray) -> float:
+    """Mean of ``y`` with one correction pass (the mean of the residuals), overflow-safe."""
+    m = float(np.mean(y))
+    if not math.isfinite(m):
+        # the sum overflowed: take the mean of the data scaled by their largest magnitude
+        big = float(np.max(np.abs(y)))
+        m = big * float(np.mean(y / big))
+    return m + float(np.mean(y - m))
+
+
 def sample_moments(x: np.ndarray) -> tuple[float, float, float, float]:
     """Mean, standard deviation, skewness and (Pearson) kurtosis, all with divisor n.
 
-    The deviations from the mean are divided by their largest magnitude before the powers are
+    The data are first centred on one of their own values (exact for data under a common
+    offset, see `_centre`), the mean of the deviations is taken with a correction pass, and
+    the deviations from it are divided by their largest magnitude before the powers are
     taken, so that neither ``d**4`` underflows (data of order 1e-80 and below) nor overflows
-    (data of order 1e77 and above): the results scale exactly with the data.
+    (data of order 1e77 and above): the results scale exactly with the data, and a common
+    offset does not enter the shape statistics.
     """
-    m = float(np.mean(x))
-    if not math.isfinite(m):
-        # the sum overflowed: take the mean of the data scaled by their largest magnitude
-        big = float(np.max(np.abs(x)))
-        m = big * float(np.mean(x / big))
-    d = x - m
+    c, y = _centre(x)
+    my = _mean(y)
+    m = c + my
+    d = y - my
     spread = float(np.max(np.abs(d)))
     if not (spread > 0.0 and math.isfinite(spread)):
         raise FitError("the data have zero variance: no GLD matches them")
@@ -142,12 +169,10 @@ def location_spread(x: np.ndarray) -> tuple[float, float]:
     standard deviation keeps every power in [0, 1], whatever the scale of the data, and never
     divides by a standard deviation that underflowed to zero.
     """
-    m = float(np.mean(x))
-    if not math.isfinite(m):
-        big = float(np.max(np.abs(x)))
-        m = big * float(np.mean(x / big))
-    spread = float(np.max(np.abs(x - m)))
-    return m, spread if spread > 0.0 else 1.0
+    c, y = _centre(x)
+    my = _mean(y)
+    spread = float(np.max(np.abs(y - my)))
+    return c + my, spread if spread > 0.0 else 1.0
 
 
 def distinct_note(x: np.ndarray) -> str:
@@ -172,8 +197,14 @@ def rho_from_quantiles(q) -> tuple[float, float, float, float]:
 
 
 def sample_lmoments(x: np.ndarray) -> tuple[float, float, float, float]:
-    """Unbiased sample L-moments l1, l2 and ratios t3, t4 (Hosking 1990) of sorted ``x``."""
+    """Unbiased sample L-moments l1, l2 and ratios t3, t4 (Hosking 1990) of sorted ``x``.
+
+    The probability-weighted moments are accumulated from the deviations from a central data
+    value (exact under a common offset); l2, l3 and l4 do not depend on the shift, which is
+    added back to l1 only.
+    """
     n = x.size
+    c, x = _centre(x)
     i = np.arange(n, dtype=float)
     b0 = x.mean()
     b1 = np.sum(i / (n - 1) * x) / n
@@ -182,7 +213,7 @@ def sample_lmoments(x: np.ndarray) -> tuple[float, float, float, float]:
     l2 = 2 * b1 - b0
     l3 = 6 * b2 - 6 * b1 + b0
     l4 = 20 * b3 - 30 * b2 + 12 * b1 - b0
-    return float(b0), float(l2), float(l3 / l2), float(l4 / l2)
+    return c + float(b0), float(l2), float(l3 / l2), float(l4 / l2)
 
 
 def check_moment_stats(mean, std, skew, kurt) -> None:
