@@ -1,11 +1,12 @@
 """``glstat fit``: fit a GLD to one's own sample and report fit, goodness of fit and damage.
 
-Reads one column of values from a CSV, Parquet, NPY or whitespace-separated text file, fits a
-Generalized Lambda Distribution (:func:`glstat.fit`), tabulates every root found and the
-goodness of fit (:func:`glstat.gof_report`), bootstraps the fit (:func:`glstat.bootstrap`) and,
-on request, gives the distribution of the maximum of ``--n-max`` values and the damage
-probability at a hardness ``--hardness`` for the analysed area and for areas ``--area-factor``
-times larger (DESIGN §1 steps 4–8). Figures, ``fit.json`` and ``summary.csv`` go to ``--out``.
+Reads one column of values from a delimited text, Parquet, Excel or NPY file
+(:mod:`glstat.cli_input`), fits a Generalized Lambda Distribution (:func:`glstat.fit`),
+tabulates every root found and the goodness of fit (:func:`glstat.gof_report`), bootstraps
+the fit (:func:`glstat.bootstrap`) and, on request, gives the distribution of the maximum of
+``--n-max`` values and the damage probability at a hardness ``--hardness`` for the analysed
+area and for areas ``--area-factor`` times larger. Figures, ``fit.json`` and ``summary.csv``
+go to ``--out``. Phases longer than two seconds announce themselves on stderr.
 
 Run as ``glstat fit FILE ...`` or ``python -m glstat.cli_fit FILE ...``; ``--help`` lists the
 options and ``docs/cli_fit.md`` shows an example session. Exit status: 0 on success, 2 for bad
@@ -15,10 +16,13 @@ input or options (the message names the problem and the fix), 1 when no GLD can 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import sys
 import tempfile
+import threading
+import time
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -27,11 +31,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .cli_input import InputError, Sample, read_sample
 from .errors import FitError
 from .fitting._stats import MIN_N
 
 if TYPE_CHECKING:  # pragma: no cover
-    import pandas as pd
 
     from .bootstrap import BootstrapFit
     from .fitting import GLDFit
@@ -44,301 +48,14 @@ PARAMS = ("rs", "fkml")
 _METHOD_NAMES = {"moments": "method of moments", "percentiles": "percentiles (Karian–Dudewicz)",
                  "lmoments": "L-moments", "mle": "maximum likelihood",
                  "mps": "maximum product of spacings", "starship": "starship (minimum Anderson–Darling)"}
-_COMPRESSION = (".gz", ".bz2", ".xz", ".zip", ".zst")
 #: Replicates of the goodness-of-fit p-values by default, and the budget that caps them:
 #: replicates x sample size <= GOF_BUDGET values simulated and refitted (about 10 s of work);
 #: below GOF_MIN_RESAMPLES replicates the p-values are not computed by default.
 GOF_RESAMPLES = 99
 GOF_BUDGET = 10_000_000
 GOF_MIN_RESAMPLES = 19
-#: Values simulated and refitted above which the goodness-of-fit replicates show a progress bar.
-GOF_PROGRESS_WORK = 2_000_000
 _GOF_ROWS = (("loglik", None), ("aic", None), ("bic", None), ("ks", "ks_pvalue"), ("ad", "ad_pvalue"),
              ("cvm", "cvm_pvalue"), ("chi2", "chi2_pvalue"), ("max_qdev_iqr", None))
-
-
-class InputError(ValueError):
-    """Bad input file, column or option; the message names the problem and the fix."""
-
-
-@dataclass(frozen=True)
-class Sample:
-    """One column of values read from a file.
-
-    Attributes
-    ----------
-    values : ndarray
-        The finite values, in file order (a new array; the file is never modified).
-    path : pathlib.Path
-        The file read.
-    fmt : str
-        ``"csv"``, ``"tsv"``, ``"parquet"``, ``"npy"`` or ``"text"``.
-    column : str
-        Name of the column used (``"1"``, ``"2"``, ... for files without a header and for
-        NumPy arrays: the 1-based column position).
-    n_total : int
-        Number of entries in the column, including missing ones.
-    n_nan : int
-        Missing or NaN entries.
-    n_inf : int
-        Infinite entries.
-    nan_policy : str
-        ``"raise"`` or ``"omit"``: how non-finite entries were treated.
-    """
-
-    values: np.ndarray
-    path: Path
-    fmt: str
-    column: str
-    n_total: int
-    n_nan: int
-    n_inf: int
-    nan_policy: str
-
-    @property
-    def n_dropped(self) -> int:
-        """Number of non-finite entries left out."""
-        return self.n_nan + self.n_inf
-
-
-# ---------------------------------------------------------------------------------------------
-# reading
-# ---------------------------------------------------------------------------------------------
-def _format_of(path: Path) -> str:
-    suffixes = [s.lower() for s in path.suffixes]
-    if suffixes and suffixes[-1] in _COMPRESSION:
-        suffixes = suffixes[:-1]
-    last = suffixes[-1] if suffixes else ""
-    return {".csv": "csv", ".tsv": "tsv", ".parquet": "parquet", ".pq": "parquet",
-            ".npy": "npy"}.get(last, "text")
-
-
-def _is_number(token: str) -> bool:
-    try:
-        float(token)
-    except (TypeError, ValueError):
-        return False
-    return True
-
-
-def _read_delimited(path: Path, fmt: str) -> pd.DataFrame:
-    import pandas as pd
-
-    sep = {"csv": ",", "tsv": "\t"}.get(fmt, r"\s+")
-    what = {"csv": "CSV", "tsv": "tab-separated text"}.get(fmt, "whitespace-separated text")
-    opts: dict[str, Any] = {"sep": sep, "comment": "#", "index_col": False}
-    if int(pd.__version__.split(".")[0]) < 3:  # pandas 3 parses floats exactly by default
-        opts["float_precision"] = "round_trip"
-    if fmt != "text":
-        opts["skipinitialspace"] = True
-    try:
-        with warnings.catch_warnings():
-            # rows longer than the header: an error, not a silent loss of fields
-            warnings.simplefilter("error", pd.errors.ParserWarning)
-            first = pd.read_csv(path, header=None, nrows=1, dtype=str, **opts)
-            tokens = [str(t).strip() for t in first.iloc[0].tolist()]
-            headerless = all(_is_number(t) for t in tokens)
-            df = pd.read_csv(path, header=None if headerless else 0, **opts)
-    except pd.errors.ParserWarning as exc:
-        raise InputError(f"{path} could not be read as {what}: some rows have more fields than the "
-                         f"header ({exc}); check the separator (.csv: commas, .tsv: tabs, other names: "
-                         "whitespace) and decimal points (not commas)") from exc
-    except pd.errors.EmptyDataError as exc:
-        raise InputError(f"{path} is empty (no values, only blank or comment lines); give a file with "
-                         "one value per line or a column of values") from exc
-    except UnicodeDecodeError as exc:
-        raise InputError(f"{path} is not a text file ({exc.reason} at byte {exc.start}); give a CSV, "
-                         "Parquet (.parquet), NumPy (.npy) or plain text file") from exc
-    except (pd.errors.ParserError, ValueError) as exc:
-        raise InputError(f"{path} could not be read as {what}: {str(exc).strip()}; check the separator "
-                         "(.csv: commas, .tsv: tabs, other names: whitespace) and that every row has "
-                         "the same number of fields") from exc
-    if headerless:
-        df.columns = [str(i + 1) for i in range(df.shape[1])]
-    else:
-        df.columns = [str(c).strip() for c in df.columns]
-    return df
-
-
-def _read_parquet(path: Path) -> pd.DataFrame:
-    try:
-        import pyarrow  # noqa: F401
-    except ImportError as exc:
-        raise InputError(f"reading Parquet ({path.name}) needs the package 'pyarrow', which is not "
-                         "installed; install it with: pip install pyarrow   (or: pip install "
-                         "'glstat[all]'), or save the data as CSV or .npy") from exc
-    import pandas as pd
-
-    try:
-        df = pd.read_parquet(path, engine="pyarrow")
-    except (OSError, ValueError) as exc:  # pyarrow's ArrowInvalid derives from ValueError
-        raise InputError(f"{path} could not be read as Parquet: {exc}") from exc
-    df.columns = [str(c) for c in df.columns]
-    return df
-
-
-def _read_npy(path: Path) -> pd.DataFrame:
-    import pandas as pd
-
-    try:
-        arr = np.load(path, allow_pickle=False)
-    except EOFError as exc:
-        raise InputError(f"{path} is empty: it holds no array") from exc
-    except ValueError as exc:
-        if "allow_pickle" in str(exc) or "pickle" in str(exc).lower():
-            raise InputError(f"{path} holds Python objects (a pickled object array); save the values "
-                             "as a numeric array, e.g. np.save(path, np.asarray(values, dtype=float))"
-                             ) from exc
-        raise InputError(f"{path} is not a NumPy .npy file ({exc}); give a file written by numpy.save, "
-                         "or use a .csv or .txt name for text") from exc
-    if isinstance(arr, np.lib.npyio.NpzFile):  # a .npz archive saved under a .npy name
-        arr.close()
-        raise InputError(f"{path} is a .npz archive, not a .npy array; save one array with numpy.save")
-    if arr.dtype.names:
-        return pd.DataFrame({str(name): arr[name].ravel() for name in arr.dtype.names})
-    if arr.ndim == 0:
-        arr = arr.reshape(1)
-    if arr.ndim > 2:
-        raise InputError(f"{path} holds an array of shape {arr.shape}; expected a 1-D array of values or "
-                         "a 2-D array with one column per variable")
-    if arr.ndim == 1:
-        arr = arr[:, None]
-    return pd.DataFrame({str(j + 1): arr[:, j] for j in range(arr.shape[1])})
-
-
-def _numeric(series) -> bool:
-    import pandas as pd
-
-    return bool(pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series)
-                and not pd.api.types.is_complex_dtype(series))
-
-
-def _describe_columns(df) -> str:
-    parts = []
-    for c in df.columns:
-        parts.append(f"{c!r}" + ("" if _numeric(df[c]) else " (not numeric)"))
-    return ", ".join(parts)
-
-
-def _select_column(df, column: str | None, path: Path, fmt: str) -> tuple[str, Any]:
-    names = list(df.columns)
-    if column is not None:
-        if column in names:
-            return column, df[column]
-        stripped = column.strip()
-        if stripped in names:
-            return stripped, df[stripped]
-        if stripped.isdigit() and 1 <= int(stripped) <= len(names):
-            name = names[int(stripped) - 1]
-            return name, df[name]
-        raise InputError(f"column {column!r} not found in {path}; available columns: "
-                         f"{_describe_columns(df)} (or a 1-based position 1..{len(names)})")
-    numeric = [c for c in names if _numeric(df[c])]
-    if len(numeric) == 1:
-        return numeric[0], df[numeric[0]]
-    if not numeric:
-        hint = ("save the values as numbers (e.g. numpy.asarray(values, dtype=float))"
-                if fmt in ("npy", "parquet") else "check the separator, or choose a column with --column")
-        raise InputError(f"{path} has no numeric column (columns: {_describe_columns(df)}); the values "
-                         f"to fit must be numbers - {hint}")
-    listed = ", ".join(repr(c) for c in numeric)
-    raise InputError(f"{path} has {len(numeric)} numeric columns ({listed}); choose the one to fit "
-                     f"with --column, e.g. --column {numeric[-1]}")
-
-
-def _to_float(series, name: str, path: Path, df) -> np.ndarray:
-    import pandas as pd
-
-    if _numeric(series):
-        return series.to_numpy(dtype=float, na_value=np.nan)
-    if pd.api.types.is_bool_dtype(series):
-        raise InputError(f"column {name!r} in {path} holds true/false values, not numbers; choose a "
-                         f"numeric column (columns: {_describe_columns(df)})")
-    coerced = pd.to_numeric(series, errors="coerce") if not pd.api.types.is_complex_dtype(series) \
-        else pd.Series(np.nan, index=series.index)
-    bad = coerced.isna().to_numpy() & series.notna().to_numpy()
-    nbad = int(bad.sum())
-    if nbad:
-        row = int(np.flatnonzero(bad)[0])
-        value = series.iloc[row]
-        numeric = [c for c in df.columns if _numeric(df[c])]
-        hint = (f"choose a numeric column ({', '.join(repr(c) for c in numeric)}) with --column"
-                if numeric else "clean the file so that the column holds only numbers")
-        raise InputError(f"column {name!r} in {path} is not numeric: {nbad} of {len(series)} entries are "
-                         f"not numbers (first: {value!r} in data row {row + 1}); {hint}")
-    return coerced.to_numpy(dtype=float, na_value=np.nan)
-
-
-def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "raise") -> Sample:
-    """Read one column of values from a CSV, Parquet, NPY or whitespace-separated text file.
-
-    Parameters
-    ----------
-    path : str or pathlib.Path
-        The file. The format follows the name: ``.csv`` (commas), ``.tsv`` (tabs),
-        ``.parquet``/``.pq`` (needs ``pyarrow``), ``.npy`` (``numpy.save``), anything else is
-        text with values separated by whitespace. A compression suffix (``.gz``, ``.bz2``,
-        ``.xz``, ``.zip``, ``.zst``) is allowed on the text formats. Lines starting with ``#``
-        are comments. A first row made only of numbers is data (no header); the columns are
-        then named ``"1"``, ``"2"``, ...
-    column : str, optional
-        Column name, or its 1-based position. Default: the only numeric column.
-    nan_policy : {"raise", "omit"}, optional
-        Missing, NaN or infinite entries: refuse the file, or leave them out.
-
-    Returns
-    -------
-    Sample
-        The finite values (float64, in file order) and what was read.
-
-    Raises
-    ------
-    InputError
-        File not found, empty or unreadable; unknown column (the message lists the available
-        ones); several numeric columns and no ``column``; a non-numeric column; non-finite
-        entries with ``nan_policy="raise"``; Parquet without ``pyarrow``.
-    """
-    if nan_policy not in ("raise", "omit"):
-        raise InputError(f"--nan-policy must be 'raise' or 'omit', got {nan_policy!r}")
-    path = Path(path)
-    if not path.exists():
-        raise InputError(f"file not found: {path} (looked in {path.resolve().parent}); check the path "
-                         "and the file name")
-    if path.is_dir():
-        raise InputError(f"{path} is a directory; give a data file (.csv, .parquet, .npy or text)")
-    if path.stat().st_size == 0:
-        raise InputError(f"{path} is empty (0 bytes); give a file with the values to fit")
-    fmt = _format_of(path)
-    if fmt == "parquet":
-        df = _read_parquet(path)
-    elif fmt == "npy":
-        df = _read_npy(path)
-    else:
-        df = _read_delimited(path, fmt)
-    if df.shape[1] == 0:
-        raise InputError(f"{path} is empty: it has no columns")
-    if df.shape[0] == 0:
-        raise InputError(f"{path} has no data rows (columns: {_describe_columns(df)}); give a file with "
-                         "the values to fit")
-    name, series = _select_column(df, column, path, fmt)
-    values = _to_float(series, name, path, df)
-    nan = np.isnan(values)
-    inf = np.isinf(values)
-    n_nan, n_inf = int(nan.sum()), int(inf.sum())
-    if n_nan + n_inf == values.size:
-        raise InputError(f"column {name!r} in {path} holds no finite value ({values.size} entries, all "
-                         "missing, NaN or infinite); choose another column or fix the file")
-    if n_nan + n_inf:
-        first = int(np.flatnonzero(nan | inf)[0]) + 1
-        kinds = " and ".join(p for p in (f"{n_nan} missing/NaN" if n_nan else "",
-                                         f"{n_inf} infinite" if n_inf else "") if p)
-        if nan_policy == "raise":
-            raise InputError(f"column {name!r} in {path} has {kinds} value(s) out of {values.size} "
-                             f"(first in data row {first}); they are refused (--nan-policy raise). Remove "
-                             "them from the file, or pass --nan-policy omit to drop them")
-        values = values[~(nan | inf)]
-    return Sample(values=np.array(values, dtype=float), path=path, fmt=fmt, column=str(name),
-                  n_total=int(nan.size), n_nan=n_nan, n_inf=n_inf, nan_policy=nan_policy)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -354,15 +71,22 @@ def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="glstat fit",
         description="Fit a Generalized Lambda Distribution to a sample (one column of a CSV, "
-                    "Parquet, NPY or text file); print the fit, the goodness of fit and, given a "
+                    "Parquet, Excel, NPY or text file); print the fit, the goodness of fit and, given a "
                     "hardness, the damage probability with its bootstrap interval; write figures, "
                     "fit.json and summary.csv.",
         epilog="example: glstat fit pressures.csv --column pressure --n-max 1048576 "
                "--hardness 2050 --area-factor 1 10 100 --bootstrap 1000 --out fit_out --seed 1",
     )
-    p.add_argument("file", metavar="FILE", help="data file: .csv, .tsv, .parquet, .npy, or whitespace text")
+    p.add_argument("file", metavar="FILE", help="data file: .csv, .tsv, .parquet, .xlsx, .npy, or text "
+                   "(optionally compressed: .gz, .bz2, .xz, .zip)")
     p.add_argument("--column", "-c", metavar="C", help="column name or 1-based position (default: the "
                    "only numeric column)")
+    p.add_argument("--sep", metavar="S", default=None,
+                   help="field separator of text files: ',', ';', 'tab' or 'space' (default: found "
+                        "from the first lines)")
+    p.add_argument("--decimal", choices=(".", ","), default=".",
+                   help="decimal mark of text files (default '.'; ',' for files written with decimal "
+                        "commas, usually with --sep ';')")
     p.add_argument("--param", choices=PARAMS, default="rs", help="GLD parameterisation (default rs)")
     p.add_argument("--method", choices=METHODS, default="moments", help="fitting method (default moments)")
     p.add_argument("--bootstrap", type=int, default=1000, metavar="N",
@@ -658,6 +382,33 @@ def _gof_refit(f: GLDFit, bar) -> Callable[[np.ndarray], Any]:
     return refit
 
 
+#: Seconds after which a phase of the run announces itself on stderr.
+PHASE_NOTICE = 2.0
+
+
+@contextlib.contextmanager
+def _phase(label: str, delay: float = PHASE_NOTICE):
+    """Announce ``label`` on stderr when the phase lasts longer than ``delay`` seconds, and
+    its duration when it ends (quick phases stay silent)."""
+    t0 = time.perf_counter()
+    shown = threading.Event()
+
+    def announce():
+        shown.set()
+        print(f"glstat fit: {label} ...", file=sys.stderr, flush=True)
+
+    timer = threading.Timer(delay, announce)
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        if shown.is_set():
+            print(f"glstat fit: {label}: done in {time.perf_counter() - t0:.1f} s", file=sys.stderr,
+                  flush=True)
+
+
 def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
     from .bootstrap import bootstrap
     from .fitting import fit
@@ -666,7 +417,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
     x = sample.values
     seed = int(args.seed) if args.seed is not None else int(np.random.SeedSequence().entropy % 2**63)
     notes: list[str] = []
-    with warnings.catch_warnings(record=True) as caught:
+    with _phase(f"fitting ({_METHOD_NAMES[args.method]}, n = {x.size})"), \
+            warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         f = fit(x, args.param, args.method)
     _collect_warnings(caught, notes)
@@ -676,11 +428,12 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
     res.gof_resamples, res.gof_note = gof_resamples_for(x.size, args.gof_resamples)
     from tqdm import tqdm
 
+    # the bar shows on stderr as soon as the replicates take longer than PHASE_NOTICE seconds
     bar = tqdm(total=res.gof_resamples, desc="goodness-of-fit p-values", unit="replicate",
-               file=sys.stderr, leave=False,
-               disable=res.gof_resamples * x.size <= GOF_PROGRESS_WORK)
+               file=sys.stderr, leave=False, delay=PHASE_NOTICE, disable=res.gof_resamples == 0)
     try:
-        with warnings.catch_warnings(record=True) as caught:
+        with _phase("goodness of fit (statistics; the p-value replicates show a bar)"), \
+                warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             res.gof = gof_report(x, f, n_resamples=res.gof_resamples, rng=seed,
                                  refit=_gof_refit(f, bar))
@@ -689,7 +442,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
     _collect_warnings(caught, notes)
     _print_gof(res, emit)
     if args.bootstrap:
-        with warnings.catch_warnings(record=True) as caught:
+        with _phase(f"bootstrap ({args.bootstrap} resamples)"), \
+                warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             # a progress bar (stderr) shows when the resamples are long
             res.boot = bootstrap(x, args.param, args.method, n_resamples=args.bootstrap,
@@ -698,12 +452,14 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         _collect_warnings(caught, notes)
         _print_bootstrap(res, emit)
     if args.n_max is not None:
-        res.maximum = _maximum(res, args.n_max, args.confidence_level)
+        with _phase("distribution of the maximum"):
+            res.maximum = _maximum(res, args.n_max, args.confidence_level)
         _print_maximum(res, emit)
     if args.hardness is not None:
         n = args.n_max if args.n_max is not None else float(x.size)
         factors = np.asarray(args.area_factor if args.area_factor is not None else [1.0], dtype=float)
-        res.damage = _damage(res, args.hardness, n, factors, args.confidence_level)
+        with _phase("damage probability"):
+            res.damage = _damage(res, args.hardness, n, factors, args.confidence_level)
         _print_damage(res, args, emit)
     return res
 
@@ -714,6 +470,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
 def _print_header(sample: Sample, emit: Callable[[str], None]) -> None:
     emit(f"glstat fit: {sample.path} ({sample.fmt}), column {sample.column!r}: {sample.values.size} "
          f"values used of {sample.n_total}")
+    for note in sample.notes:
+        emit(f"  read: {note}")
     if sample.n_dropped:
         emit(f"  dropped {sample.n_dropped} non-finite value(s) ({sample.n_nan} missing/NaN, "
              f"{sample.n_inf} infinite) (--nan-policy omit)")
@@ -993,7 +751,9 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
         No GLD of the requested kind can be fitted.
     """
     _check_options(args)
-    sample = read_sample(args.file, args.column, args.nan_policy)
+    with _phase(f"reading {args.file}"):
+        sample = read_sample(args.file, args.column, args.nan_policy, sep=args.sep,
+                             decimal=args.decimal)
     _check_sample(args, sample)
     out = check_output_dir(args.out if args.out is not None else f"glstat_fit_{Path(args.file).stem}")
     _print_header(sample, emit)
@@ -1002,8 +762,9 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
         emit("")
         for note in res.notes:
             emit(f"note: {note}")
-    _write_figures(res, out)
-    _write_tables(res, args, out)
+    with _phase("writing figures and tables"):
+        _write_figures(res, out)
+        _write_tables(res, args, out)
     emit("")
     emit(f"wrote {len(res.files)} files to {out}: {', '.join(sorted(res.files))}")
     return res
@@ -1028,6 +789,11 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # --help, or an option argparse rejected (it printed why)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    from contact._numba_cache import compile_note
+
+    note = compile_note()
+    if note:
+        print(f"glstat fit: {note}", file=sys.stderr, flush=True)
     try:
         run(args)
     except InputError as exc:
@@ -1036,6 +802,10 @@ def main(argv: list[str] | None = None) -> int:
     except FitError as exc:
         print(f"glstat fit: no GLD fit: {exc}", file=sys.stderr)
         return 1
+    except KeyboardInterrupt:
+        print("glstat fit: interrupted (Ctrl-C); nothing was written unless listed above",
+              file=sys.stderr)
+        return 130
     return 0
 
 

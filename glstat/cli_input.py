@@ -1,0 +1,643 @@
+"""Reading the sample of ``glstat fit``: one column of values from the files people have.
+
+Formats, chosen by the file name: delimited text (``.csv``, ``.tsv``, ``.txt`` and any other
+name), Parquet (``.parquet``, ``.pq``; needs ``pyarrow``), Excel (``.xlsx``, ``.xlsm``;
+needs ``openpyxl``) and NumPy (``.npy``). Text may be compressed (``.gz``, ``.bz2``, ``.xz``,
+``.zip``; ``.zst`` with ``zstandard``).
+
+Text files: the separator is found from the first lines (comma, semicolon, tab or
+whitespace) unless ``sep`` is given; ``decimal=","`` reads decimal commas, and in a file
+separated by semicolons or tabs a column of decimal-comma numbers is recognised without it.
+Lines starting with ``#`` are comments. A first row made only of numbers is data (the
+columns are then named ``"1"``, ``"2"``, ...). A first column without a header holding
+0, 1, 2, ... (the index pandas writes with ``DataFrame.to_csv``) is not data.
+
+Memory is bounded before reading: compressed text is decompressed up to
+:data:`MAX_DECOMPRESSED` bytes, Parquet and Excel files whose declared uncompressed size
+exceeds it are refused from their metadata, and a ``.npy`` header that declares more data
+than the file holds is refused without reserving memory. Everything that is the file's fault
+raises :class:`InputError` (``glstat fit`` exits with status 2 and the message).
+"""
+
+from __future__ import annotations
+
+import bz2
+import io
+import lzma
+import math
+import re
+import warnings
+import zipfile
+import zlib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+
+__all__ = ["MAX_DECOMPRESSED", "InputError", "Sample", "read_sample"]
+
+#: Largest decompressed size (bytes) of a compressed text file, and largest declared
+#: uncompressed size of the data read from a Parquet or Excel file: 1 GiB.
+MAX_DECOMPRESSED = 2**30
+COMPRESSION = (".gz", ".bz2", ".xz", ".zip", ".zst")
+_SEPARATORS = {",": "commas", ";": "semicolons", "\t": "tabs", r"\s+": "whitespace"}
+_SEP_NAMES = {",": ",", ";": ";", "tab": "\t", "\\t": "\t", "\t": "\t", "space": r"\s+",
+              "whitespace": r"\s+", " ": r"\s+"}
+_DECIMAL_COMMA = re.compile(r"^\s*[-+]?(\d+(,\d*)?|,\d+)([eE][-+]?\d+)?\s*$")
+_READ_ERRORS = (OSError, EOFError, ValueError, zlib.error, lzma.LZMAError, RuntimeError,
+                NotImplementedError, zipfile.BadZipFile, MemoryError)
+
+
+class InputError(ValueError):
+    """Bad input file, column or option; the message names the problem and the fix."""
+
+
+@dataclass(frozen=True)
+class Sample:
+    """One column of values read from a file.
+
+    Attributes
+    ----------
+    values : ndarray
+        The finite values, in file order (a new array; the file is never modified).
+    path : pathlib.Path
+        The file read.
+    fmt : str
+        ``"csv"``, ``"tsv"``, ``"parquet"``, ``"npy"``, ``"excel"`` or ``"text"``.
+    column : str
+        Name of the column used (``"1"``, ``"2"``, ... for files without a header and for
+        NumPy arrays: the 1-based column position).
+    n_total : int
+        Number of entries in the column, including missing ones.
+    n_nan : int
+        Missing or NaN entries.
+    n_inf : int
+        Infinite entries.
+    nan_policy : str
+        ``"raise"`` or ``"omit"``: how non-finite entries were treated.
+    notes : tuple of str
+        How the file was read, when it was not the plain case (separator found, decimal
+        commas, an index column left out).
+    """
+
+    values: np.ndarray
+    path: Path
+    fmt: str
+    column: str
+    n_total: int
+    n_nan: int
+    n_inf: int
+    nan_policy: str
+    notes: tuple[str, ...] = ()
+
+    @property
+    def n_dropped(self) -> int:
+        """Number of non-finite entries left out."""
+        return self.n_nan + self.n_inf
+
+
+# ---------------------------------------------------------------------------------------------
+# formats and raw bytes
+# ---------------------------------------------------------------------------------------------
+def format_of(path: Path) -> str:
+    """The format of ``path`` from its name: csv, tsv, parquet, npy, excel or text."""
+    suffixes = [s.lower() for s in path.suffixes]
+    if suffixes and suffixes[-1] in COMPRESSION:
+        suffixes = suffixes[:-1]
+    last = suffixes[-1] if suffixes else ""
+    return {".csv": "csv", ".tsv": "tsv", ".parquet": "parquet", ".pq": "parquet", ".npy": "npy",
+            ".xlsx": "excel", ".xlsm": "excel"}.get(last, "text")
+
+
+def _too_big(path: Path, what: str) -> InputError:
+    return InputError(f"{path} {what} more than {MAX_DECOMPRESSED // 2**20} MiB, the limit of "
+                      "glstat fit for compressed input; decompress it first (uncompressed files "
+                      "have no limit), or fit a part of it")
+
+
+def _capped_read(stream, path: Path) -> bytes:
+    data = stream.read(MAX_DECOMPRESSED + 1)
+    if len(data) > MAX_DECOMPRESSED:
+        raise _too_big(path, "decompresses to")
+    return data
+
+
+def _zip_bytes(path: Path) -> bytes:
+    from contact.errors import TopographyFileError
+    from contact.x3p import check_zip_member
+
+    with zipfile.ZipFile(path) as archive:
+        members = [i for i in archive.infolist() if not i.is_dir()]
+        if len(members) != 1:
+            raise InputError(f"{path} is a zip archive of {len(members)} files; it must hold exactly "
+                             "one data file")
+        info = members[0]
+        try:
+            check_zip_member(info, str(path), repr(info.filename), limit=MAX_DECOMPRESSED)
+        except TopographyFileError as exc:
+            raise InputError(str(exc)) from None
+        with archive.open(info) as f:
+            return _capped_read(f, path)
+
+
+def _raw_text(path: Path) -> bytes:
+    """The bytes of a text file, decompressed (with the cap) when its name says so."""
+    suffix = path.suffix.lower()
+    try:
+        if suffix == ".gz":
+            import gzip
+
+            with gzip.open(path, "rb") as f:
+                return _capped_read(f, path)
+        if suffix == ".bz2":
+            with bz2.open(path, "rb") as f:
+                return _capped_read(f, path)
+        if suffix == ".xz":
+            with lzma.open(path, "rb") as f:
+                return _capped_read(f, path)
+        if suffix == ".zip":
+            return _zip_bytes(path)
+        if suffix == ".zst":
+            try:
+                import zstandard
+            except ImportError:
+                raise InputError(f"reading {path.name} needs the package 'zstandard' (pip install "
+                                 "zstandard), or decompress the file first") from None
+            with open(path, "rb") as fh, zstandard.ZstdDecompressor().stream_reader(fh) as f:
+                return _capped_read(f, path)
+        return path.read_bytes()
+    except InputError:
+        raise
+    except _READ_ERRORS as exc:
+        raise InputError(f"{path} could not be decompressed ({type(exc).__name__}: {exc}); the file "
+                         "is damaged or not compressed the way its name says") from None
+
+
+def _decode(raw: bytes, path: Path) -> str:
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        if b"\x00" in raw[:4096]:
+            raise InputError(f"{path} is not a text file ({exc.reason} at byte {exc.start}); give a "
+                             "CSV, Parquet (.parquet), Excel (.xlsx), NumPy (.npy) or plain text "
+                             "file") from None
+        return raw.decode("latin-1")
+
+
+# ---------------------------------------------------------------------------------------------
+# delimited text
+# ---------------------------------------------------------------------------------------------
+def _is_number(token: str, decimal: str = ".") -> bool:
+    token = token.strip()
+    if decimal == ",":
+        if "." in token:
+            return False
+        token = token.replace(",", ".")
+    if "_" in token:
+        return False
+    try:
+        float(token)
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
+def _data_lines(text: str, limit: int = 50) -> list[str]:
+    out = []
+    for line in text.splitlines():
+        body = line.split("#", 1)[0].rstrip()
+        if body.strip():
+            out.append(body)
+            if len(out) >= limit:
+                break
+    return out
+
+
+def sniff_separator(text: str, decimal: str = ".") -> str | None:
+    """The separator of delimited text, from its first lines.
+
+    Tab, semicolon or comma when every line splits into the same number (at least 2) of
+    fields; else whitespace when it does; else the one of them found in most lines (at least
+    80 %: rows of unequal length are then reported); else None (one column, or unknown).
+    A comma is not a candidate with ``decimal=","``.
+    """
+    lines = _data_lines(text)
+    if not lines:
+        return None
+    candidates = [c for c in ("\t", ";", ",") if not (c == "," and decimal == ",")]
+    for sep in candidates:
+        counts = {len(line.split(sep)) for line in lines}
+        if len(counts) == 1 and counts.pop() > 1:
+            return sep
+    counts = {len(line.split()) for line in lines}
+    if len(counts) == 1 and counts.pop() > 1:
+        return r"\s+"
+    best = max(candidates, key=lambda c: sum(len(line.split(c)) > 1 for line in lines))
+    if sum(len(line.split(best)) > 1 for line in lines) >= 0.8 * len(lines):
+        return best
+    return None
+
+
+def _mismatch(exc: Exception, path: Path, sep: str) -> InputError:
+    text = str(exc)
+    m = re.search(r"Expected (\d+) fields in line (\d+), saw (\d+)", text)
+    how = _SEPARATORS.get(sep, repr(sep))
+    fix = ("check the separator (this file was read as separated by " + how + "; pass --sep to "
+           "choose another) and decimal points (decimal commas need --decimal ,)")
+    if m:
+        want, line, got = m.groups()
+        return InputError(f"{path}: line {line} has {got} fields but the lines before it have {want}; "
+                          f"{fix}")
+    return InputError(f"{path}: some rows have more fields than the header; {fix}")
+
+
+def _read_delimited(path: Path, fmt: str, sep: str | None, decimal: str,
+                    notes: list[str]) -> pd.DataFrame:
+    import pandas as pd
+
+    text = _decode(_raw_text(path), path)
+    if not _data_lines(text, 1):
+        raise InputError(f"{path} is empty (no values, only blank or comment lines); give a file with "
+                         "one value per line or a column of values")
+    if sep is None:
+        default = {"csv": ",", "tsv": "\t"}.get(fmt, r"\s+")
+        sep = sniff_separator(text, decimal) or default
+        if sep != default:
+            notes.append(f"fields separated by {_SEPARATORS[sep]} (found in the file; --sep to "
+                         "choose another)")
+    opts: dict[str, Any] = {"sep": sep, "comment": "#", "index_col": False, "decimal": decimal}
+    if sep != r"\s+":
+        opts["skipinitialspace"] = True
+    if decimal == "." and int(pd.__version__.split(".")[0]) < 3:
+        opts["float_precision"] = "round_trip"  # pandas 3 parses floats exactly by default
+    first = next(iter(_data_lines(text, 1)))
+    if sep == r"\s+":
+        tokens = first.split()
+    else:
+        tokens = first.split(sep)
+    headerless = all(_is_number(t, decimal) for t in tokens)
+    try:
+        with warnings.catch_warnings():
+            # rows longer than the header: an error, not a silent loss of fields
+            warnings.simplefilter("error", pd.errors.ParserWarning)
+            df = pd.read_csv(io.StringIO(text), header=None if headerless else 0, **opts)
+    except pd.errors.ParserWarning as exc:
+        raise _mismatch(exc, path, sep) from None
+    except pd.errors.EmptyDataError:
+        raise InputError(f"{path} is empty (no values, only blank or comment lines); give a file with "
+                         "one value per line or a column of values") from None
+    except pd.errors.ParserError as exc:
+        raise _mismatch(exc, path, sep) from None
+    except (ValueError, MemoryError) as exc:
+        raise InputError(f"{path} could not be read as text separated by {_SEPARATORS.get(sep, sep)} "
+                         f"({type(exc).__name__}); check the separator (--sep) and that every row has "
+                         "the same number of fields") from None
+    if headerless:
+        df.columns = [str(i + 1) for i in range(df.shape[1])]
+    else:
+        df.columns = [str(c).strip() for c in df.columns]
+        df = _drop_index_column(df, notes)
+    return df
+
+
+def _drop_index_column(df, notes: list[str]):
+    """``df`` without a first column that has no header and holds 0, 1, 2, ... (or 1, 2, ...):
+    the row index ``DataFrame.to_csv`` writes."""
+    if df.shape[1] < 2:
+        return df
+    name = str(df.columns[0])
+    if name and not name.startswith("Unnamed: 0"):
+        return df
+    col = df.iloc[:, 0]
+    import pandas as pd
+
+    if not pd.api.types.is_integer_dtype(col):
+        return df
+    values = col.to_numpy()
+    start = int(values[0]) if values.size else 0
+    if start in (0, 1) and np.array_equal(values, np.arange(start, start + values.size)):
+        notes.append("the first column (no header, 0, 1, 2, ...) is a row index, not data")
+        return df.iloc[:, 1:]
+    return df
+
+
+# ---------------------------------------------------------------------------------------------
+# Parquet, Excel, NumPy
+# ---------------------------------------------------------------------------------------------
+def _read_parquet(path: Path, column: str | None) -> pd.DataFrame:
+    try:
+        import pyarrow  # noqa: F401
+        import pyarrow.parquet as pq
+    except ImportError as exc:
+        raise InputError(f"reading Parquet ({path.name}) needs the package 'pyarrow', which is not "
+                         "installed; install it with: pip install pyarrow   (or: pip install "
+                         "'glstat[all]'), or save the data as CSV or .npy") from exc
+    import pandas as pd
+
+    try:
+        meta = pq.ParquetFile(path).metadata
+        names = [meta.schema.column(i).name for i in range(meta.num_columns)]
+        wanted = names
+        if column is not None and column.strip() in names:
+            wanted = [column.strip()]
+        elif column is not None and column.strip().isdigit() and 1 <= int(column) <= len(names):
+            wanted = [names[int(column) - 1]]
+        size = 0
+        for g in range(meta.num_row_groups):
+            rg = meta.row_group(g)
+            for c in range(rg.num_columns):
+                chunk = rg.column(c)
+                if chunk.path_in_schema in wanted:
+                    size += int(chunk.total_uncompressed_size)
+        if size > MAX_DECOMPRESSED:
+            raise InputError(f"{path} declares {size} bytes of uncompressed data in the column(s) read, "
+                             f"more than the {MAX_DECOMPRESSED // 2**20} MiB glstat fit reads from "
+                             "Parquet; choose one column with --column, or fit a part of the data")
+        df = pd.read_parquet(path, engine="pyarrow", columns=wanted)
+    except InputError:
+        raise
+    except (OSError, ValueError, MemoryError, IndexError, KeyError) as exc:
+        # pyarrow's ArrowInvalid derives from ValueError, ArrowMemoryError from MemoryError
+        raise InputError(f"{path} could not be read as Parquet ({type(exc).__name__}: {exc})") from None
+    df.columns = [str(c) for c in df.columns]
+    return df
+
+
+def _read_excel(path: Path) -> pd.DataFrame:
+    try:
+        import openpyxl  # noqa: F401
+    except ImportError as exc:
+        raise InputError(f"reading Excel files ({path.name}) needs the package 'openpyxl', which is not "
+                         "installed; install it with: pip install openpyxl   (or: pip install "
+                         "'glstat[all]'), or save the sheet as CSV") from exc
+    import pandas as pd
+
+    from contact.errors import TopographyFileError
+    from contact.x3p import check_zip_member
+
+    try:
+        with zipfile.ZipFile(path) as archive:
+            total = 0
+            for info in archive.infolist():
+                check_zip_member(info, str(path), repr(info.filename), limit=MAX_DECOMPRESSED)
+                total += info.file_size
+        if total > MAX_DECOMPRESSED:
+            raise _too_big(path, "holds")
+        df = pd.read_excel(path, engine="openpyxl")
+    except TopographyFileError as exc:
+        raise InputError(str(exc).replace("cannot be read", "cannot be read as Excel")) from None
+    except InputError:
+        raise
+    except (*_READ_ERRORS, KeyError, TypeError) as exc:
+        raise InputError(f"{path} could not be read as an Excel workbook ({type(exc).__name__}: "
+                         f"{exc}); save the sheet as CSV") from None
+    df.columns = [str(c).strip() for c in df.columns]
+    return df
+
+
+def _read_npy(path: Path) -> pd.DataFrame:
+    import pandas as pd
+
+    try:
+        with open(path, "rb") as fh:
+            try:
+                version = np.lib.format.read_magic(fh)
+            except ValueError as exc:
+                if zipfile.is_zipfile(path):
+                    raise InputError(f"{path} is a .npz archive, not a .npy array; save one array "
+                                     "with numpy.save") from None
+                raise InputError(f"{path} is not a NumPy .npy file ({exc}); give a file written by "
+                                 "numpy.save, or use a .csv or .txt name for text") from None
+            read_header = (np.lib.format.read_array_header_1_0 if version == (1, 0)
+                           else np.lib.format.read_array_header_2_0)
+            shape, _fortran, dtype = read_header(fh)
+            if dtype.hasobject:
+                raise InputError(f"{path} holds Python objects (a pickled object array); save the "
+                                 "values as a numeric array, e.g. np.save(path, np.asarray(values, "
+                                 "dtype=float))")
+            need = math.prod(shape) * dtype.itemsize
+            stored = path.stat().st_size - fh.tell()
+            if need > stored:
+                raise InputError(f"{path} declares an array of shape {shape} and dtype {dtype} "
+                                 f"({need} bytes) but holds {stored} bytes of data: a truncated or "
+                                 "damaged file")
+            fh.seek(0)
+            arr = np.lib.format.read_array(fh, allow_pickle=False)
+    except InputError:
+        raise
+    except EOFError as exc:
+        raise InputError(f"{path} is empty: it holds no array") from exc
+    except (ValueError, OSError, MemoryError) as exc:
+        raise InputError(f"{path} is not a NumPy .npy file ({type(exc).__name__}: {exc}); give a file "
+                         "written by numpy.save, or use a .csv or .txt name for text") from None
+    if arr.dtype.names:
+        sub = [n for n in arr.dtype.names if arr.dtype[n].shape != ()]
+        if sub:
+            raise InputError(f"{path} holds a structured array whose field(s) {', '.join(map(repr, sub))} "
+                             "are arrays, not single values; save one plain column of values")
+        return pd.DataFrame({str(name): arr[name].ravel() for name in arr.dtype.names})
+    if arr.ndim == 0:
+        arr = arr.reshape(1)
+    if arr.ndim > 2:
+        raise InputError(f"{path} holds an array of shape {arr.shape}; expected a 1-D array of values or "
+                         "a 2-D array with one column per variable")
+    if arr.ndim == 1:
+        arr = arr[:, None]
+    return pd.DataFrame({str(j + 1): arr[:, j] for j in range(arr.shape[1])})
+
+
+# ---------------------------------------------------------------------------------------------
+# the column
+# ---------------------------------------------------------------------------------------------
+def _numeric(series) -> bool:
+    import pandas as pd
+
+    return bool(pd.api.types.is_numeric_dtype(series) and not pd.api.types.is_bool_dtype(series)
+                and not pd.api.types.is_complex_dtype(series))
+
+
+def describe_columns(df) -> str:
+    """The columns of ``df`` as ``'a', 'b' (not numeric)``."""
+    parts = []
+    for c in df.columns:
+        parts.append(f"{c!r}" + ("" if _numeric(df[c]) else " (not numeric)"))
+    return ", ".join(parts)
+
+
+def _decimal_comma_column(series) -> bool:
+    values = series.dropna().astype(str)
+    return bool(values.size) and bool(values.map(lambda v: bool(_DECIMAL_COMMA.match(v))).all()) \
+        and bool(values.str.contains(",").any())
+
+
+def _select_column(df, column: str | None, path: Path, fmt: str) -> tuple[str, Any]:
+    names = list(df.columns)
+    if column is not None:
+        if column in names:
+            return column, df[column]
+        stripped = column.strip()
+        if stripped in names:
+            return stripped, df[stripped]
+        if stripped.isdigit() and 1 <= int(stripped) <= len(names):
+            name = names[int(stripped) - 1]
+            return name, df[name]
+        raise InputError(f"column {column!r} not found in {path}; available columns: "
+                         f"{describe_columns(df)} (or a 1-based position 1..{len(names)})")
+    numeric = [c for c in names if _numeric(df[c])]
+    if len(numeric) == 1:
+        return numeric[0], df[numeric[0]]
+    if not numeric and len(names) == 1 and fmt not in ("npy", "parquet", "excel"):
+        import pandas as pd
+
+        if pd.to_numeric(df[names[0]], errors="coerce").notna().any():
+            return names[0], df[names[0]]  # mostly numbers: say which entries are not
+    if not numeric:
+        hint = ("save the values as numbers (e.g. numpy.asarray(values, dtype=float))"
+                if fmt in ("npy", "parquet", "excel") else
+                "check the separator (--sep) and the decimal mark (--decimal), or choose a column "
+                "with --column")
+        raise InputError(f"{path} has no numeric column (columns: {describe_columns(df)}); the values "
+                         f"to fit must be numbers - {hint}")
+    listed = ", ".join(repr(c) for c in numeric)
+    raise InputError(f"{path} has {len(numeric)} numeric columns ({listed}); choose the one to fit "
+                     f"with --column, e.g. --column {numeric[-1]}")
+
+
+def _to_float(series, name: str, path: Path, df) -> np.ndarray:
+    import pandas as pd
+
+    if _numeric(series):
+        return series.to_numpy(dtype=float, na_value=np.nan)
+    if pd.api.types.is_bool_dtype(series):
+        raise InputError(f"column {name!r} in {path} holds true/false values, not numbers; choose a "
+                         f"numeric column (columns: {describe_columns(df)})")
+    if pd.api.types.is_complex_dtype(series):
+        raise InputError(f"column {name!r} in {path} holds complex numbers; fit a real quantity")
+    if pd.api.types.is_datetime64_any_dtype(series) or pd.api.types.is_timedelta64_dtype(series):
+        raise InputError(f"column {name!r} in {path} holds dates or times, not numbers; choose a "
+                         f"numeric column (columns: {describe_columns(df)})")
+    text = series.astype("string")
+    underscore = text.str.contains("_", regex=False).fillna(False).to_numpy(dtype=bool)
+    coerced = pd.to_numeric(series.where(~underscore), errors="coerce")
+    bad = coerced.isna().to_numpy() & series.notna().to_numpy()
+    nbad = int(bad.sum())
+    if nbad:
+        row = int(np.flatnonzero(bad)[0])
+        value = series.iloc[row]
+        numeric = [c for c in df.columns if _numeric(df[c])]
+        hint = (f"choose a numeric column ({', '.join(repr(c) for c in numeric)}) with --column"
+                if numeric else "clean the file so that the column holds only numbers")
+        raise InputError(f"column {name!r} in {path} is not numeric: {nbad} of {len(series)} entries are "
+                         f"not numbers (first: {value!r} in data row {row + 1}); {hint}")
+    return coerced.to_numpy(dtype=float, na_value=np.nan)
+
+
+def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "raise", *,
+                sep: str | None = None, decimal: str = ".") -> Sample:
+    """Read one column of values from a delimited text, Parquet, Excel or NPY file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file; the format follows the name (see the module documentation).
+    column : str, optional
+        Column name, or its 1-based position. Default: the only numeric column.
+    nan_policy : {"raise", "omit"}, optional
+        Missing, NaN or infinite entries: refuse the file, or leave them out.
+    sep : str, optional
+        Field separator of text files: ``","``, ``";"``, ``"tab"`` or ``"space"``
+        (whitespace); found from the file when omitted.
+    decimal : {".", ","}, optional
+        Decimal mark of text files.
+
+    Returns
+    -------
+    Sample
+        The finite values (float64, in file order) and what was read.
+
+    Raises
+    ------
+    InputError
+        File not found, empty, unreadable, damaged or larger than the limits; unknown column
+        (the message lists the available ones); several numeric columns and no ``column``; a
+        non-numeric column; non-finite entries with ``nan_policy="raise"``; Parquet without
+        ``pyarrow``, Excel without ``openpyxl``.
+    """
+    if nan_policy not in ("raise", "omit"):
+        raise InputError(f"--nan-policy must be 'raise' or 'omit', got {nan_policy!r}")
+    if decimal not in (".", ","):
+        raise InputError(f"--decimal must be '.' or ',', got {decimal!r}")
+    if sep is not None:
+        if sep not in _SEP_NAMES:
+            raise InputError(f"--sep must be one of ',', ';', 'tab' or 'space', got {sep!r}")
+        sep = _SEP_NAMES[sep]
+        if sep == "," and decimal == ",":
+            raise InputError("--sep , and --decimal , cannot both be commas; decimal commas come with "
+                             "--sep ';' (or tab)")
+    path = Path(path)
+    if not path.exists():
+        raise InputError(f"file not found: {path} (looked in {path.resolve().parent}); check the path "
+                         "and the file name")
+    if path.is_dir():
+        raise InputError(f"{path} is a directory; give a data file (.csv, .parquet, .xlsx, .npy or "
+                         "text)")
+    if path.stat().st_size == 0:
+        raise InputError(f"{path} is empty (0 bytes); give a file with the values to fit")
+    fmt = format_of(path)
+    notes: list[str] = []
+    try:
+        if fmt == "parquet":
+            df = _read_parquet(path, column)
+        elif fmt == "npy":
+            df = _read_npy(path)
+        elif fmt == "excel":
+            df = _read_excel(path)
+        else:
+            df = _read_delimited(path, fmt, sep, decimal, notes)
+    except MemoryError:
+        raise InputError(f"{path} is too large to read into memory; fit a part of it") from None
+    if df.shape[1] == 0:
+        raise InputError(f"{path} is empty: it has no columns")
+    if df.shape[0] == 0:
+        raise InputError(f"{path} has no data rows (columns: {describe_columns(df)}); give a file with "
+                         "the values to fit")
+    if fmt in ("csv", "tsv", "text") and decimal == ".":
+        seps = [n for n in notes if "separated by" in n]
+        comma_ok = not seps or "commas" not in seps[0]
+        for c in list(df.columns):
+            if comma_ok and not _numeric(df[c]) and _decimal_comma_column(df[c]):
+                df[c] = pd_to_numeric_comma(df[c])
+                if not any("decimal commas" in n for n in notes):
+                    notes.append("decimal commas read as decimal points (--decimal , says so "
+                                 "explicitly)")
+    name, series = _select_column(df, column, path, fmt)
+    values = _to_float(series, name, path, df)
+    nan = np.isnan(values)
+    inf = np.isinf(values)
+    n_nan, n_inf = int(nan.sum()), int(inf.sum())
+    if n_nan + n_inf == values.size:
+        raise InputError(f"column {name!r} in {path} holds no finite value ({values.size} entries, all "
+                         "missing, NaN or infinite); choose another column or fix the file")
+    if n_nan + n_inf:
+        first = int(np.flatnonzero(nan | inf)[0]) + 1
+        kinds = " and ".join(p for p in (f"{n_nan} missing/NaN" if n_nan else "",
+                                         f"{n_inf} infinite" if n_inf else "") if p)
+        if nan_policy == "raise":
+            raise InputError(f"column {name!r} in {path} has {kinds} value(s) out of {values.size} "
+                             f"(first in data row {first}); they are refused (--nan-policy raise). Remove "
+                             "them from the file, or pass --nan-policy omit to drop them")
+        values = values[~(nan | inf)]
+    return Sample(values=np.array(values, dtype=float), path=path, fmt=fmt, column=str(name),
+                  n_total=int(nan.size), n_nan=n_nan, n_inf=n_inf, nan_policy=nan_policy,
+                  notes=tuple(notes))
+
+
+def pd_to_numeric_comma(series):
+    """A column of decimal-comma numbers (``"1,5"``) as floats."""
+    import pandas as pd
+
+    return pd.to_numeric(series.astype("string").str.strip().str.replace(",", ".", regex=False))
