@@ -359,8 +359,8 @@ def _poor_fit_issue(rows, param: str, method: str, x: np.ndarray) -> FitIssue | 
         alt = [r for r in rows if r is not sel and r["valid"] and r["covers_data"] and r["ks"] < 0.9 * ks]
         if alt:
             best = min(alt, key=lambda r: r["ks"])
-            name = "log-likelihood" if method == "mle" else "objective"
-            sign = -1.0 if method == "mle" else 1.0
+            name = {"mle": "log-likelihood", "mps": "mean log spacing", "starship": "A²"}[method]
+            sign = 1.0 if method == "starship" else -1.0
             msg += (f"; it has the {_CRITERION[method]} of the {len(rows)} candidates ({name} "
                     f"{sign * sel['objective']:.6g}), another candidate (lambda3="
                     f"{best['lambdas'][2]:.4g}, lambda4={best['lambdas'][3]:.4g}) has KS "
