@@ -197,6 +197,8 @@ def _npz_member(archive: zipfile.ZipFile, info: zipfile.ZipInfo, name: str, fnam
                 check(dtype, shape)
         with archive.open(info) as f:
             return _load_npy(f, fname, what, info.file_size)
+    except TopographyFileError:
+        raise
     except READ_ERRORS as exc:
         raise TopographyFileError(
             f"{fname}: not a readable .npz archive (truncated?): {what}: {type(exc).__name__}: "
