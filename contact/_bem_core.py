@@ -23,9 +23,11 @@ fixed point and stopping rule and differs in three ways:
   compiled pass over the contact points, no convolution. The small eigenvalues of ``K``
   belong to the short wavelengths, which a local stencil inverts well: the conjugate
   gradient needs about half the iterations;
-* the conjugate direction is kept when points enter the contact set (restart only when it
-  is no longer a descent direction), so the search does not fall back to steepest descent
-  for as long as the contact set is still growing;
+* the conjugate direction is kept when points enter the contact set, so the search does
+  not fall back to steepest descent for as long as the contact set is still growing; it is
+  restarted when the new gap is far from orthogonal to the previous direction (Powell's
+  test, ``|sum g t_old| > 0.2 sum g z``: clipping and new points have spoilt the
+  conjugacy) or when it is no longer a descent direction;
 * the displacement ``u = K p`` is carried along: when an iteration neither clips a point
   to zero pressure nor adds one, the new pressure is ``s (p - tau t)`` and its displacement
   ``s (u - tau K t)`` costs no convolution (it is recomputed exactly every
@@ -56,6 +58,9 @@ __all__ = ["PKOutcome", "initial_pressure", "polonsky_keer"]
 
 # consecutive carried-along displacement updates before an exact recomputation
 _REFRESH = 50
+# restart when |sum g t_old| exceeds this fraction of sum g z on the contact set
+# (M. J. D. Powell, Math. Program. 12 (1977) 241-254)
+_POWELL = 0.2
 
 
 @nb.njit(cache=True, nogil=True)
@@ -154,7 +159,7 @@ def _rescale_and_change(p_new, p, scale):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True)
-def _precondition(stencil, g, gbar, p, nx, ny, periodic, z):  # pragma: no cover - compiled
+def _precondition(stencil, g, gbar, p, t, nx, ny, periodic, z):  # pragma: no cover - compiled
     """z = S (g - gbar) on the contact set, both ends restricted to it; 0 elsewhere.
 
     ``S`` is the local stencil of the inverse compliance (``(2R+1)`` square, centred).
@@ -163,6 +168,7 @@ def _precondition(stencil, g, gbar, p, nx, ny, periodic, z):  # pragma: no cover
     rad = stencil.shape[0] // 2
     zs = 0.0
     gz = 0.0
+    gt = 0.0
     for i in range(nx):
         for j in range(ny):
             k = i * ny + j
@@ -186,9 +192,10 @@ def _precondition(stencil, g, gbar, p, nx, ny, periodic, z):  # pragma: no cover
                 z[k] = acc
                 zs += acc
                 gz += (g[k] - gbar) * acc
+                gt += (g[k] - gbar) * t[k]
             else:
                 z[k] = 0.0
-    return zs, gz
+    return zs, gz, gt
 
 
 @nb.njit(cache=True, nogil=True)
@@ -571,9 +578,11 @@ def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_i
         gbar = s / c if (load_control and c > 0) else 0.0
         if load_control:
             state["d"] = -gbar
-        zs, gz = _precondition(stencil, g, gbar, p, nx, ny, op.periodic, z)
+        zs, gz, gt = _precondition(stencil, g, gbar, p, t, nx, ny, op.periodic, z)
         # the load constraint: directions of zero sum on the contact set
         zbar = zs / c if (load_control and c > 0) else 0.0
+        if conj and abs(gt) > _POWELL * gz:
+            conj = False
         beta = gz / gz_old if conj else 0.0
         gz_old = gz if gz > 0 else 1.0
         num = _direction_preconditioned(t, z, zbar, g, gbar, p, beta)

@@ -153,3 +153,19 @@ def test_inverse_stencil_is_a_positive_definite_local_inverse(dx, dy):
     qy = 2 * np.pi * np.fft.fftfreq(128, d=dy)
     mean = np.mean(0.5 * E_STAR * np.hypot(qx[:, None], qy[None, :]))
     assert centre == pytest.approx(mean, rel=1e-12)
+
+
+def test_no_stall_once_the_contact_set_has_settled():
+    # Westergaard wavy surface at 0.05 p* (Johnson §13.2): without the restart test the kept
+    # direction lost its conjugacy here and the iteration crawled for ~300 iterations
+    n, lam, delta = 256, 1e-3, 1e-6
+    x = np.arange(n) * lam / n
+    h = np.repeat((delta * np.cos(2 * np.pi * x / lam))[:, None], 4, axis=1)
+    s = Surface(h, lam / n)
+    load = 0.05 * np.pi * E_STAR * delta / lam
+    fast = solve_bem(s, load, E, NU, periodic=True)
+    plain = solve_bem(s, load, E, NU, periodic=True, accelerate=False)
+    assert fast.converged and plain.converged
+    assert fast.n_iterations <= plain.n_iterations
+    assert fast.info["n_convolutions"] < plain.info["n_convolutions"]
+    assert _rel_l1(fast.pressure, plain.pressure) < 1e-6
