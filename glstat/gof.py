@@ -495,8 +495,10 @@ def gof_report(data, *fits_or_dists, names: Sequence[str] | None = None, n_resam
     *fits_or_dists : GLDFit, GLD or frozen continuous scipy.stats distribution
         The models to assess. A :class:`glstat.GLDFit` counts as estimated from ``data``
         (4 parameters) and is refitted with :func:`glstat.fit` with the same ``param``,
-        ``method`` and options; a frozen distribution counts as known unless ``estimated``
-        or ``refit`` says otherwise.
+        ``method`` and options (``warn=False``: replicates warn nothing); a frozen
+        distribution counts as known unless ``estimated`` or ``refit`` says otherwise. A
+        known GLD is ``fit.dist`` or ``glstat.GLD(l1, l2, l3, l4, param=...)``, lambdas in
+        R's order (``gld_rs``/``gld_fkml`` take scipy's: lambda3, lambda4, loc, scale).
     names : sequence of str, optional
         Row names; default from the family and method. Repeated names get ``" #2"``, ...
     n_resamples : int, optional
@@ -516,7 +518,9 @@ def gof_report(data, *fits_or_dists, names: Sequence[str] | None = None, n_resam
         GLDFit and for a frozen distribution given a ``refit``, False otherwise.
     refit : callable or sequence of (callable or None), optional
         For estimated frozen distributions: ``refit(sample) -> frozen distribution or
-        GLDFit`` fitting a sample the way the model was fitted. Default for a frozen
+        GLDFit`` fitting a sample the way the model was fitted. It is called as it is, in
+        the thread running ``gof_report``, and its warnings are not filtered: call
+        ``glstat.fit(..., warn=False)`` in it rather than ``warnings.catch_warnings()``. Default for a frozen
         distribution: ``dist.dist(*dist.dist.fit(sample))`` (scipy's maximum likelihood of
         every shape, loc and scale).
     n_params : int or sequence of (int or None), optional
