@@ -745,20 +745,30 @@ def emit(what, fam, ae, be, p, t, upper, inv_scale, log_scale):
 
 
 @njit(cache=True, error_model="numpy")
-def end_density(what, fam, ae, be, ys, ys_lo, loc, inv_scale, log_scale):
-    """pdf (what 4) or logpdf (5) at a point ``ys`` (+ ``ys_lo``, standardized, on the side of
-    the lower-tail problem with shapes ``ae, be``) that the solver placed at or below the
-    lower end point: the one-sided limit 1/Q'(0+) (times the scale) when the point is the
-    end point to within the rounding of x (four ulps of the end point in x), else 0."""
+def end_density(what, fam, ae, be, ys, ys_lo, x, upper, loc, inv_scale, log_scale):
+    """pdf (what 4) or logpdf (5) at a point that the solver placed at or beyond the lower end
+    point of the lower-tail problem with shapes ``ae, be`` (``ys`` + ``ys_lo``: the point,
+    standardized and mirrored to that problem; ``x``: the point as given).
+
+    At the end point the density is the one-sided limit 1/Q'(0+) times the scale (0 where
+    Q'(0+) is infinite), as scipy gives for its bounded laws; beyond it, 0. "At the end
+    point" means: exactly on it, or ``x`` equal to the end point as a double (loc +
+    end/scale rounded either way, or the outward-rounded end point of `support_kernel`),
+    whose rounding may put it a fraction of an ulp outside.
+    """
     end = q_lower(fam, ae, be, -math.inf, 0.0)
-    if math.isfinite(end) and math.isfinite(ys):
-        tol = 4.0 * EPS * (abs(end) + abs(loc) * inv_scale)
-        if (ys - end) + ys_lo >= -tol:
-            q1 = qprime_lower(fam, ae, be, -math.inf, 0.0)
-            if q1 > 0.0 and q1 < math.inf:
-                if what == 4:
-                    return inv_scale / q1
-                return log_scale - math.log(q1)
+    if not (math.isfinite(end) and math.isfinite(ys)):
+        return 0.0 if what == 4 else -math.inf
+    sgn = -1.0 if upper else 1.0
+    at_end = (ys - end) + ys_lo >= 0.0
+    at_end = at_end or x == loc + sgn * end / inv_scale or x == sgn * end * (1.0 / inv_scale) + loc
+    at_end = at_end or (loc == 0.0 and inv_scale == 1.0 and x == sgn * _end_outward(fam, ae, be))
+    if at_end:
+        q1 = qprime_lower(fam, ae, be, -math.inf, 0.0)
+        if q1 > 0.0 and q1 < math.inf:
+            if what == 4:
+                return inv_scale / q1
+            return log_scale - math.log(q1)
     return 0.0 if what == 4 else -math.inf
 
 
@@ -913,7 +923,8 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
         status[i] = st
         if what >= 4 and lp == -math.inf:
             out[i] = end_density(what, fam, ae, be, -yi if upper else yi,
-                                 -yi_lo if upper else yi_lo, loc, inv_scale, log_scale)
+                                 -yi_lo if upper else yi_lo, y[i], upper, loc, inv_scale,
+                                 log_scale)
             continue
         out[i] = emit(what, fam, ae, be, p, lp, upper, inv_scale, log_scale)
 

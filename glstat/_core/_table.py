@@ -250,7 +250,7 @@ def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0)
                 status[i] = st
                 if what >= 4 and t == -math.inf:
                     out[i] = end_density(what, fam, ae, be, -yi if upper else yi,
-                                         -yi_lo if upper else yi_lo, loc, inv_scale,
-                                         log_scale)
+                                         -yi_lo if upper else yi_lo, y[i], upper, loc,
+                                         inv_scale, log_scale)
                     continue
         out[i] = emit(what, fam, ae, be, p, t, upper, inv_scale, log_scale)

@@ -309,10 +309,10 @@ def _gap_root(ca, am1, cb, bm1, s_lo, s_hi):
 
 @njit(cache=True, error_model="numpy")
 def _xlogx_m_x(v, lv):
-    """v log v - v (0 at v = 0), from v and log v."""
-    if v == 0.0:
-        return 0.0
-    return v * lv - v
+    """v log v - v (0 at v = 0), from v and log v (never forms 0 * -inf, which would raise
+    the invalid flag even where the branch discards it)."""
+    lvs = lv if v > 0.0 else 0.0
+    return v * lvs - v
 
 
 @njit(cache=True, error_model="numpy")

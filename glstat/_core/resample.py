@@ -117,11 +117,17 @@ def _percentiles(x, c, m, u, out):
             k += 1
         if k == 10:
             break
+    # interpolate the deviations from the lower middle order statistic (exact under a common
+    # offset such as 1e9): the rounding of interpolated values of the size of the offset
+    # would otherwise enter every difference below
+    ctr = vals[4]
+    if not (math.isfinite(vals[0] - ctr) and math.isfinite(vals[9] - ctr)):
+        ctr = 0.0
     q = np.empty(5)
     for j in range(5):
-        q[j] = _lerp(vals[2 * j], vals[2 * j + 1], gam[j])
+        q[j] = _lerp(vals[2 * j] - ctr, vals[2 * j + 1] - ctr, gam[j])
     r2 = q[4] - q[0]
-    out[0] = q[2]
+    out[0] = q[2] + ctr
     out[1] = r2
     if q[4] > q[2] and r2 > 0.0:
         out[2] = (q[2] - q[0]) / (q[4] - q[2])

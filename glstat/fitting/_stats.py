@@ -189,6 +189,15 @@ def sample_quantiles(x: np.ndarray, u: float) -> np.ndarray:
     return np.quantile(x, [u, 0.25, 0.5, 0.75, 1.0 - u], method="weibull")
 
 
+def sample_rho(x: np.ndarray, u: float) -> tuple[float, float, float, float]:
+    """Karian–Dudewicz rho1..rho4 of ``x``, with the quantiles interpolated as deviations from
+    a central data value, so that a common offset (1e9 + N(0, 1)) leaves rho2..rho4 exact;
+    equal to ``rho_from_quantiles(sample_quantiles(x, u))`` up to that rounding."""
+    c, y = _centre(np.asarray(x, dtype=float))
+    r1, r2, r3, r4 = rho_from_quantiles(sample_quantiles(y, u))
+    return c + r1, r2, r3, r4
+
+
 def rho_from_quantiles(q) -> tuple[float, float, float, float]:
     """Karian–Dudewicz rho1..rho4 from the quantiles at (u, 1/4, 1/2, 3/4, 1-u)."""
     qu, q25, q50, q75, q1u = (float(v) for v in q)
