@@ -125,7 +125,8 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--bootstrap", type=_positive(int),
                    help=f"bootstrap resamples B (default {DEFAULTS['bootstrap']})")
     p.add_argument("--rq", type=_positive(float), default=1.6,
-                   help="RMS roughness in µm (1.6: the paper's mean pressures; 50: the value it prints, see docs/method.md)")
+                   help="RMS roughness in µm (1.6 gives the paper's mean pressures; 50 is the value "
+                        "it prints, see docs/method.md)")
     p.add_argument("--size", type=_positive(float), default=1.0, help="side of the surface in mm")
     p.add_argument("--modulus", type=_positive(float), default=210.0, help="Young's modulus E in GPa")
     p.add_argument("--poisson", type=_number_in(-1, 0.5, low_open=True), default=0.3,
@@ -276,8 +277,9 @@ def study_main(argv: list[str]) -> int:
     for _, r in table[table["sample"] == "asperity"].iterrows():
         model = "asperity model" if r["model"] == "asperity" else "elastic BEM   "
         check = ("" if r["model"] != "asperity" else
-                 ("  check on held-out surfaces: passed" if r["passes_check"] else
-                  "  check on held-out surfaces: failed"))
+                 "  no GLD could be fitted (report: Moments and fitted GLD)" if r["damage"] != r["damage"]
+                 else ("  check on held-out surfaces: passed" if r["passes_check"] else
+                       "  check on held-out surfaces: failed"))
         print(f"  H = {r['hurst']:g}, {model}: {fmt_probability(r['damage'])} "
               f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}]; observed "
               f"{fmt_probability(r['observed_damage'])} of {r['n_surfaces']} surfaces; mean contact "

@@ -27,7 +27,8 @@ from glstat.study import (
 )
 from glstat.study import campaign as campaign_mod
 
-TINY = ["--surfaces", "6", "--grid", "64", "--rq", "5", "--bootstrap", "50", "--no-progress"]
+TINY = ["--surfaces", "6", "--grid", "64", "--rq", "5", "--bootstrap", "50", "--no-progress",
+        "--compare-bem", "0"]
 SMALL = CampaignSettings(n_surfaces=4, grid=48, n_terms=(5,), hurst=(0.0, 1.0), n_examples=1)
 
 
@@ -58,7 +59,8 @@ def _md_table(md: str, first_header: str) -> list[list[str]]:
 def test_study_report_contents(tiny_study):
     html = (tiny_study / "report.html").read_text()
     md = (tiny_study / "report.md").read_text()
-    for section in ("Main results", "Settings, versions and timings", "Example surfaces", "Pressure maps",
+    for section in ("The answer", "Consistency with the paper", "Main results",
+                    "Settings, versions and timings", "Example surfaces", "Pressure maps",
                     "Moments and fitted GLD", "Histograms with the fitted GLD densities",
                     "Bootstrap densities of the λ parameters", "Maximal pressure over the analysed area",
                     "Validation across surfaces", "Damage probability at the hardness",
@@ -72,13 +74,18 @@ def test_study_report_contents(tiny_study):
     refs = re.findall(r"\]\((report_files/[\w.]+\.png)\)", md)
     assert len(refs) == len(imgs)
     assert all((tiny_study / r).is_file() for r in refs)
-    # tables: one row per H in the summary, one per (H, sample) in the fit and damage tables
-    main_rows = _md_table(md, "case")
+    # tables: one row per H in the answer and the summary, one per (H, sample) in the fit and
+    # damage tables
+    answer = _md_table(md, "case")
+    assert [r[0] for r in answer] == ["H = 0", "H = 0.5", "H = 1"]
+    assert all(r[2] in ("passed", "failed", "—") or r[2].startswith("not checked") for r in answer)
+    main_rows = _md_table(md, "case | mean contact pressure")
     assert [r[0] for r in main_rows] == ["H = 0, 20 MPa", "H = 0.5, 20 MPa", "H = 1, 20 MPa"]
     fit_rows = _md_table(md, "case | sample | n | mean")
     assert len(fit_rows) == 6
-    assert {r[1] for r in fit_rows} == {"grid-point pressures", "per-asperity peak pressures"}
-    grid_fit = [r for r in fit_rows if r[1] == "grid-point pressures"]
+    assert {r[1] for r in fit_rows} == {"grid-point pressures (the paper's)",
+                                        "per-asperity peak pressures"}
+    grid_fit = [r for r in fit_rows if r[1] == "grid-point pressures (the paper's)"]
     assert all(r[7] == "RS moments" for r in grid_fit)
     assert all(float(r[3]) > 1000 for r in grid_fit)  # mean contact pressure in MPa
     dmg = _md_table(md, "case | sample | n | damage probability")
@@ -92,6 +99,25 @@ def test_study_report_contents(tiny_study):
     assert settings_rows["surfaces per (H, load)"] == "6"
     assert settings_rows["bootstrap resamples B"] == "50"
     assert settings_rows["Weierstrass terms per axis (n_terms) per H"] == "6, 6, 6"
+
+
+def test_study_tables_for_pandas(tiny_study):
+    import pandas as pd
+
+    from glstat.study.answer import CALIBRATION_COLUMNS, SUMMARY_COLUMNS
+
+    summary = pd.read_csv(tiny_study / "summary.csv")
+    assert tuple(summary.columns) == SUMMARY_COLUMNS
+    assert len(summary) == 6  # 3 H x 2 samples, no elastic comparison
+    assert set(summary["sample"]) == {"asperity", "grid"} and set(summary["model"]) == {"asperity"}
+    assert not list(tiny_study.glob("H*/bem_*.npz"))  # --compare-bem 0 skips the elastic model
+    ok = summary.dropna(subset=["damage"])
+    assert ((ok["damage_low"] <= ok["damage"] + 1e-12) & (ok["damage"] <= ok["damage_high"] + 1e-12)).all()
+    cal = pd.read_csv(tiny_study / "damage_calibration.csv")
+    assert tuple(cal.columns) == CALIBRATION_COLUMNS
+    assert set(cal["area_factor"]) <= {1, 2, 4}
+    assert ((cal["observed_low"] <= cal["observed"]) & (cal["observed"] <= cal["observed_high"])).all()
+    assert (cal.groupby(["hurst", "sample"])["hardness_mpa"].nunique() >= 5).all()
 
 
 def test_study_rerun_reuses_everything(tiny_study, capsys):
@@ -108,13 +134,14 @@ def test_console_script(tmp_path):
     cmd = [exe] if exe else [sys.executable, "-m", "glstat.cli"]
     out = tmp_path / "q"
     proc = subprocess.run([*cmd, "study", "--quick", "--surfaces", "4", "--grid", "48", "--bootstrap",
-                           "30", "--hurst", "0.5", "--n-terms", "4", "--out", str(out), "--no-progress"],
+                           "30", "--hurst", "0.5", "--n-terms", "4", "--out", str(out), "--no-progress",
+                           "--compare-bem", "0"],
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
-    assert "H = 0.5, 20 MPa: mean contact pressure" in proc.stdout
+    assert "H = 0.5, asperity model:" in proc.stdout
     assert (out / "report.html").stat().st_size > 10_000
     md = (out / "report.md").read_text()
-    assert [r[0] for r in _md_table(md, "case")] == ["H = 0.5, 20 MPa"]
+    assert [r[0] for r in _md_table(md, "case")] == ["H = 0.5"]
     # unknown command: clear message, exit status 2
     proc = subprocess.run([*cmd, "nonsense"], capture_output=True, text=True, timeout=60)
     assert proc.returncode == 2 and "unknown command 'nonsense'" in proc.stderr
@@ -309,7 +336,7 @@ def test_bad_settings():
         CampaignSettings(n_terms=(5, 6))
     with pytest.raises(ValueError, match=r"hurst must be one or more exponents in \[0, 1\]"):
         CampaignSettings(hurst=(1.5,))
-    with pytest.raises(ValueError, match="hardness must be a positive pressure in MPa"):
+    with pytest.raises(ValueError, match="hardness must be a positive finite pressure in MPa"):
         AnalysisSettings(hardness=-1.0)
     assert main(["study", "--hurst", "2", "--no-progress"]) == 2
     with pytest.raises(ValueError, match=r"nu \(Poisson ratio\) must be in \(-1, 0.5\]"):
@@ -330,7 +357,8 @@ def test_bad_settings():
     ["--surfaces", "0"], ["--grid", "8"], ["--bootstrap", "5"], ["--pressure", "-20"],
     ["--hardness", "0"], ["--rq", "nan"], ["--size", "0"], ["--modulus", "-1"],
     ["--cone-factor", "0"], ["--n-terms", "0"], ["--n-terms", "40"], ["--max-frequency", "0.1"],
-    ["--workers", "0"], ["--scheduler-timeout", "0"], ["--compare-bem", "0"],
+    ["--workers", "0"], ["--scheduler-timeout", "0"], ["--compare-bem", "-1"],
+    ["--target-pressure", "0"], ["--hardness", "nan"],
     ["--compare-bem", "7"], ["--hurst", "0.5", "0.5"],
 ])
 def test_bad_options_are_refused_before_anything_is_written(tmp_path, capsys, option):
@@ -420,11 +448,10 @@ def test_report_with_hardness_far_above_the_pressures(tmp_path, capsys):
                "--hurst", "1", "--n-terms", "5", "--out", str(out), "--workers", "1", "--no-progress"])
     assert rc == 0
     printed = capsys.readouterr().out
-    assert "H = 1, 20 MPa: mean contact pressure" in printed
-    # three test surfaces are too few for the per-asperity coverage: printed as "—", as in the
-    # report, never as "nan"
+    assert "H = 1, asperity model:" in printed
+    # a damage probability far below 1 % is printed as a percentage, never as "nan"
     assert not re.search(r"\bnan\b", printed, flags=re.IGNORECASE)
-    assert re.search(r"coverage grid (\d+ %|—), asperity —", printed)
+    assert re.search(r"H = 1, asperity model: (\S+ %|—)", printed)
     md = (out / "report.md").read_text()
     assert "certain" not in md
     assert "77 GPa" not in md and "3.4 TPa" not in md

@@ -102,7 +102,7 @@ def test_report_section(study):
     assert [(r[0], r[1]) for r in fits[0]] == [(c, m) for c in CASES
                                               for m in ("asperity model", "elastic BEM")]
     fitted = [r for r in fits[0] if r[4] != "none"]
-    assert len(fitted) >= 4
+    assert len(fitted) >= 2  # two surfaces of a few contact spots each
     for r in fitted:
         assert 0 <= float(r[9]) <= 1 and float(r[10]) <= float(r[9]) <= float(r[11])
     # the findings paragraph is computed from the tables
@@ -200,7 +200,7 @@ def test_bad_k(tmp_path, capsys):
     assert main([*ARGS, "--compare-bem", "3", "--out", str(tmp_path / "x")]) == 2
     assert "--compare-bem K = 3 cannot exceed the 2 surfaces per H" in capsys.readouterr().err
     # a usage error returns status 2 with the message, and writes nothing
-    assert main([*ARGS, "--compare-bem", "0", "--out", str(tmp_path / "y")]) == 2
+    assert main([*ARGS, "--compare-bem", "-1", "--out", str(tmp_path / "y")]) == 2
     assert "--compare-bem" in capsys.readouterr().err
     assert not (tmp_path / "y").exists()
     with pytest.raises(ValueError, match="positive integer"):
@@ -222,7 +222,7 @@ def test_weierstrass_surfaces_are_not_periodic_on_the_grid():
 
 
 def test_compare_bem_agrees_with_the_solvers():
-    surf = contact.weierstrass((64, 64), 1e-3, 0.5, 1.5, rq=5e-6, rng=7, n_terms=6)
+    surf = contact.weierstrass((64, 64), 1e-3, 0.5, 1.5, rq=1e-6, rng=7, n_terms=6)  # 8 spots each
     a = AnalysisSettings(n_resamples=30)
     res = compare_bem(surf, 20e6, 210e9, 0.3, analysis=a)
     asp = contact.solve(surf, 20e6, 210e9, 0.3, 0.2)
@@ -244,10 +244,10 @@ def test_compare_bem_agrees_with_the_solvers():
     summ = res.summary().set_index("quantity")
     assert summ.loc["max_pressure_MPa", "bem_mean"] == pytest.approx(bem.max_pressure / 1e6)
     assert np.isnan(summ.loc["max_pressure_MPa", "ratio_std"])  # one surface: no spread
-    # GLD of each model's pressures, fitted as the study fits them
+    # GLD of each model's contact-spot peaks, fitted as the study fits them
     ff = res.fit_frame().set_index("model")
     for m, ref in (("asperity", asp), ("bem", bem)):
-        x = ref.samples / 1e6
+        x = contact_record(ref)["cluster_peaks"] / 1e6
         np.testing.assert_array_equal(res.fits[m].data, x)
         assert ff.loc[m, "n"] == x.size and ff.loc[m, "n_ref"] == x.size
         if ff.loc[m, "fit"] == "RS moments":
@@ -269,7 +269,7 @@ def test_compare_bem_several_surfaces_and_bad_input():
     bem1 = contact.solve_bem(surfs[1], 20e6, 210e9, 0.3, periodic=True)
     row = res.surfaces[(res.surfaces["surface"] == 1) & (res.surfaces["model"] == "bem")].iloc[0]
     assert row["max_pressure_MPa"] == pytest.approx(bem1.max_pressure / 1e6, rel=1e-12)
-    n_bem = int(res.surfaces.loc[res.surfaces["model"] == "bem", "n_contact"].sum())
+    n_bem = int(res.surfaces.loc[res.surfaces["model"] == "bem", "n_clusters"].sum())
     assert res.fits["bem"].data.size == n_bem
     summ = res.summary()
     assert list(summ["quantity"]) == ["contact_fraction", "mean_pressure_MPa", "max_pressure_MPa"]

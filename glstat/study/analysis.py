@@ -224,6 +224,14 @@ class FitChoice:
     scores: dict
     reason: str
 
+    def order(self) -> list[tuple[str, str]]:
+        """The candidates from best to worst score, then the fallbacks: the fits to try."""
+        ranked = [tuple(k.lower().split(" ", 1)) for k, _ in
+                  sorted(self.scores.items(), key=lambda kv: -kv[1])]
+        first = [(self.param, self.method)]
+        rest = [f for f in ranked + list(FALLBACKS) if f != first[0]]
+        return first + list(dict.fromkeys(rest))
+
 
 @dataclass
 class SampleAnalysis:
@@ -319,13 +327,14 @@ def _quiet(func, *args, **kwargs):
 
 
 def _bootstrap(x: np.ndarray, a: AnalysisSettings, rng, param=None, method=None, groups=None,
-               n_resamples=None):
-    """Bootstrap with the requested fit (falling back along FALLBACKS when none is forced);
-    returns (bf, param, method, note)."""
+               n_resamples=None, order=None):
+    """Bootstrap with the requested fit (falling back along FALLBACKS when none is forced, or
+    along ``order``); returns (bf, param, method, note)."""
     from .. import bootstrap
 
     first = (param or a.param, method or a.method)
-    order = [first] + ([] if param is not None else [f for f in FALLBACKS if f != first])
+    if order is None:
+        order = [first] + ([] if param is not None else [f for f in FALLBACKS if f != first])
     notes = []
     state = rng.bit_generator.state
     for p, m in order:
@@ -438,14 +447,15 @@ def _validate(per: list, kind: str, a: AnalysisSettings, ih: int, il: int, param
         x, labels, counts = _pool([per[i] for i in train])
         if x.size < 5:
             return Validation(error=f"only {x.size} values in a fitting fold (at least 5 needed)")
-        p, m = param, method
+        p, m, order = param, method, None
         if kind == "asperity":
             ch = choose_fit([per[i] for i in train])
-            p, m = ch.param, ch.method
+            p, m, order = ch.param, ch.method, ch.order()
         grouped = kind == "asperity"
-        bf, _, _, note = _bootstrap(x, a, _seed(a, ih, il, 1 if kind == "grid" else 2, f), p, m,
+        bf, p, m, note = _bootstrap(x, a, _seed(a, ih, il, 1 if kind == "grid" else 2, f), p, m,
                                     groups=labels if grouped else None,
-                                    n_resamples=a.grid_resamples if kind == "grid" else None)
+                                    n_resamples=a.grid_resamples if kind == "grid" else None,
+                                    order=order)
         if bf is None:
             return Validation(error=f"no {p.upper()} {m} fit of a fitting fold: {note}")
         count_kw = {} if grouped else {"n": max(float(counts.mean()), 1.0)}
@@ -549,13 +559,14 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
         sa.note = f"only {data.size} values pooled over {len(keys)} surfaces; at least 5 are needed"
         return sa
     grouped = kind == "asperity"
-    param = method = None
+    param = method = order = None
     if grouped:
         sa.choice = choose_fit(per)
-        param, method = sa.choice.param, sa.choice.method
+        param, method, order = sa.choice.param, sa.choice.method, sa.choice.order()
     bf, p, m, note = _bootstrap(data, a, _seed(a, ih, il, 0 if kind == "grid" else 5), param, method,
                                 groups=labels if grouped else None,
-                                n_resamples=a.grid_resamples if kind == "grid" else None)
+                                n_resamples=a.grid_resamples if kind == "grid" else None,
+                                order=order)
     sa.param, sa.method, sa.note = p, m, note
     if bf is None:
         return sa

@@ -613,15 +613,19 @@ def _compare(entries: list[tuple[Any, dict[str, dict[str, np.ndarray]]]], a: Ana
         labels = np.repeat(np.arange(len(peaks)), [p.size for p in peaks])
         n_ref = max(float(np.mean([p.size for p in peaks])), 1.0)
         f = ModelFit(model=m, data=data, n_ref=n_ref)
-        if data.size < 5 or len(peaks) < 2:
-            f.note = (f"only {data.size} spot peaks on {len(entries)} surfaces; at least 5 on two "
-                      f"surfaces are needed")
+        if data.size < 5:
+            f.note = f"only {data.size} spot peaks on {len(entries)} surfaces; at least 5 are needed"
         else:
-            bf, p, meth, note = _bootstrap(data, a, _seed(a, *key, _SEED_SLOT + j), groups=labels)
+            # several surfaces: resample them, their spot counts the random count; one surface:
+            # resample its spots, with its spot count as n
+            several = len(peaks) >= 2
+            bf, p, meth, note = _bootstrap(data, a, _seed(a, *key, _SEED_SLOT + j),
+                                           groups=labels if several else None)
             f.param, f.method, f.note = p, meth, note
             if bf is not None:
                 f.boot = bf
-                f.damage = bf.damage_probability(a.hardness)
+                f.damage = (bf.damage_probability(a.hardness) if several
+                            else bf.damage_probability(a.hardness, n_ref))
         fits[m] = f
     return BEMComparison(surfaces=surfaces, fits=fits, hardness=a.hardness,
                          confidence_level=a.confidence_level)

@@ -400,15 +400,16 @@ def _answer_figures(rep: Report, settings, asettings, analysis: dict) -> None:
                 if not len(ck):
                     continue
                 ax.errorbar(ck["predicted"], ck["observed"],
-                            yerr=[ck["observed"] - ck["observed_low"],
-                                  ck["observed_high"] - ck["observed"]],
+                            yerr=[np.maximum(ck["observed"] - ck["observed_low"], 0.0),
+                                  np.maximum(ck["observed_high"] - ck["observed"], 0.0)],
                             fmt=marker, ms=4, color=color, mfc="none" if kind == "grid" else color,
                             label=f"{'grid (paper)' if kind == 'grid' else 'asperity'}, k = {k}")
         ax.plot([0, 1], [0, 1], "k:", lw=1)
         ax.set_xlabel("predicted P(max > Pd)")
         ax.set_ylabel("observed fraction (Wilson 95 %)")
         ax.set_title(_label(settings, ih, il), fontsize=9)
-        ax.legend(fontsize=6)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=6)
     fig.tight_layout()
     rep.figure("damage_reliability", fig, "Reliability of the damage probability: predicted (fit on "
                "the other fold) against observed on held-out surfaces, at several hardness levels, "
@@ -467,7 +468,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
               f"predictor on the elastic solution of the first surfaces (per contact spot).")
     if bem:
         ratios = []
-        for (ih, il), c in bem.items():
+        for (ih, _), c in bem.items():
             r = c.summary().set_index("quantity")["ratio_mean"]
             ratios.append(f"H = {settings.hurst[ih]:g}: mean pressure ×{1 / r['mean_pressure_MPa']:.2g}, "
                           f"maximal pressure ×{1 / r['max_pressure_MPa']:.2g}")
