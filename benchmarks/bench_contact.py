@@ -4,7 +4,7 @@ Run ``python benchmarks/bench_contact.py [--max-n 4096] [--repeat 3]``; it print
 tables (recorded in ``docs/benchmarks.md``, section ``contact``):
 
 1. Weierstrass surface at 1024²: the matrix-product evaluation against the direct double
-   sum of DESIGN §3.1 in the same run (time and maximal relative difference).
+   sum of docs/method.md §2 in the same run (time and maximal relative difference).
 2. Generation, summit detection and load-controlled solve against grid size at the paper's
    settings (1 mm², Rq = 50 µm, H = 0.5, 20 MPa, E = 210 GPa, nu = 0.3), with the force
    balance error.

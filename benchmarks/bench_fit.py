@@ -65,7 +65,7 @@ def main():
 
 
 def design_gamma_ml():
-    """ML on the DESIGN gamma case (gamma(5, scale 3), n = 1000, seed 1), both parameterisations.
+    """ML on the Karian–Dudewicz gamma case (gamma(5, scale 3), n = 1000, seed 1), both parameterisations.
 
     For RS one of the two starts (a percentile root near the origin) heads into the
     degenerate lambda -> 0 limit; it is stopped there or abandoned after a few times the
@@ -73,7 +73,7 @@ def design_gamma_ml():
     """
     x = stats.gamma(5, scale=3).rvs(1000, random_state=1)
     print()
-    print("| DESIGN gamma case, n = 1000 | time | neg. log-likelihood | lambdas |")
+    print("| Karian–Dudewicz gamma case, n = 1000 | time | neg. log-likelihood | lambdas |")
     print("|---|---|---|---|")
     for param in ("rs", "fkml"):
         t = _median_time(lambda pa=param: fit(x, pa, "mle"), 7)

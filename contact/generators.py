@@ -66,7 +66,7 @@ def weierstrass(
     n_terms: int | Sequence[int] | None = None,
     method: str = "matrix",
 ) -> Surface:
-    """2-D random Weierstrass surface (Bigerelle et al. 2019; DESIGN §3.1).
+    """2-D random Weierstrass surface (Bigerelle et al. 2019; docs/method.md §2).
 
     ``W(x, y) = A sum_{n1=0}^{N1} sum_{n2=0}^{N2} a_{n1 n2} gamma^((n1+n2)/2)
     / (gamma^(2 n1) + gamma^(2 n2))^((H+1)/2) cos(2 pi gamma^n1 x / L + phi_{n1 n2})

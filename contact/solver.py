@@ -1,6 +1,6 @@
 """Load- and displacement-controlled contact of a rigid flat with a rough surface.
 
-The semi-analytical, non-interacting asperity model (DESIGN §3.3; Bigerelle et al.,
+The semi-analytical, non-interacting asperity model (docs/method.md §3; Bigerelle et al.,
 Coatings 10(1):15, 2019, §2.2). The numerical work is done by the compiled kernels of
 :mod:`contact._kernels`; this module validates input, controls the load and builds the
 :class:`~contact.result.ContactResult`.

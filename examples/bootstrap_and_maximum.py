@@ -1,6 +1,6 @@
 """Bootstrap of a GLD fit: parameter uncertainty, maximal pressure and damage with intervals.
 
-A stand-in for the contact pressures of one surface (DESIGN §1 steps 5–8): 1e5 positive
+A stand-in for the contact pressures of one surface (docs/method.md §5–§8): 1e5 positive
 pressures (MPa) drawn from a gamma distribution. Run: ``python examples/bootstrap_and_maximum.py``
 (about 2 s once the kernels are compiled).
 """
@@ -37,7 +37,7 @@ print(f"maximal pressure: mean of one draw per bootstrap GLD {bm.mean:.0f} MPa, 
 
 # The four-moment GLD has a lighter upper tail than the gamma it stands in for, so the observed
 # maximum can exceed the predicted interval: a goodness-of-fit check of the tail is part of the
-# method (DESIGN §1 step 9).
+# method (docs/method.md §9).
 
 # steps 7-8: damage at the hardness, growing with the area
 k = np.array([0.01, 0.1, 1.0, 10.0])

@@ -1,4 +1,4 @@
-"""A contact campaign on a Dask cluster (DESIGN §5).
+"""A contact campaign on a Dask cluster (docs/study.md, Campaign).
 
 With a scheduler address (``python examples/campaign_dask.py tcp://host:8786``) the surfaces
 run on that cluster's workers; without one a ``distributed.LocalCluster`` with two worker

@@ -1,4 +1,4 @@
-"""Damage probability against area from a small contact campaign (DESIGN §1 steps 7–8).
+"""Damage probability against area from a small contact campaign (docs/method.md §7).
 
 Simulates 20 Weierstrass surfaces (H = 0.5, 512², 1 mm², Rq = 50 µm, 20 MPa, the study's
 default truncation of 6 terms per axis), pools the per-asperity peak pressures, bootstraps an

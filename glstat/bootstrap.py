@@ -1,7 +1,7 @@
 """Bootstrap of GLD fits: parameter uncertainty, confidence intervals, maximum and damage.
 
 :func:`bootstrap` resamples the data (or draws from the fitted GLD), fits a GLD to every
-resample and returns a :class:`BootstrapFit` (DESIGN §1 step 5). On it:
+resample and returns a :class:`BootstrapFit` (docs/method.md §5). On it:
 
 * :meth:`BootstrapFit.confidence_interval` — percentile, basic and BCa intervals for the
   lambdas or for any quantity derived from a GLD (quantiles, moments, probabilities);
@@ -797,7 +797,7 @@ class BootstrapFit:
     # -- maximum and damage -----------------------------------------------------------------
     def maximum(self, n: float | None = None, confidence_level: float | None = None, *, rng=None,
                 count=None) -> BootstrapMaximum:
-        """The maximum of n draws for every bootstrap GLD (DESIGN §1 step 6).
+        """The maximum of n draws for every bootstrap GLD (docs/method.md §6).
 
         Parameters
         ----------
@@ -1369,7 +1369,7 @@ def bootstrap(
     groups=None,
     **options,
 ) -> BootstrapFit:
-    """Fit a GLD to bootstrap resamples of the data (DESIGN §1 step 5).
+    """Fit a GLD to bootstrap resamples of the data (docs/method.md §5).
 
     Parameters
     ----------

@@ -2,7 +2,7 @@
 
 With F the distribution of the contact pressure at one of the n grid points of the analysed
 area, an area ``k`` times larger (an ergodic surface) stays below the threshold ``Pd`` at all of
-its ``k n`` points with probability (DESIGN §1 steps 7–8)
+its ``k n`` points with probability (docs/method.md §7)
 
 ``integrity = F(Pd)^(k n) = exp(k n log F(Pd))``, ``damage = 1 - integrity``,
 

@@ -5,7 +5,7 @@ cdf ``F(x)^n`` and quantile function ``Q(v^(1/n))``. ``order_statistic(dist, k, 
 distribution of the k-th smallest. Both return frozen ``scipy.stats`` distributions, so
 ``kstest``, ``probplot``, ``expect`` and other frozen-distribution code work with them.
 
-Numerics (DESIGN §4). For n up to 1e12 and beyond, ``v^(1/n) = 1 - O(1/n)`` and ``F^n`` with
+Numerics (docs/gld.md). For n up to 1e12 and beyond, ``v^(1/n) = 1 - O(1/n)`` and ``F^n`` with
 ``F = 1 - O(1/n)`` lose every digit when formed directly. Here:
 
 * ``log F`` is taken as ``log1p(-sf(x))`` where ``sf(x) < 1/2`` and as ``logcdf(x)`` elsewhere,

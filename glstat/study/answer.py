@@ -208,7 +208,7 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None) -> 
 def check_sentence(settings, asettings, analysis: dict) -> str:
     """What the check on held-out surfaces found, per H, for both samples."""
     parts = []
-    for (ih, il), r in analysis.items():
+    for (ih, _il), r in analysis.items():
         for kind in ("asperity", "grid"):
             v = r[kind].validation
             if v.table is None:

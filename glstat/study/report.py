@@ -301,10 +301,10 @@ def truncation_paragraphs(settings, info: dict) -> list[str]:
         kept = ", ".join(f"{n} (H = {h:g})" for h, n in cut)
         general = ("**Truncation of the Weierstrass series.** The series is truncated to "
                    f"{kept} terms per axis instead of carrying every frequency up to the grid's "
-                   "Nyquist limit (DESIGN §3.1; the `--n-terms` setting above).")
+                   "Nyquist limit (docs/method.md §2; the `--n-terms` setting above).")
     else:
         general = ("**Truncation of the Weierstrass series.** None: the surfaces carry every "
-                   "frequency up to the grid's Nyquist limit (DESIGN §3.1).")
+                   "frequency up to the grid's Nyquist limit (docs/method.md §2).")
     if not rows or not truncation_matches(settings, reference):
         return [general]
     by_h: dict[float, list] = {}

@@ -1,4 +1,4 @@
-"""Surface generators against the formula of DESIGN §3.1 and spectral expectations."""
+"""Surface generators against the formula of docs/method.md §2 and spectral expectations."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import contact
 
 
 def weierstrass_by_formula(n, length, hurst, gamma, seed, m=None):
-    """DESIGN §3.1 term by term, with the documented draw order (a, then phi, then psi)."""
+    """docs/method.md §2 term by term, with the documented draw order (a, then phi, then psi)."""
     dx = length / n
     # Nyquist: gamma^N / L <= 1 / (2 dx), i.e. gamma^N <= n / 2.
     top = 0

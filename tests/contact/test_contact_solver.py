@@ -4,7 +4,7 @@ References: for a paraboloid ``z = -x^2/(2 Rx) - y^2/(2 Ry)`` cut at depth delta
 crossings are ``sqrt(2 R delta)`` and the slope ``delta / r``; for a cone of slope
 ``tan(theta)`` the crossings are ``delta / tan(theta)`` and the attack angle is theta. The
 elliptic profile ``1.5 p_m sqrt(1 - (x/a)^2 - (y/b)^2)`` integrates to ``p_m pi a b``
-(DESIGN §3.3), which the grid sum must approach under refinement.
+(docs/method.md §3), which the grid sum must approach under refinement.
 """
 
 from __future__ import annotations
@@ -167,7 +167,7 @@ def test_rough_surface_force_balance_and_consistency(hurst):
 
 
 def test_paper_settings_mean_pressure_rises_as_hurst_falls():
-    # Bigerelle et al. 2019 (DESIGN §1): Rq = 50 µm on 1 mm², 1024², 20 MPa, E = 210 GPa.
+    # Bigerelle et al. 2019 (docs/method.md): Rq = 50 µm on 1 mm², 1024², 20 MPa, E = 210 GPa.
     means = {}
     for hurst in (1.0, 0.5, 0.0):
         s = contact.weierstrass((1024, 1024), 1e-3, hurst, rq=50e-6, rng=2019)
@@ -247,7 +247,7 @@ def test_summary_and_frames():
 
 def test_load_inside_the_first_contact_jump_returns_the_touching_state():
     # Cone of slope 0.1: as the plane passes the apex, the apex point alone carries
-    # 1.5 c E* tan(theta) at once, i.e. a force jump of 1.5 c E* 0.1 dx^2 (DESIGN §3.3).
+    # 1.5 c E* tan(theta) at once, i.e. a force jump of 1.5 c E* 0.1 dx^2 (docs/method.md §3).
     # No state carries a quarter of it: the state above the apex carries nothing, so the
     # touching state is returned, with force error 0.75 jump / (0.25 jump) = 3.
     s = cone(401, slope=0.1)

@@ -6,7 +6,7 @@ Karian & Dudewicz, including the region edges that are themselves valid (lambda3
 lambda4 = 0 in regions 3/4, lambda3 = -1 with lambda4 = 1 in region 1, ...). The FKML cases
 span shapes from -3 to 5 with exact zeros and tiny (1e-12) values.
 
-Literature values used as cases (DESIGN.md section 2):
+Literature values used as cases (docs/method.md §14):
 N(0, 1) by RS moments (0, 0.197451, 0.134912, 0.134912); Uniform(0, 1) RS (0.5, 2, 1, 1);
 Gamma(5, scale 3) RS moments (10.7621, 0.014452, 0.0251988, 0.093884);
 N(0, 1) by FKML moments (0, 1.46355, 0.134912, 0.134912).
@@ -81,7 +81,7 @@ CASE_NAMES = "dist, lam3, lam4, loc, scale"
 
 
 def has_moment(lam3: float, lam4: float, k: int) -> bool:
-    """True when the k-th moment exists (DESIGN.md section 2: min(lam3, lam4) > -1/k)."""
+    """True when the k-th moment exists (docs/method.md §14: min(lam3, lam4) > -1/k)."""
     return min(lam3, lam4) * k > -1.0
 
 
@@ -93,7 +93,7 @@ def quantile_grid(n_tail: int = 6) -> np.ndarray:
 
 
 def rs_lambda2_sign(lam3: float, lam4: float) -> float:
-    """Sign of lambda2 in the RS region of (lam3, lam4): + in region 3, - elsewhere (DESIGN §2)."""
+    """Sign of lambda2 in the RS region of (lam3, lam4): + in region 3, - elsewhere (docs/method.md §4)."""
     return 1.0 if (lam3 >= 0 and lam4 >= 0) else -1.0
 
 
@@ -107,7 +107,7 @@ def gld_of(dist, lam3, lam4, loc, scale) -> glstat.GLD:
 def q_terms(dist, lam3: float, lam4: float, u: float):
     """Reference standardized Q(u) and the magnitudes of its two terms, by mpmath (40 digits).
 
-    Straight from the definitions in DESIGN.md section 2:
+    Straight from the definitions in docs/method.md §14:
     RS   Q(u) = s (u^l3 - (1-u)^l4), s = sign of lambda2 in the region;
     FKML Q(u) = (u^l3 - 1)/l3 - ((1-u)^l4 - 1)/l4, with log limits at 0.
     The term magnitudes bound the rounding error of any evaluation of the difference.
@@ -145,7 +145,7 @@ def q_terms(dist, lam3: float, lam4: float, u: float):
 
 
 def qprime(dist, lam3: float, lam4: float, u: float) -> float:
-    """Reference standardized Q'(u) by mpmath from the closed forms of DESIGN.md section 2."""
+    """Reference standardized Q'(u) by mpmath from the closed forms of docs/method.md §14."""
     import mpmath
 
     with mpmath.workdps(40):

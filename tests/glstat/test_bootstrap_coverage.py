@@ -1,7 +1,7 @@
 """Coverage of bootstrap confidence intervals on data simulated from a known GLD.
 
 The true distribution is the RS GLD (10.7621, 0.014452, 0.0251988, 0.093884), the moment fit of
-Gamma(shape 5, scale 3) published by Karian & Dudewicz (DESIGN.md section 2). Every trial draws
+Gamma(shape 5, scale 3) published by Karian & Dudewicz (docs/method.md §14). Every trial draws
 n = 500 points from it, bootstraps B = 300 moment fits and checks whether the 90 % interval
 contains the true value. With T trials, the observed coverage of an exact 90 % procedure has the
 binomial standard error sqrt(0.9 * 0.1 / T) (0.021 for T = 200); the tests accept coverage within

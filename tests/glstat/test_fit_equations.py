@@ -31,7 +31,7 @@ def _has_root(f, lams, rtol=2e-3):
     return False
 
 
-# --- DESIGN.md §2 reference values (Karian & Dudewicz, Handbook of Fitting Statistical
+# --- docs/method.md §14 reference values (Karian & Dudewicz, Handbook of Fitting Statistical
 # Distributions with R, 2011, ch. 3 and 5 tables; Freimer et al. 1988 for FKML) ----------------
 def test_normal_rs_moments_both_roots():
     f = fit_moments(0, 1, 0, 3)

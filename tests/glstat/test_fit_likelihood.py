@@ -221,7 +221,7 @@ def test_no_start_hint_points_to_the_other_param_when_it_has_starts(monkeypatch)
 
 
 def test_ml_start_heading_into_the_rs_origin_is_stopped():
-    # DESIGN gamma case: the percentile root near the RS origin, (-0.0061, -0.0174), starts a
+    # Karian–Dudewicz gamma case: the percentile root near the RS origin, (-0.0061, -0.0174), starts a
     # BFGS run whose shapes shrink towards 0 while the scale diverges; it used to run to
     # maxiter (500 iterations, ~0.1 s) for an objective worse than that of the other start
     from glstat.fitting import _data, _likelihood

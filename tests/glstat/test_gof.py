@@ -14,7 +14,7 @@ import glstat
 from glstat import GLD, compare_families, edf_statistics, gof_report
 from glstat.gof import _ad_asymptotic_sf
 
-# RS approximation of N(0, 1) by moments (DESIGN.md section 2)
+# RS approximation of N(0, 1) by moments (docs/method.md §14)
 RS_NORMAL = GLD(0.0, 0.197451, 0.134912, 0.134912)
 
 

@@ -15,7 +15,7 @@ from scipy import stats
 import glstat
 from glstat.plot import plot_histogram, plot_lambda_densities, plot_pp, plot_qq
 
-# RS approximation of N(0, 1) by moments (DESIGN.md section 2)
+# RS approximation of N(0, 1) by moments (docs/method.md §14)
 RS_NORMAL = glstat.GLD(0.0, 0.197451, 0.134912, 0.134912)
 X = RS_NORMAL.rvs(size=300, random_state=np.random.default_rng(0))
 FIT = glstat.fit(X, "rs", "moments")

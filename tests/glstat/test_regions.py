@@ -1,7 +1,7 @@
 """RS validity regions: ``glstat.rs_region`` and ``_argcheck`` against the definition.
 
 A pair (lambda3, lambda4) is a valid RS GLD exactly when Q'(u) = g(u) / lambda2 keeps one
-sign on (0, 1), with g(u) = lambda3 u^(lambda3-1) + lambda4 (1-u)^(lambda4-1) (DESIGN.md
+sign on (0, 1), with g(u) = lambda3 u^(lambda3-1) + lambda4 (1-u)^(lambda4-1) (docs/method.md §4,
 section 2; Karian & Dudewicz 2011, Theorem 1.3.23). These tests evaluate g numerically and
 compare with the region table, including the region 5/6 inequality.
 """

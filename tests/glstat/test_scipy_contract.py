@@ -9,7 +9,7 @@ broadcasting, support/interval/median, and bad input (NaN, probabilities outside
 invalid shapes).
 
 Independent references: the quantile function Q and its derivative evaluated with mpmath
-from their definitions (DESIGN.md section 2), and numerical integration with
+from their definitions (docs/method.md §14), and numerical integration with
 ``scipy.integrate.quad``.
 """
 
@@ -578,8 +578,8 @@ def test_probabilities_outside_unit_interval(dist, lam3, lam4, loc, scale):
 
 @pytest.mark.parametrize(
     ("lambdas", "param"),
-    [((0.0, 0.197451, 0.134912, 0.134912), "rs"),  # N(0, 1), DESIGN.md section 2
-     ((0.0, 1.46355, 0.134912, 0.134912), "fkml"),  # N(0, 1), DESIGN.md section 2
+    [((0.0, 0.197451, 0.134912, 0.134912), "rs"),  # N(0, 1), docs/method.md §14
+     ((0.0, 1.46355, 0.134912, 0.134912), "fkml"),  # N(0, 1), docs/method.md §14
      ((10.7621, 0.014452, 0.0251988, 0.093884), "rs"),  # Gamma(5, scale 3)
      ((0.0, -1.0, -0.5, 2.0), "rs")],
     ids=["rs-normal", "fkml-normal", "rs-gamma", "rs-region5"],
@@ -616,7 +616,7 @@ def test_kstest_and_probplot_accept_gld(lambdas, param):
     ids=["rs", "fkml"],
 )
 def test_normal_approximations_match_scipy_norm(lambdas, param):
-    """The published GLD fits of N(0, 1) (DESIGN.md section 2) are close to scipy's norm."""
+    """The published GLD fits of N(0, 1) (docs/method.md §14) are close to scipy's norm."""
     g = glstat.GLD(*lambdas, param=param)
     u = np.array([0.01, 0.1, 0.25, 0.5, 0.75, 0.9, 0.99])
     assert_allclose(g.ppf(u), stats.norm.ppf(u), atol=0.02)
