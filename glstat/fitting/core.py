@@ -116,6 +116,12 @@ class GLDFit:
         return _frame(self._candidates, self.param)
 
     @property
+    def n_valid(self) -> int:
+        """Number of valid roots or candidates (a distribution each), without building
+        ``solutions``."""
+        return sum(bool(r["valid"]) for r in self._candidates)
+
+    @property
     def region(self) -> int | None:
         """RS region of the selected fit (None for FKML or a NaN fit)."""
         if self.param != "rs" or not all(math.isfinite(v) for v in self.lambdas):

@@ -196,6 +196,7 @@ def test_summary_fit_is_lazy(monkeypatch):
     f = glstat.fit_moments(0, 1, 0, 3)
     assert "dist" not in f.__dict__ and "solutions" not in f.__dict__
     assert f.lambdas == ref.lambdas and f.region == 3
+    assert f.n_valid == int(ref.solutions.valid.sum()) >= 1
     monkeypatch.undo()
     # RS approximation of N(0, 1) by moments: (0, 0.197451, 0.134912, 0.134912) in
     # Karian & Dudewicz (2011), table values to 6 digits
