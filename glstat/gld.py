@@ -134,20 +134,27 @@ class GLD(rv_continuous_frozen):
         For RS shapes below 1e-20 in magnitude the variance of the standardized distribution
         (of order lambda**2) can lie below the double range although the variance itself,
         (c/|lambda2|)**2 times a scale-free factor with c = max(|lambda3|, |lambda4|), does
-        not; it is formed in that order here.
+        not; it is formed in that order here (and the mean as lambda1 + mean/|lambda2|,
+        also for a subnormal lambda2, whose reciprocal scipy's scale cannot hold).
         """
-        res = super().stats(moments=moments)
-        _, l2, l3, l4 = self._lambdas
-        if "v" not in moments or not _gld.rs_tiny(self._family, l3, l4):
-            return res
-        from ._core.moments import scaled_central_moment
+        l1, l2, l3, l4 = self._lambdas
+        if not _gld.rs_tiny(self._family, l3, l4):
+            return super().stats(moments=moments)
+        from ._core import moments as _m
 
-        c, mu2 = scaled_central_moment(self._family, l3, l4, 2)
-        var = np.float64(c / abs(l2)) ** 2 * mu2
-        out = list(res) if isinstance(res, tuple) else [res]
+        std = np.empty((1, 4))
+        _m.mvsk_kernel(self._family, np.array([l3]), np.array([l4]), std)
+        c, mu2 = _m.scaled_central_moment(self._family, l3, l4, 2)
+        values = {"m": np.float64(l1 + std[0, 0] / abs(l2)),
+                  "v": np.float64(c / abs(l2)) ** 2 * mu2,
+                  "s": np.float64(std[0, 2]), "k": np.float64(std[0, 3])}
         # scipy returns the requested statistics in the fixed order m, v, s, k
-        out[1 if "m" in moments else 0] = var
-        return tuple(out) if isinstance(res, tuple) else out[0]
+        out = [values[ch] for ch in "mvsk" if ch in moments]
+        return out[0] if len(out) == 1 else tuple(out)
+
+    def mean(self):
+        """Mean."""
+        return self.stats(moments="m")
 
     def var(self):
         """Variance."""

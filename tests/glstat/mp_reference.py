@@ -131,7 +131,7 @@ def entropy_reference(fam, a, b, dps=30):
 
         pts = [mp.mpf(0), mp.mpf(1)]
         if ca != mp.mpf("-inf") and cb != mp.mpf("-inf"):
-            grid = [mp.mpf(k) / 4 + mp.mpf(1) / mp.pi for k in range(-2800, 2800)]
+            grid = [mp.mpf(k) / 2 + mp.mpf(1) / mp.pi for k in range(-1400, 1400)]
             vals = [g(s) for s in grid]
             for s0, s1, g0, g1 in zip(grid[:-1], grid[1:], vals[:-1], vals[1:], strict=True):
                 if g0 * g1 < 0:
@@ -139,7 +139,7 @@ def entropy_reference(fam, a, b, dps=30):
                     r = 1 / (1 + mp.exp(-s))
                     slope = abs((a - 1) / r + (b - 1) / (1 - r))
                     pts.append(r)
-                    for j in range(-4, 60):
+                    for j in range(-4, 60, 2):
                         d = mp.mpf(2) ** j / slope
                         pts.extend(v for v in (r - d, r + d) if 0 < v < 1)
         pts = sorted(set(pts))
