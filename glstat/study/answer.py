@@ -205,22 +205,25 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None) -> 
                   "paper: damage", "paper: mean pressure"]
 
 
-def check_sentence(settings, asettings, analysis: dict) -> str:
-    """What the check on held-out surfaces found, per H, for both samples."""
-    parts = []
-    for (ih, _il), r in analysis.items():
+def check_rows(settings, asettings, analysis: dict) -> tuple[list[list[Any]], list[str]]:
+    """Rows of the table of checks on held-out surfaces: one per (H, load, sample)."""
+    lvl = round(100 * asettings.confidence_level)
+    rows = []
+    for (ih, il), r in analysis.items():
         for kind in ("asperity", "grid"):
             v = r[kind].validation
+            case = f"H = {settings.hurst[ih]:g}" + (
+                f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1 else "")
             if v.table is None:
+                rows.append([case, SAMPLE_LABELS[kind], "—", "—", "—", "—",
+                             f"not checked: {v.error or r[kind].note}"])
                 continue
             hits, m = v.damage_hits()
             lo, hi = v.coverage_interval
-            parts.append(
-                f"H = {settings.hurst[ih]:g}, {SAMPLE_LABELS[kind]}: coverage of the "
-                f"{round(100 * asettings.confidence_level)} % interval {100 * v.coverage:.0f} % "
-                f"[{100 * lo:.0f}, {100 * hi:.0f}], centring test p = {v.t_pvalue:.2g}, predicted "
-                f"damage inside the observed interval at {hits} of {m} hardness levels"
-                + (f", extremal index θ = {v.theta:.2g}" if kind == "grid" and math.isfinite(v.theta)
-                   else "")
-                + (" — passes" if v.passes(asettings.confidence_level) else " — fails"))
-    return "; ".join(parts) + "."
+            rows.append([case, SAMPLE_LABELS[kind],
+                         f"{100 * v.coverage:.0f} % [{100 * lo:.0f}, {100 * hi:.0f}]",
+                         f"{v.t_pvalue:.2g}", f"{hits} of {m}",
+                         f"{v.theta:.2g}" if math.isfinite(v.theta) else "—",
+                         "passes" if v.passes(asettings.confidence_level) else "fails"])
+    return rows, ["case", "sample", f"coverage of the {lvl} % interval [Wilson 95 %]",
+                  "centring test p", "hardness levels inside", "extremal index θ", "check"]
