@@ -302,12 +302,16 @@ def run_study(
                 for i in range(min(1, settings.n_examples))]
     results.update(load_results(out, settings, examples, maps=True))
     t2 = time.perf_counter()
-    an = analyse(results, settings, analysis)
-    if progress:
-        print("analysis: fits, bootstrap and held-out checks ...", file=sys.stderr, flush=True)
+
+    def say(text):
+        if progress:
+            print(f"{text} ...", file=sys.stderr, flush=True)
+
+    an = analyse(results, settings, analysis, progress=say)
     bem = None
     if bsettings is not None:
         tc = time.perf_counter()
+        say("BEM comparison: fits of both models")
         bem = compare_study(out, settings, bsettings, analysis, campaign=results)
         bem_analysis = time.perf_counter() - tc
     t3 = time.perf_counter()
@@ -345,6 +349,7 @@ def run_study(
         info["bem"] = bem
         info["bem_settings"] = bsettings
         info["bem_maps"] = load_bem_maps(out, settings)
+    say("report: tables and figures")
     rep = build_report(settings, analysis, results, an, info)
     timings["report"] = time.perf_counter() - t3
     timings["total"] = time.perf_counter() - t0

@@ -595,8 +595,11 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
     return sa
 
 
-def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings) -> dict:
+def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, progress=None) -> dict:
     """Analyse every (H, load) of a campaign, both samples.
+
+    ``progress``, when given, is called with a one-line description before each case and
+    sample (the command prints it).
 
     Returns
     -------
@@ -623,6 +626,12 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings) -> d
                 "max_force_jump": float(max(float(r.get("force_jump", 0.0)) for r in rs)),
                 "n_surfaces": len(rs),
             }
-            out[(ih, il)] = {kind: analyse_sample(results, keys, kind, a, ih, il) for kind in SAMPLES}
+            case = {}
+            for kind in SAMPLES:
+                if progress is not None:
+                    progress(f"analysis: H = {settings.hurst[ih]:g}, {settings.pressures[il] / 1e6:g} MPa, "
+                             f"{SAMPLE_LABELS[kind]}")
+                case[kind] = analyse_sample(results, keys, kind, a, ih, il)
+            out[(ih, il)] = case
             out[(ih, il)]["summary"] = summary
     return out
