@@ -514,13 +514,14 @@ def _initial_guess(case, a, b, y, z_hi, z_lo):
         t2 = math.log(-math.expm1(math.log1p(-w) / b)) if w < 1.0 else 0.0
         t = min(t, t2)
     elif case == _FPOS:
-        if b != 0.0:
-            arg = math.log1p(-b * (z_hi + z_lo)) if b * (z_hi + z_lo) < 1.0 else -math.inf
-            t2 = math.log(-math.expm1(arg / b)) if arg > -math.inf else 0.0
+        # (1-p)^b term alone: log(1-p) = log1p(-b z)/b (the series for tiny or subnormal b)
+        zz = z_hi + z_lo
+        if b * zz < 1.0:
+            t2 = math.log(-math.expm1(-_l1pd(-b, zz)))
         else:
-            t2 = math.log(-math.expm1(-(z_hi + z_lo)))
+            t2 = 0.0
         t = min(t, t2)
-    if not (t < -LN2):
+    if not (t < -LN2 and t > -math.inf):
         t = -LN2 - 0.5
     return t
 
@@ -613,6 +614,12 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
             t_hi = t
         step = r / dr
         t_new = t - step
+        capped = t_lo == -math.inf and t_new < t - 65536.0 * max(1.0, abs(t))
+        if capped:
+            # no lower bracket yet and a derivative that has nearly vanished (one term of Q'
+            # underflowing): move at most 2**16 times |t| down, which brackets the root
+            # without jumping to where the other term is the only one left
+            t_new = t - 65536.0 * max(1.0, abs(t))
         newton = t_new > t_lo and t_new < t_hi
         # a Newton iteration creeping along an exponential (same side of the root, step small
         # against the distance already travelled) is replaced by a bisection / expansion step
@@ -632,7 +639,8 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
         # point (noise/dr is meaningful only for a Newton step, which is near the root), or
         # a bracket that has collapsed to a few ulps
         floor = 4.0 * EPS * max(1.0, abs(t))
-        if (newton and abs(step) <= 2.0 * noise / dr + floor) or (t_hi - t_lo) <= floor:
+        if (newton and not capped and abs(step) <= 2.0 * noise / dr + floor) or \
+                (t_hi - t_lo) <= floor:
             t = t_new
             status = OK
             break
@@ -670,8 +678,25 @@ def median_std(fam, a, b):
 
 
 @njit(cache=True, error_model="numpy")
+def _beyond_lower_end(fam, a, b, y, y_lo):
+    """True when y + y_lo is at or below the finite lower end point Q(0) (exact comparison:
+    RS ends are +-1, the FKML end -1/a is taken as a double-double)."""
+    case = _case(fam, a, b)
+    if case == _R3A or case == _RMX or case == _FPOS:
+        z_hi, z_lo = _lower_end_offset(case, a, y)
+        return z_hi + (z_lo + y_lo) <= 0.0
+    return False
+
+
+@njit(cache=True, error_model="numpy")
 def _invert(fam, a, b, y, y_lo=0.0):
     """Return (tail prob, log tail prob, upper?, status, a_eff, b_eff) for one point."""
+    # at or beyond a finite end point: decided before the side of the median, which may round
+    # onto the end point itself (RS(1e-300, 1e4): the whole upper half lies within an ulp of 1)
+    if _beyond_lower_end(fam, a, b, y, y_lo):
+        return 0.0, -math.inf, False, OK, a, b
+    if _beyond_lower_end(fam, b, a, -y, -y_lo):
+        return 0.0, -math.inf, True, OK, b, a
     if fam == RS and a > 0.0 and b > 0.0 and y == 0.0 and y_lo == 0.0:
         # F(0) in region 3 from a log p = b log(1 - p), exact even where both powers (and the
         # median) underflow; the root lies below 1/2 exactly when a <= b

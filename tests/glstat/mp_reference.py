@@ -30,9 +30,12 @@ def q_mp(fam, a, b, t, l1):
     return ea - eb
 
 
-def tail_probability(fam, a, b, y):
-    """(p, upper): the smaller of F(y) and 1 - F(y), and whether it is the upper one."""
-    with mp.workdps(DPS):
+def tail_probability(fam, a, b, y, dps=DPS):
+    """(p, upper): the smaller of F(y) and 1 - F(y), and whether it is the upper one.
+
+    ``dps`` must resolve the body: shapes of very different magnitude (1e-300 and 1e4) put
+    half of the distribution within 1e-300 of an end point, which needs some 320 digits."""
+    with mp.workdps(dps):
         y = mp.mpf(y)
         half = -mp.log(2)
         if y <= q_mp(fam, a, b, half, half):
