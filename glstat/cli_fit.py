@@ -93,9 +93,12 @@ def build_parser() -> argparse.ArgumentParser:
                    help="bootstrap resamples (default 1000; 0: no bootstrap)")
     p.add_argument("--confidence-level", type=float, default=0.9, metavar="L",
                    help="coverage of the intervals (default 0.9)")
-    p.add_argument("--n-max", type=float, default=None, metavar="N",
+    p.add_argument("--n-max", default=None, metavar="N",
                    help="number of points of the analysed area: the maximum of N draws and the damage "
-                        "probability refer to N values (default for the damage: the sample size)")
+                        "probability refer to N values (default for the damage: the sample size). A "
+                        "random number of points: 'poisson:MU' (Poisson with mean MU) or "
+                        "'counts:N1,N2,...' (the counts observed on several areas, e.g. asperities "
+                        "in contact per surface)")
     p.add_argument("--area-factor", type=float, nargs="+", default=None, metavar="K",
                    help="area(s) of interest as multiples of the analysed area (default 1)")
     p.add_argument("--hardness", type=float, default=None, metavar="P",
@@ -125,8 +128,9 @@ def _check_options(args: argparse.Namespace) -> None:
     if not 0.0 < args.confidence_level < 1.0:
         raise InputError(f"--confidence-level must lie strictly between 0 and 1 (e.g. 0.9), got "
                          f"{args.confidence_level}")
-    if args.n_max is not None and not (math.isfinite(args.n_max) and args.n_max >= 1):
-        raise InputError(f"--n-max is a number of points and must be >= 1, got {args.n_max:g}")
+    args.count = None
+    if args.n_max is not None:
+        args.n_max, args.count = parse_n_max(args.n_max)
     if args.area_factor is not None:
         bad = [k for k in args.area_factor if not (math.isfinite(k) and k > 0)]
         if bad:
@@ -261,17 +265,58 @@ def _gof_table(gof) -> Any:
     return pd.DataFrame(rows)
 
 
-def _maximum(res: FitResults, n_max: float, level: float) -> dict[str, Any]:
+def parse_n_max(text: str):
+    """``--n-max``: a number of points, ``poisson:MU`` or ``counts:N1,N2,...``.
+
+    Returns
+    -------
+    (float, CountDistribution or None)
+        The number of points (the mean count for a random one) and the random count.
+
+    Raises
+    ------
+    InputError
+        Anything else, with the accepted forms.
+    """
+    from .counts import ObservedCounts, PoissonCount
+
+    text = str(text).strip()
+    forms = ("a number of points >= 1, 'poisson:MU' with MU > 0, or 'counts:N1,N2,...' with "
+             "integers >= 0")
+    kind, sep, value = text.partition(":")
+    try:
+        if not sep:
+            n = float(text)
+            if not (math.isfinite(n) and n >= 1):
+                raise ValueError
+            return n, None
+        if kind.lower() == "poisson":
+            c = PoissonCount(float(value))
+        elif kind.lower() == "counts":
+            items = [v for v in value.replace(";", ",").split(",") if v.strip()]
+            vals = [float(v) for v in items]
+            c = ObservedCounts(vals)
+            if c.p_zero >= 1:
+                raise ValueError
+        else:
+            raise ValueError
+    except (ValueError, TypeError):
+        raise InputError(f"--n-max must be {forms}; got {text!r}") from None
+    return float(c.mean), c
+
+
+def _maximum(res: FitResults, n_max: float, level: float, count=None) -> dict[str, Any]:
     from .extremes import maximum
 
-    full = maximum(res.fit.dist, n_max)
+    full = maximum(res.fit.dist, count=count) if count is not None else maximum(res.fit.dist, n_max)
     a = (1.0 - level) / 2.0
-    out: dict[str, Any] = {"n": float(n_max), "confidence_level": level,
+    out: dict[str, Any] = {"n": float(n_max), "count": count, "confidence_level": level,
                            "full_fit_median": float(full.median()),
                            "full_fit_low": float(full.ppf(a)), "full_fit_high": float(full.isf(a)),
                            "dist": full}
     if res.boot is not None:
-        bm = res.boot.maximum(n_max, level)
+        bm = (res.boot.maximum(confidence_level=level, count=count) if count is not None
+              else res.boot.maximum(n_max, level))
         lo, hi = bm.interval()
         mlo, mhi = bm.mixture_interval()
         out.update(mean=bm.mean, low=lo, high=hi, mixture_low=mlo, mixture_high=mhi,
@@ -293,20 +338,22 @@ def _support_reason(hardness: float, support: tuple[float, float]) -> str | None
     return None
 
 
-def _damage(res: FitResults, hardness: float, n: float, factors: np.ndarray, level: float) -> dict[str, Any]:
+def _damage(res: FitResults, hardness: float, n: float, factors: np.ndarray, level: float,
+            count=None) -> dict[str, Any]:
     from .damage import damage_probability, integrity_probability
 
     reason = _support_reason(hardness, res.support)
-    est = np.asarray(damage_probability(res.fit.dist, hardness, n, factors, outside_support="limit"),
-                     dtype=float)
-    keep = np.asarray(integrity_probability(res.fit.dist, hardness, n, factors, outside_support="limit"),
-                      dtype=float)
-    out: dict[str, Any] = {"hardness": hardness, "n": float(n), "area_factors": factors,
+    nn = None if count is not None else n
+    est = np.asarray(damage_probability(res.fit.dist, hardness, nn, factors, count=count,
+                                        outside_support="limit"), dtype=float)
+    keep = np.asarray(integrity_probability(res.fit.dist, hardness, nn, factors, count=count,
+                                            outside_support="limit"), dtype=float)
+    out: dict[str, Any] = {"hardness": hardness, "n": float(n), "count": count, "area_factors": factors,
                            "points": factors * n, "estimate": est, "integrity": keep,
                            "low": None, "high": None,
                            "confidence_level": level, "reason": reason}
     if res.boot is not None:
-        bp = res.boot.damage_probability(hardness, n, factors, level)
+        bp = res.boot.damage_probability(hardness, nn, factors, level, count=count)
         out["low"], out["high"] = np.asarray(bp.low, dtype=float), np.asarray(bp.high, dtype=float)
         out["boot_values"] = bp.values
         sup = np.array([d.support() for d in res.boot.dists()], dtype=float)
@@ -453,13 +500,13 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         _print_bootstrap(res, emit)
     if args.n_max is not None:
         with _phase("distribution of the maximum"):
-            res.maximum = _maximum(res, args.n_max, args.confidence_level)
+            res.maximum = _maximum(res, args.n_max, args.confidence_level, args.count)
         _print_maximum(res, emit)
     if args.hardness is not None:
         n = args.n_max if args.n_max is not None else float(x.size)
         factors = np.asarray(args.area_factor if args.area_factor is not None else [1.0], dtype=float)
         with _phase("damage probability"):
-            res.damage = _damage(res, args.hardness, n, factors, args.confidence_level)
+            res.damage = _damage(res, args.hardness, n, factors, args.confidence_level, args.count)
         _print_damage(res, args, emit)
     return res
 
@@ -526,12 +573,20 @@ def _print_maximum(res: FitResults, emit: Callable[[str], None]) -> None:
     level = 100 * m["confidence_level"]
     emit("")
     if "table" in m:
-        emit(f"maximum of {m['n']:.10g} values: mean {_g(m['mean'])}, {level:g} % interval "
+        emit(f"maximum of {_how_many(m)}: mean {_g(m['mean'])}, {level:g} % interval "
              f"[{_g(m['low'])}, {_g(m['high'])}] (one draw per bootstrap GLD)")
         emit(_indent(_table(m["table"][["quantity", "center", "low", "high"]])))
     else:
-        emit(f"maximum of {m['n']:.10g} values (full-sample fit, no bootstrap): mean {_g(m['mean'])}, "
+        emit(f"maximum of {_how_many(m)} (full-sample fit, no bootstrap): mean {_g(m['mean'])}, "
              f"{level:g} % interval [{_g(m['low'])}, {_g(m['high'])}]")
+
+
+def _how_many(d: dict, unit: str = "values") -> str:
+    """'N values' / 'n = N points', or the random count."""
+    c = d.get("count")
+    if c is None:
+        return f"{d['n']:.10g} values" if unit == "values" else f"n = {d['n']:.10g} {unit}"
+    return f"a random number of {unit}, {c!r}"
 
 
 def _print_damage(res: FitResults, args: argparse.Namespace, emit: Callable[[str], None]) -> None:
@@ -542,7 +597,7 @@ def _print_damage(res: FitResults, args: argparse.Namespace, emit: Callable[[str
     level = 100 * d["confidence_level"]
     emit("")
     with_ci = d["low"] is not None
-    emit(f"damage probability P(max > {d['hardness']:g}) for n = {d['n']:.10g} points ({src})"
+    emit(f"damage probability P(max > {d['hardness']:g}) for {_how_many(d, 'points')} ({src})"
          + (f", {level:g} % bootstrap interval:" if with_ci else " (no bootstrap: no interval):"))
     tab = pd.DataFrame({"area_factor": d["area_factors"], "points": [f"{v:.10g}" for v in d["points"]],
                         "integrity": d["integrity"], "damage": d["estimate"]})
@@ -581,10 +636,12 @@ def _integrity_figure(res: FitResults, ax) -> None:
     k = d["area_factors"]
     k_lo, k_hi = min(0.01, float(k.min()) / 10), max(100.0, float(k.max()) * 10)
     grid = np.logspace(math.log10(k_lo), math.log10(k_hi), 61)
+    nn = None if d.get("count") is not None else d["n"]
     if d["reason"] is None:
-        plot_integrity_vs_area(res.fit.dist, d["hardness"], d["n"], grid, ax=ax)
+        plot_integrity_vs_area(res.fit.dist, d["hardness"], nn, grid, ax=ax, count=d.get("count"))
     else:
-        p = integrity_probability(res.fit.dist, d["hardness"], d["n"], grid, outside_support="limit")
+        p = integrity_probability(res.fit.dist, d["hardness"], nn, grid, count=d.get("count"),
+                                  outside_support="limit")
         ax.plot(grid, p, color="C0", label="integrity")
         ax.set_xscale("log")
         ax.set_ylim(-0.02, 1.02)
@@ -592,7 +649,8 @@ def _integrity_figure(res: FitResults, ax) -> None:
         ax.set_ylabel(f"P(max < {d['hardness']:g})")
         ax.set_title("hardness outside the fitted support", fontsize=9)
     if res.boot is not None:
-        bp = res.boot.integrity_probability(d["hardness"], d["n"], grid, d["confidence_level"])
+        bp = res.boot.integrity_probability(d["hardness"], nn, grid, d["confidence_level"],
+                                            count=d.get("count"))
         ax.fill_between(grid, bp.low, bp.high, color="C1", alpha=0.25,
                         label=f"{100 * d['confidence_level']:g} % bootstrap interval")
     ax.plot(k, d["integrity"], linestyle="none", marker="o",
@@ -625,7 +683,7 @@ def _write_figures(res: FitResults, out: Path) -> None:
         fig = _figure()
         ax = fig.add_subplot()
         plot_maximum_density(res.maximum["dist"], interval=res.maximum["confidence_level"], ax=ax)
-        ax.set_xlabel(f"maximum of {res.maximum['n']:.10g} values")
+        ax.set_xlabel(f"maximum of {_how_many(res.maximum)}")
         _save(fig, out, "maximum_density.png", res)
     if res.damage is not None:
         fig = _figure()
@@ -701,6 +759,7 @@ def _write_tables(res: FitResults, args: argparse.Namespace, out: Path) -> None:
                   "nan_policy": s.nan_policy},
         "settings": {"param": args.param, "method": args.method, "bootstrap": args.bootstrap,
                      "confidence_level": args.confidence_level, "n_max": args.n_max,
+                     "count": None if args.count is None else repr(args.count),
                      "area_factors": args.area_factor, "hardness": args.hardness, "seed": res.seed,
                      "gof_resamples": res.gof_resamples,
                      "gof_resamples_requested": args.gof_resamples, "gof_note": res.gof_note},

@@ -73,7 +73,8 @@ def plot_maximum_density(max_dist, interval: float = 0.9, ax=None) -> Any:
     return ax
 
 
-def plot_integrity_vs_area(dist, threshold: float, n: float, area_factors, ax=None) -> Any:
+def plot_integrity_vs_area(dist, threshold: float, n: float | None, area_factors, ax=None, *,
+                           count=None) -> Any:
     """Integrity probability ``F(threshold)^(k n)`` against the area factor k (log axis).
 
     Parameters
@@ -84,12 +85,14 @@ def plot_integrity_vs_area(dist, threshold: float, n: float, area_factors, ax=No
         points across the distributions.
     threshold : float
         Pressure level (e.g. the hardness), in the units of ``dist``.
-    n : float
-        Number of points of the analysed area.
+    n : float or None
+        Number of points of the analysed area (None with ``count``).
     area_factors : array_like
         Ratios k of the area of interest to the analysed one (> 0).
     ax : matplotlib.axes.Axes, optional
         Axes to draw on.
+    count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
+        A random number of points instead of ``n``: the integrity is ``E[F^N]^k``.
 
     Returns
     -------
@@ -100,7 +103,7 @@ def plot_integrity_vs_area(dist, threshold: float, n: float, area_factors, ax=No
 
     k = np.asarray(area_factors, dtype=float).ravel()
     ax = _axes(ax)
-    p = np.asarray(integrity_probability(dist, threshold, n, k), dtype=float)
+    p = np.asarray(integrity_probability(dist, threshold, n, k, count=count), dtype=float)
     if p.ndim == 2:
         ax.plot(k, np.median(p, axis=0), color="C0", label="integrity")
         lo, hi = np.quantile(p, [0.05, 0.95], axis=0)
