@@ -58,7 +58,7 @@ from .counts import ObservedCounts, RowCounts, as_count
 from .damage import damage_probability as _damage
 from .damage import integrity_probability as _integrity
 from .distributions import evaluate, gld_fkml, gld_rs, quantile
-from .errors import ConvergenceWarning, FitError, InvalidParameterError
+from .errors import FitError, InvalidParameterError
 from .extremes import MaximumDistribution
 from .extremes import maximum as _maximum
 from .fitting import GLDFit, fit, fit_batch
@@ -166,12 +166,11 @@ def _log_tails(lam: np.ndarray, fam: int, x) -> tuple[np.ndarray, np.ndarray, np
     """(log F, log S, log f) of every row of ``lam`` at the points x: arrays (k, len(x))."""
     l1, l2, l3, l4 = (_col(lam[:, i]) for i in range(4))
     y = (np.asarray(x, dtype=float)[None, :] - l1) * np.abs(l2)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", ConvergenceWarning)
-        s = evaluate(fam, "sf", y, l3, l4)
-        logc = evaluate(fam, "logcdf", y, l3, l4)
-        logs = evaluate(fam, "logsf", y, l3, l4)
-        logp = evaluate(fam, "logpdf", y, l3, l4) + np.log(np.abs(l2))
+    # an inversion that reaches its iteration limit is reported (ConvergenceWarning, once per call)
+    s = evaluate(fam, "sf", y, l3, l4)
+    logc = evaluate(fam, "logcdf", y, l3, l4)
+    logs = evaluate(fam, "logsf", y, l3, l4)
+    logp = evaluate(fam, "logpdf", y, l3, l4) + np.log(np.abs(l2))
     with np.errstate(divide="ignore"):
         logf = np.where(s < 0.5, np.log1p(-s), logc)
     return logf, logs, logp
@@ -259,10 +258,9 @@ def _fit_task(x, seeds, kind, lam, param, method, options, groups=None):
         sample = _draw(x, np.random.default_rng(s), kind, lam, fam, groups)
         ext = (float(np.min(sample)), float(np.max(sample)))
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                f = fit(sample, param, method, **options)
-            out.append((f.lambdas, int(f.solutions["valid"].sum()), "", ext))
+            # warn=False: no warning from a worker, and no change to the process-wide filters
+            f = fit(sample, param, method, warn=False, **options)
+            out.append((f.lambdas, f.n_valid, "", ext))
         except (FitError, InvalidParameterError, FloatingPointError, ValueError,
                 ZeroDivisionError) as exc:
             out.append(((math.nan,) * 4, 0, f"fit error ({type(exc).__name__}): {exc}", ext))
@@ -683,9 +681,8 @@ class BootstrapFit:
             lam = np.full((groups, 4), np.nan)
             for g in range(groups):
                 try:
-                    with warnings.catch_warnings():
-                        warnings.simplefilter("ignore")
-                        lam[g] = fit(x[group != g], self.param, self.method, **self.options).lambdas
+                    lam[g] = fit(x[group != g], self.param, self.method, warn=False,
+                                 **self.options).lambdas
                 except (FitError, InvalidParameterError, FloatingPointError, ValueError):
                     pass
         lam = lam[np.all(np.isfinite(lam), axis=1)]
