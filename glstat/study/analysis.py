@@ -214,7 +214,7 @@ class FitChoice:
         The chosen parameterisation and method.
     scores : dict
         ``"PARAM method" -> mean log predictive density`` of the held-out half's per-surface
-        maxima (``-inf`` where a maximum lies outside the fit's support).
+        maxima inside the fit's support, best candidate first.
     reason : str
         The choice and why, in words.
     """
@@ -225,9 +225,8 @@ class FitChoice:
     reason: str
 
     def order(self) -> list[tuple[str, str]]:
-        """The candidates from best to worst score, then the fallbacks: the fits to try."""
-        ranked = [tuple(k.lower().split(" ", 1)) for k, _ in
-                  sorted(self.scores.items(), key=lambda kv: -kv[1])]
+        """The candidates from best to worst, then the fallbacks: the fits to try."""
+        ranked = [tuple(k.lower().split(" ", 1)) for k in self.scores]
         first = [(self.param, self.method)]
         rest = [f for f in ranked + list(FALLBACKS) if f != first[0]]
         return first + list(dict.fromkeys(rest))
@@ -353,26 +352,30 @@ def _bootstrap(x: np.ndarray, a: AnalysisSettings, rng, param=None, method=None,
 
 
 # -- the choice of fit ---------------------------------------------------------------------------
-def _max_log_score(dist, maxima: np.ndarray, counts: np.ndarray) -> float:
-    """Mean log density of the observed maxima under ``F^(n_i)``: ``log n + (n - 1) log F(M)
-    + log f(M)``; -inf when a maximum lies outside the support."""
+def _max_log_score(dist, maxima: np.ndarray, counts: np.ndarray) -> tuple[int, float]:
+    """(maxima outside the support, mean log density of the others under ``F^(n_i)``):
+    ``log n + (n - 1) log F(M) + log f(M)``."""
     lo, hi = dist.support()
-    if np.any((maxima < lo) | (maxima > hi)):
-        return -math.inf
-    n = np.maximum(counts.astype(float), 1.0)
+    inside = (maxima >= lo) & (maxima <= hi)
+    n = np.maximum(counts.astype(float), 1.0)[inside]
+    m = maxima[inside]
+    if not m.size:
+        return int(maxima.size), -math.inf
     with np.errstate(all="ignore"):
-        v = np.log(n) + (n - 1.0) * np.asarray(dist.logcdf(maxima)) + np.asarray(dist.logpdf(maxima))
-    return float(np.mean(v)) if np.all(np.isfinite(v)) else -math.inf
+        v = np.log(n) + (n - 1.0) * np.asarray(dist.logcdf(m)) + np.asarray(dist.logpdf(m))
+    ok = np.isfinite(v)
+    return int(maxima.size - ok.sum()), (float(np.mean(v[ok])) if ok.any() else -math.inf)
 
 
 def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
     """Choose the GLD fit of a sample by an inner split of its surfaces.
 
     The surfaces are split into two halves (alternately); every candidate is fitted to one half
-    and scored on the other by the mean log density of that half's per-surface maxima under
-    ``F(x)^(n_i)`` (the quantity the study predicts), then the halves swap. The candidate with
-    the highest mean score wins (earlier candidates win ties). Only the surfaces passed in are
-    used, so a choice made on a fitting fold never sees the fold it is checked against.
+    and scored on the other by its per-surface maxima (the quantity the study predicts): first
+    the number of maxima outside the fit's support (fewer is better), then the mean log density
+    of the others under ``F(x)^(n_i)`` (higher is better); then the halves swap and the two
+    scores add up. Earlier candidates win ties. Only the surfaces passed in are used, so a
+    choice made on a fitting fold never sees the fold it is checked against.
 
     Parameters
     ----------
@@ -383,18 +386,13 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
     Returns
     -------
     FitChoice
-
-    Raises
-    ------
-    FitError
-        No candidate can be fitted to either half.
     """
     import glstat
 
     halves = [per[0::2], per[1::2]]
-    scores = {}
+    scores, outside = {}, {}
     for p, m in candidates:
-        s = []
+        s, out = [], 0
         for h in (0, 1):
             train, test = halves[h], halves[1 - h]
             x = np.concatenate([t[0] for t in train]) if train else np.empty(0)
@@ -403,24 +401,27 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
             try:
                 f, _ = _quiet(glstat.fit, x, p, m)
             except (FitError, ValueError):
+                out += len(test)
                 s.append(-math.inf)
                 continue
-            s.append(_max_log_score(f.dist, np.array([t[2] for t in test]),
-                                    np.array([t[1] for t in test])))
-        scores[f"{p.upper()} {m}"] = float(np.mean(s)) if s else -math.inf
-    best = max(scores, key=lambda k: (scores[k], -list(scores).index(k)))
-    if not math.isfinite(scores[best]):
-        fitted = [k for k, v in scores.items() if v > -math.inf]
-        if not fitted:
-            p, m = candidates[0]
-            return FitChoice(p, m, scores, f"no candidate predicted the held-out maxima inside its "
-                                           f"support; {p.upper()} {m} used")
+            o, v = _max_log_score(f.dist, np.array([t[2] for t in test]),
+                                  np.array([t[1] for t in test]))
+            out += o
+            s.append(v)
+        name = f"{p.upper()} {m}"
+        scores[name] = float(np.mean(s)) if s else -math.inf
+        outside[name] = out if s else len(per)
+    names = list(scores)
+    best = min(names, key=lambda k: (outside[k], -scores[k], names.index(k)))
     p, m = best.split(" ", 1)
-    ranked = sorted(scores.items(), key=lambda kv: -kv[1])
-    runner = next((k for k, v in ranked if k != best), None)
+    ranked = sorted(names, key=lambda k: (outside[k], -scores[k], names.index(k)))
+    runner = next((k for k in ranked if k != best), None)
     why = (f"{best} predicts the held-out half's maxima best (mean log density "
            f"{scores[best]:.3g}" + (f" against {scores[runner]:.3g} for {runner})" if runner else ")"))
-    return FitChoice(p.lower(), m, scores, why)
+    if outside[best]:
+        why += (f"; {outside[best]} held-out maxima lie beyond its support (fewest of the "
+                f"candidates)")
+    return FitChoice(p.lower(), m, {k: scores[k] for k in ranked}, why)
 
 
 # -- predictions and checks ------------------------------------------------------------------------

@@ -184,6 +184,8 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None) -> 
         else:
             answer = (f"{fmt_probability(_scalar(d.estimate))} [{fmt_probability(_scalar(d.low))}, "
                       f"{fmt_probability(_scalar(d.high))}]")
+            if sa.end_note:
+                answer += " ⚠ near or beyond the fit's end point (below)"
         check = ("passed" if v.passes(asettings.confidence_level) else "failed") if sa.ok else "—"
         if v.error:
             check = f"not checked ({v.error})"
