@@ -739,7 +739,7 @@ def maximum(dist, n: float | None = None, *, count=None) -> MaximumDistribution:
     >>> g = glstat.GLD(0, 0.197451, 0.134912, 0.134912)
     >>> m = glstat.maximum(g, 1e6)
     >>> round(float(m.median()), 3)
-    4.682
+    4.317
     """
     parent = _Parent(dist)
     if count is not None:
