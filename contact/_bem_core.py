@@ -552,7 +552,7 @@ def _stop(p: np.ndarray, change: float, entered: int, tol: float, state: dict) -
 
 
 def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_iter):
-    """Conjugate directions kept across contact-set growth; displacement carried along."""
+    """Preconditioned directions kept across contact-set growth; displacement carried along."""
     load_control = total_pressure is not None
     state = _new_state(shift)
     g = np.empty_like(p)
