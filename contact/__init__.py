@@ -11,6 +11,15 @@ from . import _numba_cache  # noqa: F401  (first: numba caches outside the packa
 from .errors import ContactWarning, TopographyFileError
 from .generators import self_affine, weierstrass
 from .io import read, write
+from .like import (
+    SpectrumFit,
+    compare_surfaces,
+    fit_spectrum,
+    plot_psd_comparison,
+    psd_comparison,
+    self_affine_like,
+    weierstrass_like,
+)
 from .result import ContactResult
 from .solver import effective_modulus, solve, solve_displacement
 from .spots import contact_spots
@@ -21,20 +30,27 @@ __all__ = [
     "BEMConvergenceWarning",
     "ContactResult",
     "ContactWarning",
+    "SpectrumFit",
     "Summits",
     "Surface",
     "TopographyFileError",
     "compare_models",
+    "compare_surfaces",
     "contact_spots",
     "effective_modulus",
+    "fit_spectrum",
+    "plot_psd_comparison",
+    "psd_comparison",
     "read",
     "self_affine",
+    "self_affine_like",
     "solve",
     "solve_bem",
     "solve_bem_displacement",
     "solve_displacement",
     "summits",
     "weierstrass",
+    "weierstrass_like",
     "write",
 ]
 
