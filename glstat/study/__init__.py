@@ -11,6 +11,7 @@ This package is not imported by ``import glstat``.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import platform
@@ -150,7 +151,6 @@ def truncation_table(n_terms=(1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16), hurst=(0.0, 0
         ``[H, n_terms, highest frequency (1/mm), mean contact pressure (GPa), its standard
         error (GPa), 1 − α, asperities in contact]``, means over the surfaces.
     """
-    import dataclasses
 
     base = settings or CampaignSettings()
     rows = []
@@ -190,7 +190,7 @@ class StudyResult:
     """
 
     def __init__(self, out, report_html, report_md, analysis, timings, campaign, bem=None,
-                 bem_run=None):
+                 bem_run=None, bem_analysis=None):
         self.out = Path(out)
         self.report_html = report_html
         self.report_md = report_md
@@ -199,6 +199,7 @@ class StudyResult:
         self.campaign = campaign
         self.bem = bem
         self.bem_run = bem_run
+        self.bem_analysis = bem_analysis
 
     def bem_summary(self):
         """One row per (H, load, quantity) of the BEM comparison: both models' means and the
@@ -218,12 +219,12 @@ class StudyResult:
     def summary(self):
         """``summary.csv`` as a pandas DataFrame: one row per H × load × model × sample (the
         columns are documented in :func:`glstat.study.answer.summary_frame`)."""
-        return summary_frame(self.campaign.settings, self.analysis, self.bem)
+        return summary_frame(self.campaign.settings, self.analysis, self.bem, self.bem_analysis)
 
     def damage_calibration(self):
         """``damage_calibration.csv`` as a pandas DataFrame: predicted against observed damage
         probabilities on held-out surfaces (:func:`glstat.study.answer.calibration_frame`)."""
-        return calibration_frame(self.campaign.settings, self.analysis)
+        return calibration_frame(self.campaign.settings, self.analysis, self.bem_analysis)
 
 
 def _versions() -> dict[str, str]:
@@ -250,6 +251,7 @@ def run_study(
     command: str = "",
     workers_label: str | None = None,
     compare_bem: int | BEMSettings | None = DEFAULT_COMPARE_BEM,
+    model: str = "asperity",
 ) -> StudyResult:
     """Run (or resume) the campaign, analyse it and write the report.
 
@@ -273,12 +275,22 @@ def run_study(
         skips it); the solves are stored next to the campaign's and resumed like it; the
         report shows the elastic damage probability next to the answer and gets the section
         "Asperity model vs elastic BEM".
+    model : {"asperity", "bem", "both"}
+        The contact model of the whole method. ``"bem"`` and ``"both"`` solve every surface
+        with the elastic BEM too (``compare_bem`` then covers all surfaces) and run the
+        analysis, the checks and the report on both models side by side; the elastic
+        per-asperity sample is the peak pressure of every contact spot.
 
     Returns
     -------
     StudyResult
     """
+    if model not in ("asperity", "bem", "both"):
+        raise ValueError(f"model must be 'asperity', 'bem' or 'both', got {model!r}")
     bsettings = None
+    if model != "asperity":
+        base = compare_bem if isinstance(compare_bem, BEMSettings) else BEMSettings()
+        compare_bem = dataclasses.replace(base, n_compare=settings.n_surfaces)
     if compare_bem is not None and not (isinstance(compare_bem, int) and compare_bem == 0):
         bsettings = (compare_bem if isinstance(compare_bem, BEMSettings)
                      else BEMSettings(n_compare=compare_bem))
@@ -308,6 +320,12 @@ def run_study(
             print(f"{text} ...", file=sys.stderr, flush=True)
 
     an = analyse(results, settings, analysis, progress=say)
+    bem_an = None
+    if model != "asperity":
+        from .bem import elastic_results
+
+        eres, left_out = elastic_results(out, settings, bsettings)
+        bem_an = analyse(eres, settings, analysis, progress=say, model="bem")
     bem = None
     if bsettings is not None:
         tc = time.perf_counter()
@@ -345,6 +363,8 @@ def run_study(
             settings.hurst[ih]: r["summary"]["n_contact"] for (ih, il), r in an.items() if il == 0})
     except Exception as exc:  # the paper's tables never stop a report
         info["paper_findings"] = [f"the consistency check could not be computed: {exc}"]
+    info["bem_analysis"] = bem_an
+    info["bem_left_out"] = left_out if model != "asperity" else []
     if bem is not None:
         info["bem"] = bem
         info["bem_settings"] = bsettings
@@ -354,7 +374,7 @@ def run_study(
     timings["report"] = time.perf_counter() - t3
     timings["total"] = time.perf_counter() - t0
     html, md = rep.write(out)
-    result = StudyResult(out, html, md, an, timings, camp, bem, bem_run)
+    result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an)
     from .campaign import atomic_write
 
     atomic_write(Path(out) / "summary.csv", result.summary().to_csv(index=False).encode())

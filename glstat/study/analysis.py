@@ -44,6 +44,9 @@ SAMPLES = {"grid": ("samples", "n_contact", "max_pressure"),
            "asperity": ("asperity_peak", "n_asperities", "asperity_max")}
 SAMPLE_LABELS = {"grid": "grid-point pressures (the paper's)",
                  "asperity": "per-asperity peak pressures"}
+#: Contact models whose solutions the analysis reads, with their seed slot and name.
+MODEL_SLOTS = {"asperity": 0, "bem": 1000}
+MODEL_NAMES = {"asperity": "asperity model", "bem": "elastic BEM"}
 #: Fits tried for the primary sample, in order of preference on ties.
 CANDIDATES = (("rs", "moments"), ("fkml", "moments"), ("rs", "lmoments"), ("fkml", "lmoments"),
               ("fkml", "mle"))
@@ -596,11 +599,15 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
     return sa
 
 
-def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, progress=None) -> dict:
+def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, progress=None,
+            model: str = "asperity") -> dict:
     """Analyse every (H, load) of a campaign, both samples.
 
     ``progress``, when given, is called with a one-line description before each case and
-    sample (the command prints it).
+    sample (the command prints it). ``model`` names the contact model of ``results``
+    ("asperity", or "bem" for :func:`glstat.study.bem.elastic_results`, whose per-asperity
+    sample is the peak of every contact spot); the surfaces missing from ``results`` (e.g.
+    elastic solves that did not converge) are left out. Each model has its own seeds.
 
     Returns
     -------
@@ -612,8 +619,10 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
     out = {}
     for ih in range(len(settings.hurst)):
         for il in range(len(settings.pressures)):
-            keys = [(ih, il, i) for i in range(settings.n_surfaces)]
+            keys = [(ih, il, i) for i in range(settings.n_surfaces) if (ih, il, i) in results]
             rs = [results[k] for k in keys]
+            if not rs:
+                continue
             summary = {
                 "mean_pressure": float(np.mean([r["mean_pressure"] for r in rs])) / 1e6,
                 "contact_fraction": float(np.mean([1 - r["alpha"] for r in rs])),
@@ -626,13 +635,15 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                 "n_in_jump": int(sum(int(r.get("in_jump", 0)) for r in rs)),
                 "max_force_jump": float(max(float(r.get("force_jump", 0.0)) for r in rs)),
                 "n_surfaces": len(rs),
+                "n_left_out": settings.n_surfaces - len(rs),
             }
+            slot = MODEL_SLOTS[model]
             case = {}
             for kind in SAMPLES:
                 if progress is not None:
-                    progress(f"analysis: H = {settings.hurst[ih]:g}, {settings.pressures[il] / 1e6:g} MPa, "
-                             f"{SAMPLE_LABELS[kind]}")
-                case[kind] = analyse_sample(results, keys, kind, a, ih, il)
+                    progress(f"analysis ({MODEL_NAMES[model]}): H = {settings.hurst[ih]:g}, "
+                             f"{settings.pressures[il] / 1e6:g} MPa, {SAMPLE_LABELS[kind]}")
+                case[kind] = analyse_sample(results, keys, kind, a, ih + slot, il)
             out[(ih, il)] = case
             out[(ih, il)]["summary"] = summary
     return out

@@ -56,7 +56,35 @@ def _scalar(a) -> float:
     return float(np.ravel(a)[0])
 
 
-def summary_frame(settings, analysis: dict, bem: dict | None = None):
+def _analysis_rows(settings, analysis: dict, model: str) -> list[dict]:
+    rows = []
+    for (ih, il), r in analysis.items():
+        s = r["summary"]
+        for kind in ("asperity", "grid"):
+            sa = r[kind]
+            v = sa.validation
+            d = sa.damage
+            hits, m = v.damage_hits()
+            rows.append({
+                "hurst": settings.hurst[ih], "pressure_mpa": settings.pressures[il] / 1e6,
+                "model": model, "sample": kind, "mean_pressure_mpa": s["mean_pressure"],
+                "asperities_per_surface": s["n_asperities"],
+                "points_in_contact_per_surface": s["n_contact"],
+                "fit": f"{sa.param.upper()} {sa.method}" if sa.ok else "none",
+                "damage": math.nan if d is None else _scalar(d.estimate),
+                "damage_low": math.nan if d is None else _scalar(d.low),
+                "damage_high": math.nan if d is None else _scalar(d.high),
+                "observed_damage": s.get("observed_damage", math.nan),
+                "coverage": v.coverage, "coverage_low": v.coverage_interval[0],
+                "coverage_high": v.coverage_interval[1], "bias_p_value": v.t_pvalue,
+                "theta": v.theta, "damage_levels_inside": f"{hits} of {m}" if m else "",
+                "passes_check": v.passes(getattr(sa.boot, "confidence_level", 0.9))
+                if sa.ok else False,
+                "upper_end_mpa": sa.upper_end, "n_surfaces": s["n_surfaces"]})
+    return rows
+
+
+def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysis: dict | None = None):
     """``summary.csv``: one row per H × load × model × sample (pandas DataFrame).
 
     Columns (pressures in MPa, probabilities as fractions): ``hurst``, ``pressure_mpa`` (nominal),
@@ -71,35 +99,16 @@ def summary_frame(settings, analysis: dict, bem: dict | None = None):
     ``theta`` (extremal index), ``damage_levels_inside`` (hardness levels at which the predicted
     damage lies inside the observed interval, "k of m"), ``passes_check``, ``upper_end_mpa``
     (upper end of the fitted GLD), ``n_surfaces``. NaN where a quantity does not apply (the
-    elastic model is compared on a few surfaces, without held-out checks).
+    elastic model is compared on a few surfaces, without held-out checks, unless the whole
+    study ran on it too: ``bem_analysis``, with the same columns as the asperity model).
     """
     import pandas as pd
 
-    rows = []
-    for (ih, il), r in analysis.items():
-        s = r["summary"]
-        for kind in ("asperity", "grid"):
-            sa = r[kind]
-            v = sa.validation
-            d = sa.damage
-            hits, m = v.damage_hits()
-            rows.append({
-                "hurst": settings.hurst[ih], "pressure_mpa": settings.pressures[il] / 1e6,
-                "model": "asperity", "sample": kind, "mean_pressure_mpa": s["mean_pressure"],
-                "asperities_per_surface": s["n_asperities"],
-                "points_in_contact_per_surface": s["n_contact"],
-                "fit": f"{sa.param.upper()} {sa.method}" if sa.ok else "none",
-                "damage": math.nan if d is None else _scalar(d.estimate),
-                "damage_low": math.nan if d is None else _scalar(d.low),
-                "damage_high": math.nan if d is None else _scalar(d.high),
-                "observed_damage": s.get("observed_damage", math.nan),
-                "coverage": v.coverage, "coverage_low": v.coverage_interval[0],
-                "coverage_high": v.coverage_interval[1], "bias_p_value": v.t_pvalue,
-                "theta": v.theta, "damage_levels_inside": f"{hits} of {m}" if m else "",
-                "passes_check": v.passes(getattr(sa.boot, "confidence_level", 0.9))
-                if sa.ok else False,
-                "upper_end_mpa": sa.upper_end, "n_surfaces": s["n_surfaces"]})
-        if bem and (ih, il) in bem:
+    rows = _analysis_rows(settings, analysis, "asperity")
+    if bem_analysis:
+        rows += _analysis_rows(settings, bem_analysis, "bem")
+    for ih, il in analysis:
+        if bem and (ih, il) in bem and not bem_analysis:
             c = bem[(ih, il)]
             f = c.fits["bem"]
             surf = c.surfaces[c.surfaces["model"] == "bem"]
@@ -121,7 +130,7 @@ def summary_frame(settings, analysis: dict, bem: dict | None = None):
     return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
 
 
-def calibration_frame(settings, analysis: dict):
+def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None):
     """``damage_calibration.csv``: predicted against observed damage probabilities.
 
     One row per H × load × model × sample × hardness level × area factor: ``hardness_mpa``,
@@ -134,17 +143,19 @@ def calibration_frame(settings, analysis: dict):
     import pandas as pd
 
     frames = []
-    for (ih, il), r in analysis.items():
-        for kind in ("asperity", "grid"):
-            c = r[kind].validation.calibration
-            if c is None or len(c) == 0:
-                continue
-            c = c.copy()
-            c.insert(0, "sample", kind)
-            c.insert(0, "model", "asperity")
-            c.insert(0, "pressure_mpa", settings.pressures[il] / 1e6)
-            c.insert(0, "hurst", settings.hurst[ih])
-            frames.append(c)
+    models = [("asperity", analysis)] + ([("bem", bem_analysis)] if bem_analysis else [])
+    for model, an in models:
+        for (ih, il), r in an.items():
+            for kind in ("asperity", "grid"):
+                c = r[kind].validation.calibration
+                if c is None or len(c) == 0:
+                    continue
+                c = c.copy()
+                c.insert(0, "sample", kind)
+                c.insert(0, "model", model)
+                c.insert(0, "pressure_mpa", settings.pressures[il] / 1e6)
+                c.insert(0, "hurst", settings.hurst[ih])
+                frames.append(c)
     if not frames:
         return pd.DataFrame(columns=list(CALIBRATION_COLUMNS))
     return pd.concat(frames, ignore_index=True)[list(CALIBRATION_COLUMNS)]
@@ -170,11 +181,17 @@ def degenerate_scene(analysis: dict) -> str:
             "level with --rq or --target-pressure (docs/method.md §10).")
 
 
-def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None) -> list[list[Any]]:
-    """Rows of the report's first table, one per (H, load)."""
+def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
+                      bem_analysis: dict | None = None) -> tuple[list[list[Any]], list[str]]:
+    """Rows of the report's first table, one per (H, load) and model."""
     lvl = round(100 * asettings.confidence_level)
     rows = []
-    for (ih, il), r in analysis.items():
+    cases = [(k, r, "") for k, r in analysis.items()]
+    if bem_analysis:
+        cases = [c for k, r in analysis.items() for c in
+                 [(k, r, ", asperity model")] + ([(k, bem_analysis[k], ", elastic BEM")]
+                                                 if k in bem_analysis else [])]
+    for (ih, il), r, label in cases:
         h = settings.hurst[ih]
         sa = r["asperity"]
         d = sa.damage
@@ -190,12 +207,14 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None) -> 
         if v.error:
             check = f"not checked ({v.error})"
         elastic = "—"
-        if bem and (ih, il) in bem and bem[(ih, il)].fits["bem"].damage is not None:
+        if bem_analysis and (ih, il) in bem_analysis and bem_analysis[(ih, il)]["asperity"].ok:
+            elastic = fmt_probability(_scalar(bem_analysis[(ih, il)]["asperity"].damage.estimate))
+        elif bem and (ih, il) in bem and bem[(ih, il)].fits["bem"].damage is not None:
             de = bem[(ih, il)].fits["bem"].damage
             elastic = fmt_probability(_scalar(de.estimate))
         rows.append([
             f"H = {h:g}" + (f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1
-                            else ""),
+                            else "") + label,
             answer, check, fmt_probability(r["summary"].get("observed_damage", math.nan)),
             elastic, fmt_mpa(r["summary"]["mean_pressure"]),
             PAPER_VERDICTS.get(h, "—") if abs(asettings.hardness - 2050) < 1e-9 else "—",
@@ -207,15 +226,20 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None) -> 
                   "paper: damage", "paper: mean pressure"]
 
 
-def check_rows(settings, asettings, analysis: dict) -> tuple[list[list[Any]], list[str]]:
-    """Rows of the table of checks on held-out surfaces: one per (H, load, sample)."""
+def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = None
+               ) -> tuple[list[list[Any]], list[str]]:
+    """Rows of the table of checks on held-out surfaces: one per (H, load, model, sample)."""
     lvl = round(100 * asettings.confidence_level)
     rows = []
-    for (ih, il), r in analysis.items():
+    items = [(k, r, "") for k, r in analysis.items()]
+    if bem_analysis:
+        items = ([(k, r, ", asperity model") for k, r in analysis.items()]
+                 + [(k, r, ", elastic BEM") for k, r in bem_analysis.items()])
+    for (ih, il), r, label in items:
         for kind in ("asperity", "grid"):
             v = r[kind].validation
             case = f"H = {settings.hurst[ih]:g}" + (
-                f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1 else "")
+                f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1 else "") + label
             if v.table is None:
                 rows.append([case, SAMPLE_LABELS[kind], "—", "—", "—", "—",
                              f"not checked: {v.error or r[kind].note}"])

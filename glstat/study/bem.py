@@ -55,6 +55,7 @@ __all__ = [
     "compare_bem",
     "compare_study",
     "contact_record",
+    "elastic_results",
     "findings",
     "load_bem",
     "load_bem_maps",
@@ -416,6 +417,36 @@ def load_bem_maps(out: str | os.PathLike, settings: CampaignSettings,
 
 def _split(stored: dict[str, np.ndarray]) -> dict[str, dict[str, np.ndarray]]:
     return {m: {k[len(m) + 1:]: v for k, v in stored.items() if k.startswith(m + "_")} for m in MODELS}
+
+
+def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsettings: BEMSettings,
+                    ) -> tuple[dict[tuple[int, int, int], dict[str, Any]], list[tuple[int, int, int]]]:
+    """The stored elastic (BEM) solutions in the form the study's analysis reads.
+
+    Every surface's record holds ``samples`` (non-zero grid pressures, Pa), ``asperity_peak``
+    (the peak pressure of every contact spot, Pa: the elastic analogue of the per-asperity peak),
+    ``n_asperities`` (contact spots), ``n_contact``, ``max_pressure``, ``mean_pressure``,
+    ``alpha`` and ``force_error``. A solve that did not converge within its iteration limit is
+    left out (never silently used) and listed.
+
+    Returns
+    -------
+    (dict, list)
+        ``(ih, il, i) -> record`` of the converged solves, and the keys left out.
+    """
+    stored = load_bem(out, settings, bsettings)
+    res, dropped = {}, []
+    for key, z in stored.items():
+        r = _split(z)["bem"]
+        if not bool(r["converged"]):
+            dropped.append(key)
+            continue
+        res[key] = {"samples": np.asarray(r["samples"], dtype=float),
+                    "asperity_peak": np.asarray(r["cluster_peaks"], dtype=float),
+                    "n_asperities": int(r["n_clusters"]), "n_contact": int(r["n_contact"]),
+                    "max_pressure": float(r["max_pressure"]), "mean_pressure": float(r["mean_pressure"]),
+                    "alpha": 1.0 - float(r["contact_fraction"]), "force_error": float(r["force_error"])}
+    return res, dropped
 
 
 def compare_study(out: str | os.PathLike, settings: CampaignSettings, bsettings: BEMSettings,

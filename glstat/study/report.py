@@ -375,9 +375,11 @@ def calibration_verdict(validation, level: float) -> str:
             "rejects)")
 
 
-def _answer_figures(rep: Report, settings, asettings, analysis: dict) -> None:
+def _answer_figures(rep: Report, settings, asettings, analysis: dict, model: str = "") -> None:
     """Damage probability against hardness (with its band and the observed fraction) and the
     reliability of the predicted damage probabilities, per H."""
+    suffix = f" ({model})" if model else ""
+    tag = "_bem" if model else ""
     import matplotlib.pyplot as plt
 
     cases = list(analysis.items())
@@ -397,12 +399,12 @@ def _answer_figures(rep: Report, settings, asettings, analysis: dict) -> None:
         ax.set_xlim(float(x.min()), max(top * 1.15, asettings.hardness / 1e3 * 1.1))
         ax.set_xlabel("hardness Pd (GPa)")
         ax.set_ylabel("P(max > Pd), one area")
-        ax.set_title(_label(settings, ih, il), fontsize=9)
+        ax.set_title(_label(settings, ih, il) + suffix, fontsize=9)
         ax.legend(fontsize=7)
     fig.tight_layout()
-    rep.figure("damage_curve", fig, "Damage probability on one analysed area against the hardness, "
-               "with its bootstrap band (per-asperity predictor), and the fraction of surfaces whose "
-               "maximal pressure exceeds it.")
+    rep.figure("damage_curve" + tag, fig, "Damage probability on one analysed area against the "
+               "hardness, with its bootstrap band (per-asperity predictor), and the fraction of "
+               "surfaces whose maximal pressure exceeds it" + suffix + ".")
     fig, axes = plt.subplots(1, len(cases), figsize=(4.2 * len(cases), 3.6), squeeze=False)
     for ax, ((ih, il), r) in zip(axes[0], cases, strict=True):
         for kind, marker in (("asperity", "o"), ("grid", "s")):
@@ -421,11 +423,11 @@ def _answer_figures(rep: Report, settings, asettings, analysis: dict) -> None:
         ax.plot([0, 1], [0, 1], "k:", lw=1)
         ax.set_xlabel("predicted P(max > Pd)")
         ax.set_ylabel("observed fraction (Wilson 95 %)")
-        ax.set_title(_label(settings, ih, il), fontsize=9)
+        ax.set_title(_label(settings, ih, il) + suffix, fontsize=9)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=6)
     fig.tight_layout()
-    rep.figure("damage_reliability", fig, "Reliability of the damage probability: predicted (fit on "
+    rep.figure("damage_reliability" + tag, fig, "Reliability of the damage probability: predicted (fit on "
                "the other fold) against observed on held-out surfaces, at several hardness levels, "
                "for one area (k = 1) and groups of k = 2 and 4 surfaces (the area scaling). Filled: "
                "per-asperity predictor; open squares: the paper's grid-point predictor.")
@@ -470,7 +472,8 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     warn = degenerate_scene(analysis)
     if warn:
         rep.paragraph("⚠ " + warn)
-    arows, acols = first_screen_rows(settings, asettings, analysis, bem)
+    bem_an = info.get("bem_analysis")
+    arows, acols = first_screen_rows(settings, asettings, analysis, bem, bem_an)
     rep.table(acols, arows,
               f"Probability that the contact pressure exceeds the hardness {hard:g} MPa somewhere on "
               f"one analysed area ({settings.length * 1e3:g} × {settings.length * 1e3:g} mm²), "
@@ -499,7 +502,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     if choices:
         rep.paragraph("Fit of the peak pressures, chosen on an inner split of the surfaces (never on "
                       "the surfaces it is checked against): " + "; ".join(choices) + ".")
-    crows, ccols = check_rows(settings, asettings, analysis)
+    crows, ccols = check_rows(settings, asettings, analysis, bem_an)
     rep.table(ccols, crows,
               "Checks on held-out surfaces (fit on one fold, predict the other): coverage of the "
               "predicted interval of each surface's maximum, the t-test of (predicted − observed) "
@@ -508,6 +511,13 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
               "of draws). A prediction passes when the coverage interval contains the level, the "
               "test does not reject at 5 % and ≥ 80 % of the levels are inside.")
     _answer_figures(rep, settings, asettings, analysis)
+    left = info.get("bem_left_out") or []
+    if left:
+        rep.paragraph("⚠ Elastic BEM solves that did not converge within the iteration limit are "
+                      "left out of its analysis (never used): " + "; ".join(
+                          f"{_label(settings, ih, il)} surface {i}" for ih, il, i in left) + ".")
+    if bem_an:
+        _answer_figures(rep, settings, asettings, bem_an, model="elastic BEM")
     paper = info.get("paper_findings")
     if paper:
         rep.heading("Consistency with the paper")
