@@ -797,6 +797,31 @@ def end_density(what, fam, ae, be, ys, ys_lo, x, upper, loc, inv_scale, log_scal
     return 0.0 if what == 4 else -math.inf
 
 
+@njit(cache=True, error_model="numpy")
+def overflow_point(what, fam, a, b, x, loc, inv_scale, log_scale):
+    """cdf-type quantity at a finite x whose standardized value (x - loc) * inv_scale
+    overflows. On a side with a heavy tail (power lambda < 0) Q is dominated by its power
+    term there, |y| = p**lambda/|lambda| (FKML) or p**lambda (RS) to a relative 1/|y| <
+    1e-308, so log p = (log|x - loc| + log inv_scale [+ log|lambda|])/lambda; elsewhere the
+    point lies beyond the support (or its tail probability below e**-1e308)."""
+    d = x - loc
+    if math.isfinite(d):
+        ld = math.log(abs(d))
+    else:
+        d = 0.5 * x - 0.5 * loc
+        ld = math.log(abs(d)) + LN2
+    upper = d > 0.0
+    ae, be = (b, a) if upper else (a, b)
+    if ae < 0.0:
+        ly = ld + log_scale
+        t = (ly + math.log(-ae)) / ae if fam == FKML else ly / ae
+        p = math.exp(t)
+    else:
+        p = 0.0
+        t = -math.inf
+    return emit(what, fam, ae, be, p, t, upper, inv_scale, log_scale)
+
+
 # RS shapes below this magnitude: u**lam - 1 = lam log u to double precision over the whole
 # double range of u, so Q = c (A log u - B log(1-u)) with c = max(|lam3|, |lam4|)
 RS_TINY = 1e-20
@@ -942,7 +967,10 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
                 out[i] = v
                 continue
         if yi == -math.inf or yi == math.inf:
-            out[i] = emit(what, fam, ai, bi, 0.0, -math.inf, yi > 0.0, inv_scale, log_scale)
+            if math.isfinite(y[i]):
+                out[i] = overflow_point(what, fam, ai, bi, y[i], loc, inv_scale, log_scale)
+            else:
+                out[i] = emit(what, fam, ai, bi, 0.0, -math.inf, yi > 0.0, inv_scale, log_scale)
             continue
         p, lp, upper, st, ae, be = _invert(fam, ai, bi, yi, yi_lo)
         status[i] = st

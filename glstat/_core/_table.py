@@ -23,6 +23,7 @@ from ._gld import (
     emit,
     end_density,
     invert_kernel,
+    overflow_point,
     q_lower,
     qprime_lower,
     rs_sign,
@@ -242,6 +243,9 @@ def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0)
             p = math.exp(t)
         else:
             if yi == -math.inf or yi == math.inf:
+                if math.isfinite(y[i]):
+                    out[i] = overflow_point(what, fam, a, b, y[i], loc, inv_scale, log_scale)
+                    continue
                 p = 0.0
                 t = -math.inf
             else:

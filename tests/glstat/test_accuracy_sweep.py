@@ -62,6 +62,16 @@ def _check_cdf(fam, a, b, x, tol=1e-13, loc=0.0, l2=1.0, g=None):
     if p == 0:
         assert got == 0.0, (fam, a, b, x, got)
         return 0.0
+    if g is None:
+        got_log = _dist(fam).logsf(x, a, b) if upper else _dist(fam).logcdf(x, a, b)
+    else:
+        got_log = g.logsf(x) if upper else g.logcdf(x)
+    ref_log = mp.log(p)
+    assert abs(got_log - ref_log) <= tol * max(1.0, abs(float(ref_log))), (x, got_log)
+    if p < mp.mpf("2.2250738585072014e-308"):
+        # below the normal range: the log carries the accuracy, the value its rounding
+        assert abs(got - p) <= mp.mpf("2.5e-324") + tol * p, (fam, a, b, x, got, p)
+        return 0.0
     err = float(abs(got - p) / p)
     assert err <= tol, (fam, a, b, x, got, float(p))
     ae, be = (b, a) if upper else (a, b)
@@ -170,6 +180,25 @@ def test_extreme_scales_next_to_end_points(lambdas, param):
             assert 0.0 <= g.pdf(x) < math.inf
             checked += 1
     assert checked >= 8
+
+
+@pytest.mark.parametrize("lambdas,param,xs", [
+    ((-4.4835983455839394e197, 7.911221000643453e187, -6.15912817277124, 2.228581629536523),
+     "fkml", (-4.483598345583946e197, -4.4835983455868985e197)),
+    ((0.0, -1e300, -0.2, -0.1), "rs", (-1e10, 1e150)),  # region 4, both tails heavy
+    ((0.0, -1e300, -1.5, 1.5), "rs", (-1e300, -1e10)),  # region 1
+])
+def test_standardized_point_beyond_the_double_range(lambdas, param, xs):
+    """(x - lambda1) * |lambda2| overflows although F(x) is a normal double (heavy tails):
+    log F from log|x - lambda1| + log|lambda2| and the dominant power term. Reference:
+    mpmath with the exact product."""
+    g = glstat.GLD(*lambdas, param=param)
+    fam = RS if param == "rs" else FKML
+    for x in xs:
+        with mp.workdps(40):
+            y = (mp.mpf(x) - mp.mpf(lambdas[0])) * abs(mp.mpf(lambdas[1]))
+        assert abs(y) > mp.mpf("1.8e308")
+        _check_cdf(fam, *lambdas[2:], x, loc=lambdas[0], l2=lambdas[1], g=g)
 
 
 # -- 4. entropy -----------------------------------------------------------------------------
