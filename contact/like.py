@@ -114,9 +114,10 @@ def _unmasked(surface, what: str) -> Surface:
     surface = require_surface(surface)
     if surface.mask is not None and np.asarray(surface.mask).any():
         raise ValueError(
-            f"{what} needs a fully measured surface, but {int(np.sum(surface.mask))} points "
-            "are missing (masked); crop it to a fully measured rectangle or fill the missing "
-            "points (e.g. by interpolation) and pass contact.Surface(filled, dx, dy)"
+            f"{what} needs a fully measured surface, but {int(np.sum(surface.mask))} of "
+            f"{surface.mask.size} points are missing (masked); crop it to a fully measured "
+            "rectangle or fill the missing points (e.g. by interpolation) and pass "
+            "contact.Surface(filled, dx, dy)"
         )
     return surface
 
@@ -305,7 +306,8 @@ def fit_spectrum(surface: Surface, *, q_range: Sequence[float] | None = None) ->
         )
     z = surface.detrend("plane").heights
     rq = math.sqrt(float(np.mean(z * z)))
-    if rq == 0:
+    if rq <= 1e-12 * float(np.max(np.abs(surface.heights))):
+        # zero up to rounding: a plane, or constant heights
         raise ValueError("the surface is flat (Rq = 0 about its mean plane); it has no spectrum")
     lx, ly = surface.size
     q_low = 2 * math.pi / max(lx, ly)
@@ -449,8 +451,8 @@ def self_affine_like(
     >>> round(float(sims[0].roughness()["Sq"]) * 1e6, 6)
     1.0
     """
-    fit = fit_spectrum(surface)
     n = _count(n)
+    fit = fit_spectrum(surface)
     nx, ny = _target_shape(fit, shape)
     h = _physical_hurst(fit)
     rng = np.random.default_rng(rng)
@@ -521,8 +523,8 @@ def weierstrass_like(
     >>> len(sims), sims[1].shape, round(float(sims[1].roughness()["Sq"]) * 1e6, 6)
     (2, (128, 128), 1.0)
     """
-    fit = fit_spectrum(surface)
     n = _count(n)
+    fit = fit_spectrum(surface)
     nx, ny = _target_shape(fit, shape)
     h = _physical_hurst(fit)
     g = float(gamma) if isinstance(gamma, (int, float, np.integer, np.floating)) else math.nan
