@@ -54,7 +54,7 @@ from scipy.stats import rv_continuous
 
 from ._core import _gld
 from ._core import resample as _R
-from .counts import ObservedCounts, RowCounts, as_count
+from .counts import ObservedCounts, RowCounts, TabulatedCount, as_count
 from .damage import damage_probability as _damage
 from .damage import integrity_probability as _integrity
 from .distributions import evaluate, gld_fkml, gld_rs, quantile
@@ -975,12 +975,6 @@ class BootstrapFit:
                 f"n_resamples={self.n_resamples}, n_failed={self.n_failed}, fit={self.fit!r})")
 
 
-def _table_count(values, weights):
-    from .counts import _Table
-
-    return _Table(values, weights)
-
-
 def _batch(lam: np.ndarray, param: str):
     gen = gld_rs if param == "rs" else gld_fkml
     return gen(_col(lam[:, 2]), _col(lam[:, 3]), loc=_col(lam[:, 0]), scale=1.0 / np.abs(_col(lam[:, 1])))
@@ -1279,7 +1273,7 @@ class BootstrapMaximum:
             return [_maximum(GLD(*row, param=self._param), self.n) for row in self._lam]
         c = self._counts
         return [_maximum(GLD(*row, param=self._param),
-                         count=_table_count(c.values, c.weights[b]))
+                         count=TabulatedCount(c.values, c.weights[b]))
                 for b, row in enumerate(self._lam)]
 
     def to_frame(self) -> pd.DataFrame:

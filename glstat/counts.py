@@ -33,7 +33,14 @@ import numbers
 import numpy as np
 from scipy import optimize, special
 
-__all__ = ["CountDistribution", "ObservedCounts", "PoissonCount", "as_count"]
+__all__ = [
+    "CountDistribution",
+    "ObservedCounts",
+    "PoissonCount",
+    "RowCounts",
+    "TabulatedCount",
+    "as_count",
+]
 
 # a table of a discrete distribution stops where its upper tail mass falls below this
 _TABLE_TAIL = 1e-18
@@ -172,7 +179,7 @@ class PoissonCount(CountDistribution):
         return rng.poisson(self.mu, size=size)
 
     def conditional(self):
-        return _Table.from_pmf(*self._table(), condition=True)
+        return TabulatedCount.from_pmf(*self._table(), condition=True)
 
     def _table(self):
         from scipy import stats
@@ -185,8 +192,16 @@ class PoissonCount(CountDistribution):
         return f"PoissonCount(mu={self.mu:g})"
 
 
-class _Table(CountDistribution):
-    """A count with finitely many values ``n_j`` of probabilities ``w_j``."""
+class TabulatedCount(CountDistribution):
+    """A count with finitely many values ``n_j`` of probabilities ``w_j``.
+
+    Parameters
+    ----------
+    values : array_like
+        The counts n_j (>= 0).
+    weights : array_like
+        Their probabilities (normalised here; zero weights are dropped).
+    """
 
     def __init__(self, values, weights):
         values = np.asarray(values, dtype=float)
@@ -208,7 +223,7 @@ class _Table(CountDistribution):
             values, pmf = values[keep], pmf[keep]
             if not np.any(pmf > 0):
                 raise ValueError("the count is 0 with probability 1: there is no maximum")
-        return _Table(values, pmf)
+        return TabulatedCount(values, pmf)
 
     def one_minus_pgf(self, logf):
         logf = np.asarray(logf, dtype=float)
@@ -228,10 +243,10 @@ class _Table(CountDistribution):
         return rng.choice(self.values, size=size, p=self.weights).astype(np.int64)
 
     def conditional(self):
-        return _Table.from_pmf(self.values, self.weights, condition=True)
+        return TabulatedCount.from_pmf(self.values, self.weights, condition=True)
 
 
-class ObservedCounts(_Table):
+class ObservedCounts(TabulatedCount):
     """The empirical distribution of observed counts (e.g. asperities in contact per surface).
 
     ``E[F^N]`` is the average of ``F^(n_i)`` over the observed counts ``n_i``: the maximum of
@@ -338,7 +353,7 @@ def as_count(count) -> CountDistribution:
                 "tabulated; use glstat.PoissonCount for a Poisson count"
             )
         k = np.arange(lo, hi + 1)
-        return _Table.from_pmf(k, count.pmf(k))
+        return TabulatedCount.from_pmf(k, count.pmf(k))
     if isinstance(count, (list, tuple, np.ndarray)):
         raise TypeError("count must be a count distribution; wrap observed counts in "
                         "glstat.ObservedCounts(counts)")
@@ -372,7 +387,7 @@ class RowCounts:
     @classmethod
     def common(cls, count: CountDistribution, rows: int) -> RowCounts:
         """The same count for ``rows`` rows."""
-        table = count if isinstance(count, _Table) else _Table(*count._table())
+        table = count if isinstance(count, TabulatedCount) else TabulatedCount(*count._table())
         return cls(table.values, np.broadcast_to(table.weights, (rows, table.values.size)))
 
     @classmethod

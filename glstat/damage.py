@@ -30,15 +30,15 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ._tails import TailAccess
 from .counts import as_count
-from .extremes import _Parent
 
 __all__ = ["damage_probability", "guaranteed_threshold", "integrity_probability"]
 
 _OUTSIDE = ("raise", "limit")
 
 
-def _parents(dist) -> tuple[list[_Parent], bool]:
+def _parents(dist) -> tuple[list[TailAccess], bool]:
     """The distributions to evaluate and whether a leading axis over them is wanted."""
     hook = getattr(dist, "__glstat_distributions__", None)
     if callable(hook):
@@ -52,7 +52,7 @@ def _parents(dist) -> tuple[list[_Parent], bool]:
         many = False
     if not dist:
         raise ValueError("dist is an empty sequence of distributions")
-    return [_Parent(d) for d in dist], many
+    return [TailAccess(d) for d in dist], many
 
 
 def _positive(name, value, *, at_least_one=False):

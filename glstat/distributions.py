@@ -13,11 +13,7 @@ import warnings
 import numpy as np
 from scipy.stats import rv_continuous
 
-try:  # scipy >= 1.11
-    from scipy.stats._distn_infrastructure import _ShapeInfo
-except ImportError:  # pragma: no cover - older scipy
-    _ShapeInfo = None
-
+from ._compat import ShapeInfo as _ShapeInfo
 from ._core import _gld, _table, moments
 from .errors import ConvergenceWarning
 from .regions import fkml_valid, rs_valid

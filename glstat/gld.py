@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-from scipy.stats._distn_infrastructure import rv_continuous_frozen
 
+from ._compat import rv_continuous_frozen
 from ._core import _gld
 from .distributions import evaluate, gld_fkml, gld_rs, quantile
 from .regions import check_lambdas

@@ -314,7 +314,8 @@ def _pool(per: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return data, labels, counts
 
 
-def _seed(a: AnalysisSettings, *key: int) -> np.random.Generator:
+def sample_rng(a: AnalysisSettings, *key: int) -> np.random.Generator:
+    """The generator of one analysis step: ``SeedSequence(a.seed, spawn_key=(10000, *key))``."""
     return np.random.default_rng(np.random.SeedSequence(a.seed, spawn_key=(10_000, *key)))
 
 
@@ -328,10 +329,11 @@ def _quiet(func, *args, **kwargs):
     return out, [str(w.message) for w in caught]
 
 
-def _bootstrap(x: np.ndarray, a: AnalysisSettings, rng, param=None, method=None, groups=None,
+def bootstrap_sample(x: np.ndarray, a: AnalysisSettings, rng, param=None, method=None, groups=None,
                n_resamples=None, order=None):
-    """Bootstrap with the requested fit (falling back along FALLBACKS when none is forced, or
-    along ``order``); returns (bf, param, method, note)."""
+    """Bootstrap ``x`` with the requested fit, falling back along FALLBACKS when none is forced
+    (or along ``order``); returns (BootstrapFit or None, param, method, note). Warnings are
+    collected, not shown (the report states the failures)."""
     from .. import bootstrap
 
     first = (param or a.param, method or a.method)
@@ -456,7 +458,7 @@ def _validate(per: list, kind: str, a: AnalysisSettings, ih: int, il: int, param
             ch = choose_fit([per[i] for i in train])
             p, m, order = ch.param, ch.method, ch.order()
         grouped = kind == "asperity"
-        bf, p, m, note = _bootstrap(x, a, _seed(a, ih, il, 1 if kind == "grid" else 2, f), p, m,
+        bf, p, m, note = bootstrap_sample(x, a, sample_rng(a, ih, il, 1 if kind == "grid" else 2, f), p, m,
                                     groups=labels if grouped else None,
                                     n_resamples=a.grid_resamples if kind == "grid" else None,
                                     order=order)
@@ -467,7 +469,7 @@ def _validate(per: list, kind: str, a: AnalysisSettings, ih: int, il: int, param
         if tested:
             ns = np.array([per[i][1] for i in tested], dtype=float)
             obs = np.array([per[i][2] for i in tested])
-            v = _seed(a, ih, il, 3 if kind == "grid" else 4, f).random((bf.n_successful, len(tested)))
+            v = sample_rng(a, ih, il, 3 if kind == "grid" else 4, f).random((bf.n_successful, len(tested)))
             with np.errstate(all="ignore"):
                 draws = bf.batch().isf(-np.expm1(np.log(v) / ns[None, :]))
             alpha = 1 - a.confidence_level
@@ -567,7 +569,8 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
     if grouped:
         sa.choice = choose_fit(per)
         param, method, order = sa.choice.param, sa.choice.method, sa.choice.order()
-    bf, p, m, note = _bootstrap(data, a, _seed(a, ih, il, 0 if kind == "grid" else 5), param, method,
+    rng = sample_rng(a, ih, il, 0 if kind == "grid" else 5)
+    bf, p, m, note = bootstrap_sample(data, a, rng, param, method,
                                 groups=labels if grouped else None,
                                 n_resamples=a.grid_resamples if kind == "grid" else None,
                                 order=order)
@@ -576,7 +579,7 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
         return sa
     sa.boot = bf
     count_kw = {} if grouped else {"n": sa.n_ref}
-    sa.maximum = bf.maximum(rng=_seed(a, ih, il, 6), **count_kw)
+    sa.maximum = bf.maximum(rng=sample_rng(a, ih, il, 6), **count_kw)
     sa.damage = bf.damage_probability(a.hardness, **count_kw)
     sa.integrity = bf.integrity_probability(a.hardness, area_factor=np.asarray(a.area_factors),
                                             **count_kw)

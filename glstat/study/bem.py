@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from .analysis import AnalysisSettings, _bootstrap, _seed
+from .analysis import AnalysisSettings, bootstrap_sample, sample_rng
 from .campaign import (
     MANIFEST,
     CampaignError,
@@ -650,7 +650,7 @@ def _compare(entries: list[tuple[Any, dict[str, dict[str, np.ndarray]]]], a: Ana
             # several surfaces: resample them, their spot counts the random count; one surface:
             # resample its spots, with its spot count as n
             several = len(peaks) >= 2
-            bf, p, meth, note = _bootstrap(data, a, _seed(a, *key, _SEED_SLOT + j),
+            bf, p, meth, note = bootstrap_sample(data, a, sample_rng(a, *key, _SEED_SLOT + j),
                                            groups=labels if several else None)
             f.param, f.method, f.note = p, meth, note
             if bf is not None:
