@@ -543,7 +543,7 @@ def weierstrass_like(
         )
 
     def terms(d: float) -> int:
-        top = min(fit.q_s, math.pi / d)
+        top = min(fit.q_s, math.pi / d) if fit.cutoff_detected else math.pi / d
         return max(1, math.floor(math.log(top * big / (2 * math.pi)) / math.log(g) + 1e-12) + 1)
 
     n_terms = (terms(fit.dx), terms(fit.dy))
