@@ -510,10 +510,11 @@ def weierstrass_like(
     ``k`` (k = 0, 1, ...) at the wavevector ``q_k = 2π γ^k / L`` with ``L = max(Lx, Ly)``
     of the generated grid: the lowest frequency is always the grid's ``2π / L`` and only the
     truncation can be chosen. The number of terms per axis is the number of wavevectors up
-    to the cut-off, ``n_terms = floor(log(q_s L / 2π) / log γ) + 1``, limited by the grid's
-    Nyquist wavevector (the default of ``weierstrass`` when no cut-off was detected, since
-    ``q_s`` is then the Nyquist wavevector). A roll-off knee ``q_r > 2π / L`` cannot be
-    represented: the series keeps its power law down to ``2π / L``, and a warning says so.
+    to a detected cut-off, ``n_terms = floor(log(q_s L / 2π) / log γ) + 1``, limited by
+    the axis's Nyquist wavevector ``π / dx`` (``π / dy``); without a detected cut-off every
+    term up to that Nyquist wavevector is summed (the default of ``weierstrass``). A
+    roll-off knee ``q_r > 2π / L`` cannot be represented: the series keeps its power law
+    down to ``2π / L``, and a warning says so.
 
     Examples
     --------

@@ -174,10 +174,13 @@ def test_weierstrass_like_maps_the_cutoff_to_n_terms():
 
 
 def test_weierstrass_like_without_cutoff_sums_up_to_nyquist():
-    measured = contact.self_affine((64, 64), L, 0.5, rq=1e-6, rng=1)
+    # dx != dy: each axis sums its terms up to its own Nyquist wavevector
+    heights = contact.self_affine((64, 96), L, 0.5, rq=1e-6, rng=1).heights
+    measured = contact.Surface(heights, L / 64, L / 96)
     f = contact.fit_spectrum(measured)
+    assert not f.cutoff_detected
     got = contact.weierstrass_like(measured, 1, rng=9)[0]
-    ref = contact.weierstrass((64, 64), L, f.hurst, rng=9).detrend("plane").heights
+    ref = contact.weierstrass((64, 96), L, f.hurst, rng=9).detrend("plane").heights
     np.testing.assert_allclose(got.heights, ref * f.rq / np.sqrt(np.mean(ref**2)), rtol=1e-12,
                                atol=1e-12 * f.rq)
 
