@@ -373,6 +373,7 @@ def polonsky_keer(
     max_iter: int = 1000,
     p0: np.ndarray | None = None,
     accelerate: bool = True,
+    overwrite_p0: bool = False,
 ) -> PKOutcome:
     """Solve the contact problem by the Polonsky–Keer constrained conjugate gradient.
 
@@ -403,6 +404,9 @@ def polonsky_keer(
         True: preconditioned directions, kept when points enter the contact set, and the
         displacement carried along (module docstring). False: the iteration of Polonsky &
         Keer as published, the reference.
+    overwrite_p0 : bool, default False
+        Let the iteration use ``p0`` (C-contiguous float64) as its pressure array instead of
+        a copy: one grid array less; ``p0`` is then overwritten.
 
     Returns
     -------
@@ -417,7 +421,10 @@ def polonsky_keer(
     shift = 0.0 if load_control else float(separation)
 
     if p0 is not None:
-        p = np.array(p0, dtype=np.float64).ravel()
+        if overwrite_p0:
+            p = np.ascontiguousarray(p0, dtype=np.float64).ravel()
+        else:
+            p = np.array(p0, dtype=np.float64).ravel()
         p[~vf] = 0.0
         p[p < 0] = 0.0
     elif load_control:

@@ -33,10 +33,12 @@ class BEMConvergenceWarning(RuntimeWarning):
 
 def _check_surface(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
     require_surface(surface)
-    h = np.array(surface.heights, dtype=np.float64)
+    # read-only below: a copy only where masked points are zeroed (or the dtype differs)
+    h = np.ascontiguousarray(surface.heights, dtype=np.float64)
     if surface.mask is None:
         valid = np.ones(h.shape, dtype=np.bool_)
     else:
+        h = h.copy()
         valid = ~np.asarray(surface.mask, dtype=np.bool_)
         if valid.shape != h.shape:
             raise ValueError(
@@ -49,7 +51,8 @@ def _check_surface(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
         )
     if not valid.any():
         raise ValueError("the mask hides every point; nothing can carry the load")
-    h[~valid] = 0.0  # never used: masked points carry no pressure
+    if surface.mask is not None:
+        h[~valid] = 0.0  # never used: masked points carry no pressure
     return h, valid
 
 
@@ -261,6 +264,7 @@ def solve_bem(
         max_iter=int(max_iter),
         p0=p0,
         accelerate=_flag(accelerate),
+        overwrite_p0=True,
     )
     return _result(
         out, surface, valid, nominal_pressure, "bem",
