@@ -7,7 +7,8 @@ load-controlled semi-analytical asperity contact model, with an elastic boundary
 solver (:func:`solve_bem`) as its reference.
 """
 
-from . import _numba_cache  # noqa: F401  (first: numba caches outside the package)
+import _glstat_numba  # noqa: F401  (first: numba caches outside the package)
+
 from .errors import ContactWarning, TopographyFileError
 from .generators import self_affine, weierstrass
 from .io import read, write

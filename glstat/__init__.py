@@ -1,6 +1,6 @@
 """glstat: Generalized Lambda Distributions and the statistics of contact pressures."""
 
-from contact import _numba_cache  # noqa: F401  (first: numba caches outside the package)
+import _glstat_numba  # noqa: F401  (first: numba caches outside the package)
 
 from .bootstrap import (
     BootstrapFit,

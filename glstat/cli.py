@@ -223,7 +223,7 @@ def study_main(argv: list[str]) -> int:
     import signal
     import threading
 
-    from contact._numba_cache import compile_note
+    from _glstat_numba import compile_note
 
     from .study.campaign import lock_directory
 

@@ -848,7 +848,7 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # --help, or an option argparse rejected (it printed why)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
-    from contact._numba_cache import compile_note
+    from _glstat_numba import compile_note
 
     note = compile_note()
     if note:

@@ -34,10 +34,10 @@ from .campaign import (
     MANIFEST,
     CampaignError,
     CampaignSettings,
-    _npz_has,
     atomic_write,
     compute_and_save,
     lock_directory,
+    npz_has,
     split_stored,
     surface_path,
     task_failure,
@@ -234,7 +234,7 @@ def _bem_complete(path: Path, key: tuple[int, int, int] | None = None,
     """Whether ``path`` holds the finished comparison of surface ``key`` (files written
     before the key was stored are accepted when no ``stamp`` is given)."""
     expect = None if key is None or stamp is None else {"task_key": key, **stamp}
-    return _npz_has(path, ("bem_samples", "asperity_samples"), expect=expect)
+    return npz_has(path, ("bem_samples", "asperity_samples"), expect=expect)
 
 
 # -- the study's comparison ------------------------------------------------------------------

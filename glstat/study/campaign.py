@@ -541,7 +541,7 @@ def _identity_problem(arrays: dict[str, np.ndarray], expect: dict[str, Any] | No
     return None
 
 
-def _npz_has(path: Path, names: tuple[str, ...], note: bool = True,
+def npz_has(path: Path, names: tuple[str, ...], note: bool = True,
              expect: dict[str, Any] | None = None) -> bool:
     """Whether ``path`` is a readable .npz archive holding every array of ``names``.
 
@@ -832,7 +832,7 @@ def run_campaign(
             return surface_path(root, settings, *key)
 
         def complete(path, key):
-            return _npz_has(path, SURFACE_ARRAYS, expect={"task_key": key, **stamp})
+            return npz_has(path, SURFACE_ARRAYS, expect={"task_key": key, **stamp})
 
         todo = split_stored(settings.tasks(), path_of, complete, run)
         if not todo:
