@@ -95,10 +95,10 @@ def _matched_theta(fam: int, a: float, b: float) -> np.ndarray | None:
 
 def _equation_shapes(x: np.ndarray, param: str):
     """(lambdas, shapes valid) of every converged root of the percentile and L-moment fits."""
-    from ._stats import check_lmoment_stats, rho_from_quantiles, sample_lmoments, sample_quantiles
+    from ._stats import check_lmoment_stats, sample_lmoments, sample_rho
     from .core import _roots
 
-    stats_list = [("percentiles", rho_from_quantiles(sample_quantiles(x, 0.1)))]
+    stats_list = [("percentiles", sample_rho(x, 0.1))]
     lm = sample_lmoments(x)
     try:
         check_lmoment_stats(*lm)

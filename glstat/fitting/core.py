@@ -692,7 +692,7 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
             stats = S.sample_moments(x)
         elif method == "percentiles":
             u = _check_u(options.get("u", 0.1))
-            stats = S.rho_from_quantiles(S.sample_quantiles(x, u))
+            stats = S.sample_rho(x, u)
             S.check_rho(*stats)
         else:
             stats = S.sample_lmoments(x)
