@@ -5,9 +5,10 @@ Run from the repository root::
     python benchmarks/hostile_inputs.py            # corpus in a temporary folder
     python benchmarks/hostile_inputs.py --keep DIR # keep the corpus in DIR
 
-Every file is read in its own subprocess (``contact.read`` or ``glstat fit``) under a 2 GiB
+Every file is read in its own subprocess (``contact.read`` or ``glstat fit``) under a 6 GiB
 address-space limit; the subprocess reports the outcome, the seconds and the peak memory
-(``ru_maxrss`` after reading minus after the imports). Bad API calls run in one subprocess.
+(``VmHWM`` after reading, reset after the imports, minus ``VmRSS`` then). Bad API calls
+run in one subprocess.
 Outcomes:
 
 * clear error: the project's error type (``TopographyFileError`` / exit status 2 of
@@ -25,9 +26,11 @@ from __future__ import annotations
 
 import argparse
 import bz2
+import importlib.util
 import io
 import json
 import lzma
+import os
 import subprocess
 import sys
 import tempfile
@@ -38,8 +41,9 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(1, str(ROOT / "tests"))
-import hostile  # noqa: E402
+_spec = importlib.util.spec_from_file_location("hostile", ROOT / "tests" / "hostile.py")
+hostile = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(hostile)
 
 
 def _write(path: Path, data: bytes | str) -> Path:
@@ -130,9 +134,9 @@ def fit_corpus(d: Path) -> list[tuple[str, Path, str]]:
     good = "\n".join(["pressure", *map(repr, x.tolist())]) + "\n"
     cases = [("valid_csv", _write(f / "good.csv", good), "accepted"),
              ("semicolon_decimal_comma", _write(f / "eu.csv", "id;pressure\n" + "\n".join(
-                 f"{i};{v!r}".replace(".", ",") for i, v in enumerate(x.tolist())) + "\n"), "accepted"),
+                 f"s{i};{v!r}".replace(".", ",") for i, v in enumerate(x.tolist())) + "\n"), "accepted"),
              ("tab_separated_txt", _write(f / "tab.txt", "a\tpressure\n" + "\n".join(
-                 f"{i}\t{v!r}" for i, v in enumerate(x.tolist())) + "\n"), "accepted"),
+                 f"s{i}\t{v!r}" for i, v in enumerate(x.tolist())) + "\n"), "accepted"),
              ("pandas_index_column", _write(f / "idx.csv", ",pressure\n" + "\n".join(
                  f"{i},{v!r}" for i, v in enumerate(x.tolist())) + "\n"), "accepted"),
              ("gzip_valid", _write(f / "good.csv.gz", __import__("gzip").compress(good.encode())),
@@ -190,15 +194,25 @@ def _npy(a: np.ndarray) -> bytes:
 
 CHILD = r"""
 import json, resource, sys, time, traceback
-resource.setrlimit(resource.RLIMIT_AS, (2 * 2**30, 2 * 2**30))
+resource.setrlimit(resource.RLIMIT_AS, (6 * 2**30, 6 * 2**30))
 path, kind, out = sys.argv[1], sys.argv[2], sys.argv[3]
 if kind == "fit":
     import glstat.cli_input as ci
     from glstat.cli_fit import main
+    import pandas, pyarrow.parquet, openpyxl, matplotlib.pyplot, glstat.gof, glstat.bootstrap
     ci.MAX_DECOMPRESSED = int(sys.argv[4])
 else:
     import contact
-before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+def _status(key):
+    for line in open("/proc/self/status"):
+        if line.startswith(key + ":"):
+            return int(line.split()[1])
+try:  # reset the peak (VmHWM) to the current size, so that only the reading counts
+    with open("/proc/self/clear_refs", "w") as f:
+        f.write("5")
+except OSError:
+    pass
+before = _status("VmRSS")
 t0 = time.perf_counter()
 try:
     if kind == "fit":
@@ -215,7 +229,7 @@ except Exception as exc:
         outcome = "clear error"
     else:
         outcome = "crash: " + type(exc).__name__ + ": " + str(exc)[:200]
-after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+after = _status("VmHWM")
 print(json.dumps({"outcome": outcome, "seconds": time.perf_counter() - t0,
                   "peak_mb": max(0, after - before) / 1024}))
 """
@@ -248,7 +262,8 @@ calls = {
   "bootstrap complex": lambda: glstat.bootstrap(x + 1j, n_resamples=10),
   "bootstrap masked": lambda: glstat.bootstrap(np.ma.masked_less(x, -3), n_resamples=10, rng=1),
   "fit masked": lambda: glstat.fit(np.ma.masked_less(x, -3)),
-  "fit pandas Float64 NA omit": lambda: glstat.fit(pd.Series([*x, pd.NA], dtype="Float64"), nan_policy="omit"),
+  "fit pandas Float64 NA omit": lambda: glstat.fit(pd.Series([*x, pd.NA], dtype="Float64"),
+                                                   nan_policy="omit"),
   "GLD bad lambdas": lambda: glstat.GLD(0, -1, 0.1, 0.1),
   "GLD nan": lambda: glstat.GLD(np.nan, 1, 0.1, 0.1),
   "Surface complex": lambda: contact.Surface(h + 1j, 1e-6),
@@ -271,8 +286,8 @@ calls = {
   "weierstrass hurst 2": lambda: contact.weierstrass((16, 16), 1e-3, 2.0),
   "weierstrass shape 2": lambda: contact.weierstrass((2, 2), 1e-3, 0.5),
   "read missing file": lambda: contact.read("/nonexistent/file.npz"),
-  "read dx negative": lambda: contact.read(__file__, dx=-1),
-  "read bad format": lambda: contact.read(__file__, format="tiff"),
+  "read dx negative": lambda: contact.read(__import__("sys").executable, dx=-1),
+  "read bad format": lambda: contact.read(__import__("sys").executable, format="tiff"),
   "CampaignSettings one H": lambda: CampaignSettings(hurst=(0.5,)),
   "CampaignSettings H 2": lambda: CampaignSettings(hurst=(2.0,)),
   "CampaignSettings nu 0.6": lambda: CampaignSettings(nu=0.6),
@@ -312,11 +327,12 @@ def main(argv: list[str] | None = None) -> int:
         tmp = tempfile.TemporaryDirectory()
         d = Path(tmp.name)
     rows = []
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
     for kind, cases in (("contact", contact_corpus(d)), ("fit", fit_corpus(d))):
         for name, path, expected in cases:
             proc = subprocess.run([sys.executable, "-c", CHILD, str(path), kind, str(d / "out" / name),
                                    str(args.cap_mb * 2**20)], capture_output=True, text=True,
-                                  timeout=300, cwd=ROOT)
+                                  timeout=300, cwd=ROOT, env=env)
             try:
                 got = json.loads(proc.stdout.strip().splitlines()[-1])
             except (IndexError, ValueError):
