@@ -8,6 +8,8 @@ parent's ``logsf`` takes over where ``sf`` may underflow.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy.stats import rv_continuous
 
@@ -16,8 +18,9 @@ from .distributions import gld_fkml, gld_rs
 from .gld import GLD
 from .regions import rs_lambda2_sign
 
-__all__ = ["SF_TINY", "TailAccess"]
+__all__ = ["SF_TINY", "TailAccess", "log1mexp"]
 
+_LN2 = math.log(2.0)
 #: below this the parent's sf may be subnormal or zero: its logsf takes over
 SF_TINY = 1e-290
 
@@ -159,3 +162,10 @@ class TailAccess:
         if deep.any():
             logs[deep] = self.logsf(x[deep])
         return f.reshape(shape), logf.reshape(shape), s.reshape(shape), logs.reshape(shape)
+
+
+def log1mexp(y):
+    """``log(1 - exp(y))`` for y <= 0, accurate for all y (``-inf`` at 0)."""
+    y = np.asarray(y, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(y > -_LN2, np.log(-np.expm1(y)), np.log1p(-np.exp(y)))

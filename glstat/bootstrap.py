@@ -41,7 +41,6 @@ A resample without a fit is kept, with NaN lambdas and its reason in
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from collections.abc import Callable
 from concurrent.futures import Executor
@@ -49,17 +48,16 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy import optimize, special
-from scipy.stats import rv_continuous
+from scipy import special
 
-from ._core import _gld
 from ._core import resample as _R
-from .counts import ObservedCounts, RowCounts, TabulatedCount, as_count
+from ._lambda_rows import FAMILY, frozen_batch, log_tails, max_quantiles, max_raw_moments, quantiles
+from ._validate import check_level, check_n_resamples
+from .bootstrap_maximum import BootstrapMaximum, BootstrapProbability, MaximumMixture
+from .counts import ObservedCounts, RowCounts, as_count
 from .damage import damage_probability as _damage
 from .damage import integrity_probability as _integrity
-from .distributions import evaluate, gld_fkml, gld_rs, quantile
 from .errors import FitError, InvalidParameterError
-from .extremes import MaximumDistribution
 from .extremes import maximum as _maximum
 from .fitting import GLDFit, fit, fit_batch
 from .fitting import _stats as _S
@@ -83,7 +81,6 @@ KINDS = ("nonparametric", "parametric")
 METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
 COMPILED = ("moments", "percentiles", "lmoments")
 CI_METHODS = ("percentile", "basic", "bca")
-_FAM = {"rs": _gld.RS, "fkml": _gld.FKML}
 _LAMBDA_NAMES = ("lambda1", "lambda2", "lambda3", "lambda4")
 _STAT_NAMES = {
     "moments": ("mean", "std", "skew", "kurt"),
@@ -106,119 +103,6 @@ _MAD_SCALE = 1.482602218505602
 
 class BootstrapWarning(RuntimeWarning):
     """Some resamples had no fit, their lambdas lie on several branches, or no interval exists."""
-
-
-# ---------------------------------------------------------------------------------------------
-# input checks
-# ---------------------------------------------------------------------------------------------
-def _check_n_resamples(n_resamples) -> int:
-    if isinstance(n_resamples, (bool, np.bool_)) or not isinstance(n_resamples, numbers.Integral):
-        raise TypeError(f"n_resamples must be an integer, got {n_resamples!r}")
-    if n_resamples < 2:
-        raise ValueError(f"n_resamples must be >= 2, got {n_resamples}")
-    return int(n_resamples)
-
-
-def _check_level(confidence_level) -> float:
-    if isinstance(confidence_level, (bool, np.bool_)) or not isinstance(confidence_level, numbers.Real):
-        raise TypeError(f"confidence_level must be a real number, got {confidence_level!r}")
-    c = float(confidence_level)
-    if not 0.0 < c < 1.0:
-        raise ValueError(f"confidence_level must be strictly between 0 and 1, got {c}")
-    return c
-
-
-# ---------------------------------------------------------------------------------------------
-# vectorised GLD helpers over many lambda rows
-# ---------------------------------------------------------------------------------------------
-def _col(a):
-    return np.asarray(a, dtype=float)[:, None]
-
-
-def _quantiles(lam: np.ndarray, fam: int, v, q) -> np.ndarray:
-    """Q_b at probability v (complement q, both accurate) for every row b of ``lam``.
-
-    ``lam`` has shape (k, 4); v and q broadcast against (k, m). Returns shape (k, m).
-    """
-    l1, l2, l3, l4 = (_col(lam[:, i]) for i in range(4))
-    v, q = np.broadcast_arrays(np.asarray(v, dtype=float), np.asarray(q, dtype=float))
-    shape = np.broadcast_shapes(v.shape, (lam.shape[0], 1))
-    v = np.broadcast_to(v, shape)
-    q = np.broadcast_to(q, shape)
-    a3 = np.broadcast_to(l3, shape)
-    a4 = np.broadcast_to(l4, shape)
-    out = np.empty(shape)
-    low = v <= 0.5
-    if low.any():
-        out[low] = quantile(fam, v[low], a3[low], a4[low])
-    if (~low).any():
-        out[~low] = quantile(fam, q[~low], a3[~low], a4[~low], upper=True)
-    return np.broadcast_to(l1, shape) + out / np.broadcast_to(np.abs(l2), shape)
-
-
-def _max_quantiles(lam: np.ndarray, fam: int, n: float, logv) -> np.ndarray:
-    """Quantiles of the maximum of n draws at probabilities exp(logv), Q(v^(1/n)) per row."""
-    t = np.asarray(logv, dtype=float) / n
-    return _quantiles(lam, fam, np.exp(t), -np.expm1(t))
-
-
-def _log_tails(lam: np.ndarray, fam: int, x) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(log F, log S, log f) of every row of ``lam`` at the points x: arrays (k, len(x))."""
-    l1, l2, l3, l4 = (_col(lam[:, i]) for i in range(4))
-    y = (np.asarray(x, dtype=float)[None, :] - l1) * np.abs(l2)
-    # an inversion that reaches its iteration limit is reported (ConvergenceWarning, once per call)
-    s = evaluate(fam, "sf", y, l3, l4)
-    logc = evaluate(fam, "logcdf", y, l3, l4)
-    logs = evaluate(fam, "logsf", y, l3, l4)
-    logp = evaluate(fam, "logpdf", y, l3, l4) + np.log(np.abs(l2))
-    with np.errstate(divide="ignore"):
-        logf = np.where(s < 0.5, np.log1p(-s), logc)
-    return logf, logs, logp
-
-
-def _log1mexp(y):
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(y > -math.log(2.0), np.log(-np.expm1(y)), np.log1p(-np.exp(y)))
-
-
-def _support(lam: np.ndarray, fam: int) -> tuple[np.ndarray, np.ndarray]:
-    a = np.ascontiguousarray(lam[:, 2], dtype=float)
-    b = np.ascontiguousarray(lam[:, 3], dtype=float)
-    lo = np.empty(a.size)
-    hi = np.empty(a.size)
-    _gld.support_kernel(a, b, fam, lo, hi)
-    s = 1.0 / np.abs(lam[:, 1])
-    return lam[:, 0] + lo * s, lam[:, 0] + hi * s
-
-
-# moment quadrature over z = logit(v) (see glstat.extremes)
-_QZ = np.arange(-2800, 2801) * 0.25
-_QLOGV = -np.logaddexp(0.0, -_QZ)
-_QW = np.exp(_QLOGV - np.logaddexp(0.0, _QZ)) * 0.25
-
-
-def _max_raw_moments(lam: np.ndarray, fam: int, n: float, k: int) -> np.ndarray:
-    """E[M^k] of the maximum M of n draws for every row; NaN where it does not exist."""
-    out = np.full(lam.shape[0], np.nan)
-    ok = np.minimum(lam[:, 2], lam[:, 3]) > -1.0 / k
-    idx = np.flatnonzero(ok)
-    for s in range(0, idx.size, 64):
-        rows = idx[s:s + 64]
-        with np.errstate(all="ignore"):
-            qv = _max_quantiles(lam[rows], fam, n, _QLOGV[None, :])
-            out[rows] = np.sum(qv**k * _QW, axis=1)
-    return out
-
-
-def _count_max_moments(lam: np.ndarray, fam: int, counts: RowCounts, k: int) -> np.ndarray:
-    """E[M^k] per row for a random count per row: the count-weighted fixed-n moments."""
-    out = np.zeros(lam.shape[0])
-    for j, v in enumerate(counts.values):
-        w = counts.weights[:, j]
-        rows = np.flatnonzero(w > 0)
-        if rows.size:
-            out[rows] += w[rows] * _max_raw_moments(lam[rows], fam, float(v), k)
-    return out
 
 
 # ---------------------------------------------------------------------------------------------
@@ -247,12 +131,12 @@ def _draw(x: np.ndarray, g: np.random.Generator, kind: str, lam, fam: int, group
     total = math.fsum(e)
     v = np.cumsum(e[:-1]) / total
     q = np.cumsum(e[:0:-1])[::-1] / total
-    return _quantiles(np.asarray(lam, dtype=float)[None, :], fam, v[None, :], q[None, :])[0]
+    return quantiles(np.asarray(lam, dtype=float)[None, :], fam, v[None, :], q[None, :])[0]
 
 
 def _fit_task(x, seeds, kind, lam, param, method, options, groups=None):
     """Fits of the resamples with the given seeds (runs in the executor's workers)."""
-    fam = _FAM[param]
+    fam = FAMILY[param]
     out = []
     for s in seeds:
         sample = _draw(x, np.random.default_rng(s), kind, lam, fam, groups)
@@ -553,7 +437,7 @@ class BootstrapFit:
 
     @property
     def _fam(self) -> int:
-        return _FAM[self.param]
+        return FAMILY[self.param]
 
     def _lam(self) -> np.ndarray:
         """Lambdas of the successful resamples, shape (n_successful, 4)."""
@@ -584,7 +468,7 @@ class BootstrapFit:
             Parameters of shape (n_successful, 1): ``batch().ppf([0.5, 0.9])`` has shape
             (n_successful, 2).
         """
-        return _batch(self._lam(), self.param)
+        return frozen_batch(self._lam(), self.param)
 
     def _regions(self) -> np.ndarray:
         """RS region of every successful resample (0 for FKML)."""
@@ -635,7 +519,7 @@ class BootstrapFit:
         if statistic is None:
             return np.array(lam, dtype=float)
         if vectorized:
-            res = np.asarray(statistic(_batch(lam, self.param)), dtype=float)
+            res = np.asarray(statistic(frozen_batch(lam, self.param)), dtype=float)
             return res.reshape(lam.shape[0], -1)
         rows = []
         for row in lam:
@@ -753,7 +637,7 @@ class BootstrapFit:
         m = str(method).lower()
         if m not in CI_METHODS:
             raise ValueError(f"method must be 'percentile', 'basic' or 'BCa', got {method!r}")
-        level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
+        level = self.confidence_level if confidence_level is None else check_level(confidence_level)
         if lam.shape[0] < 2:
             raise FitError(f"only {lam.shape[0]} of {self.n_resamples} resamples have a fit: no "
                            "bootstrap interval")
@@ -818,23 +702,23 @@ class BootstrapFit:
         if rows is not None:
             return self._count_maximum(cfull, rows, confidence_level, rng)
         full = _maximum(self.fit.dist, n)
-        level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
+        level = self.confidence_level if confidence_level is None else check_level(confidence_level)
         lam = self._lam()
         if lam.shape[0] < 2:
             raise FitError(f"only {lam.shape[0]} resamples have a fit")
         n = full.n
         g = np.random.default_rng(self._seed(1) if rng is None else rng)
         v = g.random(lam.shape[0])
-        draws = _max_quantiles(lam, self._fam, n, np.log(v)[:, None])[:, 0]
-        medians = _max_quantiles(lam, self._fam, n, np.array([[math.log(0.5)]]))[:, 0]
-        means = _max_raw_moments(lam, self._fam, n, 1)
+        draws = max_quantiles(lam, self._fam, n, np.log(v)[:, None])[:, 0]
+        medians = max_quantiles(lam, self._fam, n, np.array([[math.log(0.5)]]))[:, 0]
+        means = max_raw_moments(lam, self._fam, n, 1)
         return BootstrapMaximum(n=n, draws=draws, medians=medians, confidence_level=level,
                                 mixture=MaximumMixture(lam, self.param, n), full=full,
                                 _lam=lam, _param=self.param, _means=means)
 
     def _count_maximum(self, cfull, rows, confidence_level, rng) -> BootstrapMaximum:
         full = _maximum(self.fit.dist, count=cfull)
-        level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
+        level = self.confidence_level if confidence_level is None else check_level(confidence_level)
         lam = self._lam()
         if lam.shape[0] < 2:
             raise FitError(f"only {lam.shape[0]} resamples have a fit")
@@ -842,10 +726,10 @@ class BootstrapFit:
         g = np.random.default_rng(self._seed(1) if rng is None else rng)
         counts = cond.sample(g)
         v = g.random(lam.shape[0])
-        draws = _max_quantiles(lam, self._fam, counts[:, None], np.log(v)[:, None])[:, 0]
+        draws = max_quantiles(lam, self._fam, counts[:, None], np.log(v)[:, None])[:, 0]
         lf = cond.log_f_for(math.log(0.5))
         with np.errstate(invalid="ignore"):
-            medians = _quantiles(lam, self._fam, np.exp(lf)[:, None], (-np.expm1(lf))[:, None])[:, 0]
+            medians = quantiles(lam, self._fam, np.exp(lf)[:, None], (-np.expm1(lf))[:, None])[:, 0]
         return BootstrapMaximum(n=float(cfull.mean), draws=draws, medians=medians,
                                 confidence_level=level,
                                 mixture=MaximumMixture(lam, self.param, 1.0, counts=cond), full=full,
@@ -892,7 +776,7 @@ class BootstrapFit:
                                  count)
 
     def _probability(self, func, what, threshold, n, area_factor, confidence_level, count=None):
-        level = self.confidence_level if confidence_level is None else _check_level(confidence_level)
+        level = self.confidence_level if confidence_level is None else check_level(confidence_level)
         k = np.asarray(area_factor, dtype=float)
         t = float(threshold)
         n, cfull, rows = self._draw_counts(n, count)
@@ -900,7 +784,7 @@ class BootstrapFit:
         est = np.asarray(func(self.fit.dist, t, n, k, count=cfull, outside_support="limit"),
                          dtype=float)
         lam = self._lam()
-        logf = _log_tails(lam, self._fam, np.array([t]))[0][:, 0]
+        logf = log_tails(lam, self._fam, np.array([t]))[0][:, 0]
         logf = logf.reshape((-1,) + (1,) * k.ndim)  # one row per resample
         if rows is None:
             y = (logf * k) * float(n)  # k n log F
@@ -974,12 +858,6 @@ class BootstrapFit:
         return (f"BootstrapFit(method={self.method!r}, param={self.param!r}, kind={self.kind!r}, "
                 f"n_resamples={self.n_resamples}, n_failed={self.n_failed}, fit={self.fit!r})")
 
-
-def _batch(lam: np.ndarray, param: str):
-    gen = gld_rs if param == "rs" else gld_fkml
-    return gen(_col(lam[:, 2]), _col(lam[:, 3]), loc=_col(lam[:, 0]), scale=1.0 / np.abs(_col(lam[:, 1])))
-
-
 def _bca(theta, est, jack, probs):
     """BCa bounds for every column of theta (k, p), estimate est (p,), jackknife jack (g, p)."""
     p = theta.shape[1]
@@ -1000,348 +878,6 @@ def _bca(theta, est, jack, probs):
         adj = special.ndtr(z0 + (z0 + z) / (1.0 - a * (z0 + z)))
         lo[j], hi[j] = np.quantile(t, adj)
     return lo, hi
-
-
-# ---------------------------------------------------------------------------------------------
-# maximum: per-resample values and the pooled mixture
-# ---------------------------------------------------------------------------------------------
-class MaximumMixture(rv_continuous):
-    """Pooled distribution of the maximum of n draws over the bootstrap GLDs.
-
-    An equal-weight mixture of the B distributions of the maximum,
-    ``F_mix(x) = (1/B) sum_b F_b(x)^n``, as a shape-free ``scipy.stats.rv_continuous``:
-    ``cdf``, ``sf``, ``logcdf``, ``logsf`` and ``pdf`` average the components (in log space,
-    with ``F_b^n = exp(n log F_b)`` and ``log F_b = log1p(-S_b)`` in the upper tail);
-    ``ppf``/``isf`` solve ``log F_mix = log p`` (or ``log S_mix = log q``) by Brent's method
-    inside the bracket [min_b, max_b] of the component quantiles, so the tails keep their
-    relative accuracy; ``rvs`` picks a component uniformly, then draws from it; the mean and
-    variance average the components' moments (quadrature, see :mod:`glstat.extremes`).
-
-    Parameters
-    ----------
-    lambdas : array_like, shape (B, 4)
-        lambda1..lambda4 of the component GLDs.
-    param : {"rs", "fkml"}
-        Parameterisation.
-    n : float
-        Number of draws (>= 1).
-    counts : glstat.counts.RowCounts, optional
-        A random number of draws per component, given at least one (then ``n`` is unused):
-        component b is ``E_b[F_b(x)^N]``.
-    """
-
-    def __init__(self, lambdas=None, param="rs", n=1.0, counts=None, **kwargs):
-        lam = np.array(lambdas, dtype=float, ndmin=2)
-        if lam.ndim != 2 or lam.shape[1] != 4 or lam.shape[0] < 1:
-            raise ValueError(f"lambdas must have shape (B, 4), got {np.shape(lambdas)}")
-        self._lam = lam
-        self._param = param
-        self._n = float(n)
-        self._counts = counts
-        if counts is not None and counts.rows != lam.shape[0]:
-            raise ValueError(f"counts has {counts.rows} rows for {lam.shape[0]} components")
-        self._family = _FAM[param]
-        lo, hi = _support(lam, self._family)
-        kwargs.setdefault("a", float(np.min(lo)))
-        kwargs.setdefault("b", float(np.max(hi)))
-        kwargs.setdefault("name", "maximum_mixture")
-        super().__init__(**kwargs)
-
-    def _updated_ctor_param(self):
-        dct = super()._updated_ctor_param()
-        dct.update(lambdas=self._lam, param=self._param, n=self._n, counts=self._counts)
-        return dct
-
-    @property
-    def n_components(self) -> int:
-        """Number of mixed distributions B."""
-        return self._lam.shape[0]
-
-    def _component_logs(self, x):
-        x = np.asarray(x, dtype=float).ravel()
-        logf, logs, logp = _log_tails(self._lam, self._family, x)
-        c = self._counts
-        if c is not None:
-            y = c.log_pgf(logf)
-            with np.errstate(divide="ignore"):
-                ls = np.log(c.one_minus_pgf(logf))
-            deep = logs < math.log(1e-290)
-            ls = np.where(deep, np.log(c.mean)[:, None] + logs, ls)
-            return y, ls, c.log_dpgf(logf) + logp
-        n = self._n
-        y = n * logf  # log of the component cdf of the maximum
-        ls = _log1mexp(y)
-        deep = logs < math.log(1e-290)
-        ls = np.where(deep, math.log(n) + logs, ls)
-        lp = math.log(n) + (n - 1.0) * logf + logp if n != 1 else logp
-        return y, ls, lp
-
-    def _mix(self, comp, shape):
-        with np.errstate(divide="ignore"):
-            out = special.logsumexp(comp, axis=0) - math.log(comp.shape[0])
-        return out.reshape(shape)
-
-    def _logcdf(self, x):
-        return self._mix(self._component_logs(x)[0], np.shape(x))
-
-    def _logsf(self, x):
-        return self._mix(self._component_logs(x)[1], np.shape(x))
-
-    def _logpdf(self, x):
-        return self._mix(self._component_logs(x)[2], np.shape(x))
-
-    def _cdf(self, x):
-        return np.exp(self._logcdf(x))
-
-    def _sf(self, x):
-        return np.exp(self._logsf(x))
-
-    def _pdf(self, x):
-        return np.exp(self._logpdf(x))
-
-    def _solve(self, logp, upper):
-        """x with log F_mix(x) = logp (log S_mix(x) = logp when ``upper``)."""
-        if upper:
-            logv = _log1mexp(np.array([logp]))
-        else:
-            logv = np.array([logp])
-        ns = [self._n] if self._counts is None else [self._counts.values.min(),
-                                                      self._counts.values.max()]
-        comp = []
-        for n in ns:  # F^nmax <= E[F^N] <= F^nmin: the quantiles of nmin and nmax bracket
-            t = logv / n
-            comp.append(_quantiles(self._lam, self._family, np.exp(t)[None, :],
-                                   (-np.expm1(t))[None, :])[:, 0])
-        comp = np.concatenate(comp)
-        lo, hi = float(np.min(comp)), float(np.max(comp))
-        if not lo < hi:
-            return lo
-
-        def h(x):
-            y, ls, _ = self._component_logs(np.array([x]))
-            val = self._mix(ls if upper else y, (1,))[0]
-            return (logp - val) if upper else (val - logp)
-
-        hlo, hhi = h(lo), h(hi)
-        if hlo >= 0:
-            return lo
-        if hhi <= 0:
-            return hi
-        return optimize.brentq(h, lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=400)
-
-    def _ppf(self, q):
-        q = np.asarray(q, dtype=float)
-        out = np.empty(q.shape)
-        for i, v in np.ndenumerate(q):
-            if v <= 0.5:
-                out[i] = self._solve(math.log(v), False) if v > 0 else self.a
-            else:
-                out[i] = self._solve(math.log1p(-v), True) if v < 1 else self.b
-        return out
-
-    def _isf(self, q):
-        q = np.asarray(q, dtype=float)
-        out = np.empty(q.shape)
-        for i, s in np.ndenumerate(q):
-            if s <= 0.5:
-                out[i] = self._solve(math.log(s), True) if s > 0 else self.b
-            else:
-                out[i] = self._solve(math.log1p(-s), False) if s < 1 else self.a
-        return out
-
-    def _rvs(self, size=None, random_state=None):
-        size = () if size is None else size
-        # uniform() exists on both numpy.random.Generator and RandomState
-        pick = np.asarray(random_state.uniform(size=size)) * self.n_components
-        comp = np.minimum(pick.astype(np.int64), self.n_components - 1)
-        v = random_state.uniform(size=size)
-        flat_c = np.ravel(comp)
-        n = self._n
-        if self._counts is not None:
-            n = self._counts.take(flat_c).sample(random_state)
-        t = np.log(np.ravel(v)) / n
-        out = _quantiles(self._lam[flat_c], self._family, np.exp(t)[:, None], (-np.expm1(t))[:, None])
-        return out[:, 0].reshape(np.shape(comp))
-
-    def _munp(self, k):
-        if k > 2 or int(k) != k:
-            return super()._munp(k)
-        if self._counts is not None:
-            return float(np.mean(_count_max_moments(self._lam, self._family, self._counts, int(k))))
-        return float(np.mean(_max_raw_moments(self._lam, self._family, self._n, int(k))))
-
-    def _stats(self):
-        m1 = self._munp(1)
-        m2 = self._munp(2)
-        return m1, m2 - m1 * m1, None, None
-
-
-@dataclass(frozen=True)
-class BootstrapMaximum:
-    """The maximum of n draws across the bootstrap GLDs (result of :meth:`BootstrapFit.maximum`).
-
-    Attributes
-    ----------
-    n : float
-        Number of draws (the mean count given at least one draw, with a random count).
-    draws : ndarray, shape (B_ok,)
-        One random maximum of n draws per bootstrap GLD (the paper's "one value per
-        bootstrap GLD"), units of the data.
-    medians : ndarray, shape (B_ok,)
-        Median of each bootstrap GLD's maximum, ``Q_b(0.5^(1/n))``.
-    means : ndarray, shape (B_ok,)
-        Mean of each bootstrap GLD's maximum (NaN where it does not exist).
-    confidence_level : float
-        Default coverage of :meth:`interval`, :meth:`median_interval` and :meth:`mixture_interval`.
-    mixture : MaximumMixture
-        The pooled distribution (1/B) sum_b F_b(x)^n: the density of the maximal value
-        combining parameter uncertainty and the randomness of the maximum itself.
-    full : MaximumDistribution
-        Maximum of n draws from the full-sample fit.
-    count : CountDistribution or None
-        The random count (None for a fixed n); each bootstrap GLD then has its own count
-        given N >= 1 (its resample's group sizes with ``groups``).
-    """
-
-    n: float
-    draws: np.ndarray
-    medians: np.ndarray
-    confidence_level: float
-    mixture: MaximumMixture
-    full: MaximumDistribution
-    _lam: np.ndarray = field(repr=False, compare=False, default=None)
-    _param: str = field(repr=False, compare=False, default="rs")
-    _means: np.ndarray | None = field(repr=False, compare=False, default=None)
-    _counts: RowCounts | None = field(repr=False, compare=False, default=None)
-    count: Any = None
-
-    @property
-    def means(self) -> np.ndarray:
-        """Mean of each bootstrap GLD's maximum (NaN where it does not exist); with a random
-        count, the count-weighted means of the fixed-n maxima (computed when first asked)."""
-        if self._means is None:
-            object.__setattr__(self, "_means",
-                               _count_max_moments(self._lam, _FAM[self._param], self._counts, 1))
-        return self._means
-
-    @property
-    def mean(self) -> float:
-        """Mean of the per-GLD draws (units of the data)."""
-        return float(np.mean(self.draws))
-
-    def _level(self, confidence_level):
-        return self.confidence_level if confidence_level is None else _check_level(confidence_level)
-
-    def interval(self, confidence_level: float | None = None) -> tuple[float, float]:
-        """Equal-tailed interval of the per-GLD draws (units of the data).
-
-        Parameters
-        ----------
-        confidence_level : float, optional
-            Coverage of the interval; default :attr:`confidence_level`.
-        """
-        a = 1.0 - self._level(confidence_level)
-        lo, hi = np.quantile(self.draws, [a / 2, 1 - a / 2])
-        return float(lo), float(hi)
-
-    def median_interval(self, confidence_level: float | None = None) -> tuple[float, float]:
-        """Percentile interval of the per-GLD medians: the parameter uncertainty of the median.
-
-        Parameters
-        ----------
-        confidence_level : float, optional
-            Coverage of the interval; default :attr:`confidence_level`.
-        """
-        a = 1.0 - self._level(confidence_level)
-        lo, hi = np.quantile(self.medians, [a / 2, 1 - a / 2])
-        return float(lo), float(hi)
-
-    def mixture_interval(self, confidence_level: float | None = None) -> tuple[float, float]:
-        """Equal-tailed interval of :attr:`mixture` (the limit of :meth:`interval` for many draws).
-
-        Parameters
-        ----------
-        confidence_level : float, optional
-            Coverage of the interval; default :attr:`confidence_level`.
-        """
-        a = 1.0 - self._level(confidence_level)
-        return float(self.mixture.ppf(a / 2)), float(self.mixture.isf(a / 2))
-
-    def components(self) -> list[MaximumDistribution]:
-        """``glstat.maximum(dist, n)`` of every bootstrap GLD (with its own count, if random)."""
-        if self._counts is None:
-            return [_maximum(GLD(*row, param=self._param), self.n) for row in self._lam]
-        c = self._counts
-        return [_maximum(GLD(*row, param=self._param),
-                         count=TabulatedCount(c.values, c.weights[b]))
-                for b, row in enumerate(self._lam)]
-
-    def to_frame(self) -> pd.DataFrame:
-        """One row per bootstrap GLD: draw, median and mean of its maximum."""
-        import pandas as pd
-
-        return pd.DataFrame({"draw": self.draws, "median": self.medians, "mean": self.means})
-
-    def summary(self) -> pd.DataFrame:
-        """Mean and interval of the draws, the mixture and the medians (one row each)."""
-        import pandas as pd
-
-        lo, hi = self.interval()
-        mlo, mhi = self.mixture_interval()
-        dlo, dhi = self.median_interval()
-        return pd.DataFrame(
-            [{"quantity": "draws", "center": self.mean, "low": lo, "high": hi},
-             {"quantity": "mixture", "center": float(self.mixture.median()), "low": mlo, "high": mhi},
-             {"quantity": "medians", "center": float(np.median(self.medians)), "low": dlo, "high": dhi},
-             {"quantity": "full_fit", "center": float(self.full.median()),
-              "low": float(self.full.ppf((1 - self.confidence_level) / 2)),
-              "high": float(self.full.isf((1 - self.confidence_level) / 2))}]
-        ).assign(n=self.n, confidence_level=self.confidence_level)
-
-
-@dataclass(frozen=True)
-class BootstrapProbability:
-    """Integrity or damage probability with its bootstrap interval.
-
-    Attributes
-    ----------
-    what : str
-        ``"integrity"`` or ``"damage"``.
-    threshold, n : float
-        Pressure level (units of the data) and number of points (the mean count with a
-        random count).
-    area_factor : ndarray
-        Area factors k (dimensionless).
-    estimate : ndarray
-        Probability from the full-sample fit, shape of ``area_factor``.
-    low, high : ndarray
-        Percentile interval over the bootstrap fits.
-    values : ndarray
-        Per-resample probabilities, shape (B_ok, *area_factor.shape).
-    confidence_level : float
-    count : CountDistribution or None
-        The random count of the full-sample estimate (None for a fixed n).
-    """
-
-    what: str
-    threshold: float
-    n: float
-    area_factor: np.ndarray
-    estimate: np.ndarray
-    low: np.ndarray
-    high: np.ndarray
-    values: np.ndarray
-    confidence_level: float
-    count: Any = None
-
-    def to_frame(self) -> pd.DataFrame:
-        """One row per area factor: estimate, low, high."""
-        import pandas as pd
-
-        k = np.broadcast_to(self.area_factor, np.shape(self.estimate))
-        return pd.DataFrame({"area_factor": np.ravel(k), "estimate": np.ravel(self.estimate),
-                             "low": np.ravel(self.low), "high": np.ravel(self.high)})
-
 
 # ---------------------------------------------------------------------------------------------
 # public entry point
@@ -1426,14 +962,14 @@ def bootstrap(
     """
     import pandas as pd
 
-    B = _check_n_resamples(n_resamples)
-    level = _check_level(confidence_level)
+    B = check_n_resamples(n_resamples)
+    level = check_level(confidence_level)
     if kind not in KINDS:
         raise ValueError(f"kind must be 'nonparametric' or 'parametric', got {kind!r}")
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
     param = str(param).lower()
-    if param not in _FAM:
+    if param not in FAMILY:
         raise ValueError(f"param must be 'rs' or 'fkml', got {param!r}")
     grouping = None
     if groups is not None:
@@ -1454,7 +990,7 @@ def bootstrap(
                        None, entropy, warn=False)
     full = fit(x, param, method, **options)
     seeds = [np.random.SeedSequence(list(entropy), spawn_key=(r,)) for r in range(B)]
-    fam = _FAM[param]
+    fam = FAMILY[param]
     n = x.size
     compiled = method in COMPILED
     if progress is None:

@@ -46,6 +46,7 @@ from scipy.stats import rv_continuous
 from ._compat import rv_continuous_frozen
 from ._tails import SF_TINY as _TINY
 from ._tails import TailAccess
+from ._tails import log1mexp as _log1mexp
 
 __all__ = [
     "MaximumCountDistribution",
@@ -55,7 +56,6 @@ __all__ = [
     "order_statistic",
 ]
 
-_LN2 = math.log(2.0)
 
 # nodes of the moment quadrature in z = logit(v)
 _QUAD_H = 0.25
@@ -174,13 +174,6 @@ def _betainccinv(a, b, q, logq):
         x = np.array(x, copy=True)
         x[bad] = 1.0 - _betaincinv(b, a, q[bad], logq[bad])
     return x
-
-
-def _log1mexp(y):
-    """log(1 - exp(y)) for y <= 0, accurate for all y."""
-    y = np.asarray(y, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(y > -_LN2, np.log(-np.expm1(y)), np.log1p(-np.exp(y)))
 
 
 def _valid_range(g):
