@@ -2,6 +2,7 @@
 
 import _glstat_numba  # noqa: F401  (first: numba caches outside the package)
 
+from ._version import __version__  # noqa: F401  (the one version source)
 from .bootstrap import (
     BootstrapFit,
     BootstrapInterval,
@@ -26,8 +27,6 @@ from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_perc
 from .gld import GLD
 from .gof import compare_families, edf_statistics, gof_report
 from .regions import rs_region
-
-__version__ = "0.1.0"
 
 __all__ = [
     "GLD",
