@@ -132,15 +132,16 @@ def main() -> int:
     ax.legend(fontsize=8)
     save(fig, "tutorial_damage.png")
 
-    # 8. area scaling
+    # 8. area scaling: an area k mm² holds k independent 1 mm² areas
     k = np.geomspace(1, 100, 30)
-    frame = boot.damage_probability(HARDNESS, area_factor=k).to_frame()
     fig, ax = plt.subplots(figsize=(5.6, 3.8))
-    ax.fill_between(k, frame["low"], frame["high"], color="C0", alpha=0.25, label="90 % interval")
-    ax.plot(k, frame["estimate"], color="C0", label="estimate")
+    for j, level in enumerate((HARDNESS, 3000.0, 4000.0)):
+        frame = boot.damage_probability(level, area_factor=k).to_frame()
+        ax.fill_between(k, frame["low"], frame["high"], color=f"C{j}", alpha=0.2)
+        ax.plot(k, frame["estimate"], color=f"C{j}", label=f"Pd = {level:.0f} MPa")
     ax.set_xscale("log")
     ax.set_xlabel("area (mm²)")
-    ax.set_ylabel("P(max > 2050 MPa)")
+    ax.set_ylabel("P(max > Pd), 90 % interval")
     ax.legend(fontsize=8)
     save(fig, "tutorial_area.png")
 
