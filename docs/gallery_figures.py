@@ -9,7 +9,6 @@ several), scaled down to at most 900 pixels wide.
 from __future__ import annotations
 
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
