@@ -26,6 +26,7 @@ MAX_BYTES = 150_000
 FIGURES = [
     ("fit_compare_gof.py", [], ["fit_compare_gof.png"]),
     ("maximum_and_damage.py", [], ["maximum_and_damage.png"]),
+    ("damage_vs_area.py", [], ["damage_vs_area.png"]),
     ("surface_contact.py", ["--n", "512", "--plot", "maps.png"], ["maps.png"]),
     ("surfaces_like_measurement.py", ["--n", "20", "--plot", "spectra.png"], ["spectra.png"]),
     ("fit_your_data.py", ["out"], None),  # None: every PNG in the output folder
