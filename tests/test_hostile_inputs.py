@@ -53,6 +53,7 @@ CHILD = r"""
 import json, sys, time
 path, kind = sys.argv[1], sys.argv[2]
 if kind == "fit":
+    import pandas  # imported before the baseline: only the reading counts
     import glstat.cli_input as ci
     from glstat.cli_fit import main
     ci.MAX_DECOMPRESSED = int(sys.argv[3])
