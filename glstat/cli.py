@@ -17,13 +17,14 @@ __all__ = ["main", "study_main"]
 USAGE = """usage: glstat {study,fit,demo} ...
 
 commands:
-  study   run the contact study end to end (campaign, GLD analysis, validation, report)
-  fit     fit a GLD to samples from a CSV, Parquet or NPY file
+  study   run the contact study end to end: the damage probability at the hardness on an
+          area, checked on held-out surfaces, with the elastic model beside it (report.html)
+  fit     fit a GLD to samples from a CSV, Parquet, NPY or Excel file
   demo    print quantiles and tail probabilities of a GLD (as python -m glstat)
 
-'glstat COMMAND --help' describes each command."""
+'glstat COMMAND --help' describes each command; 'glstat --version' prints the version."""
 
-#: The paper's settings, and the ``--quick`` overrides.
+#: The study's defaults, and the ``--quick`` overrides.
 DEFAULTS = {"surfaces": 100, "grid": 1024, "bootstrap": 1000, "out": "glstat-study"}
 QUICK = {"surfaces": 30, "grid": 512, "bootstrap": 300, "out": "glstat-study-quick"}
 #: Default Weierstrass truncation (terms per axis), see docs/study.md.
