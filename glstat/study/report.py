@@ -531,9 +531,10 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         f"{settings.n_surfaces} Weierstrass surfaces per Hurst exponent, {settings.grid}² points on "
         f"{settings.length * 1e3:g} × {settings.length * 1e3:g} mm², Rq = {settings.rq * 1e6:g} µm, "
         f"pressed by a rigid flat (asperity model, c = {settings.cone_factor:g}, E = "
-        f"{settings.E / 1e9:g} GPa, ν = {settings.nu:g}). GLD {asettings.param.upper()} by "
-        f"{asettings.method}, B = {asettings.n_resamples} bootstrap resamples, hardness "
-        f"{hard:g} MPa, {lvl} % intervals. Pressures in MPa.")
+        f"{settings.E / 1e9:g} GPa, ν = {settings.nu:g}). Per-asperity peaks: the GLD chosen per H "
+        f"(above), B = {asettings.n_resamples} bootstrap resamples of whole surfaces; grid-point "
+        f"pressures: {asettings.param.upper()} by {asettings.method} (the paper's), B = "
+        f"{asettings.grid_resamples}; hardness {hard:g} MPa, {lvl} % intervals. Pressures in MPa.")
     rows = []
     for (ih, il), r in analysis.items():
         s = r["summary"]
