@@ -260,7 +260,12 @@ def study_main(argv: list[str]) -> int:
     except CampaignError as exc:
         print(f"glstat study: error: {exc}", file=sys.stderr)
         return 1
-    except (KeyboardInterrupt, _Terminated) as exc:
+    except (KeyboardInterrupt, _Terminated, SystemError) as exc:
+        if isinstance(exc, SystemError):
+            # Ctrl-C or SIGTERM inside a compiled kernel arrives as a SystemError with its cause
+            if not isinstance(exc.__cause__, (KeyboardInterrupt, _Terminated)):
+                raise
+            exc = exc.__cause__
         how, status = (("interrupted (Ctrl-C)", 130) if isinstance(exc, KeyboardInterrupt)
                        else ("terminated (SIGTERM)", 143))
         print(f"glstat study: {how}; the surfaces finished so far are saved in {out}; rerun the "

@@ -646,6 +646,11 @@ class SerialExecutor(Executor):
         try:
             fut.set_result(fn(*args, **kwargs))
         except BaseException as exc:
+            cause = exc.__cause__
+            if isinstance(exc, SystemError) and cause is not None and not isinstance(cause, Exception):
+                # Ctrl-C or SIGTERM arrived inside a compiled kernel, which reports it as a
+                # SystemError: it is an interruption, not a failure of the task
+                exc = cause
             fut.set_exception(exc)
         return fut
 
