@@ -231,11 +231,15 @@ def study_main(argv: list[str]) -> int:
     class _Terminated(BaseException):
         """SIGTERM, raised in the main thread so that the run stops as on Ctrl-C."""
 
-    def _on_sigterm(signum, frame):
-        raise _Terminated
+    received: list[int] = []  # the signals that arrived, whatever exception they became
+
+    def _on_signal(signum, frame):
+        received.append(signum)
+        raise KeyboardInterrupt if signum == signal.SIGINT else _Terminated
 
     main_thread = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGTERM, _on_sigterm) if main_thread else None
+    previous = ({sig: signal.signal(sig, _on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
+                if main_thread else {})
     shutdown = None
     try:
         with lock_directory(out, wait=args.wait, on_wait=lambda holder: print(
@@ -257,23 +261,22 @@ def study_main(argv: list[str]) -> int:
                             force=args.force, progress=not args.no_progress,
                             command="glstat study " + " ".join(argv), workers_label=label,
                             compare_bem=args.compare_bem, model=args.model)
-    except CampaignError as exc:
-        print(f"glstat study: error: {exc}", file=sys.stderr)
-        return 1
-    except (KeyboardInterrupt, _Terminated, SystemError) as exc:
-        if isinstance(exc, SystemError):
-            # Ctrl-C or SIGTERM inside a compiled kernel arrives as a SystemError with its cause
-            if not isinstance(exc.__cause__, (KeyboardInterrupt, _Terminated)):
-                raise
-            exc = exc.__cause__
-        how, status = (("interrupted (Ctrl-C)", 130) if isinstance(exc, KeyboardInterrupt)
-                       else ("terminated (SIGTERM)", 143))
+    except (CampaignError, KeyboardInterrupt, _Terminated, SystemError) as exc:
+        # a signal that arrives inside a compiled kernel can surface as a SystemError, or as
+        # the failure of the task it interrupted: the signal decides, not the exception
+        if not received and not isinstance(exc, (KeyboardInterrupt, _Terminated)):
+            if isinstance(exc, CampaignError):
+                print(f"glstat study: error: {exc}", file=sys.stderr)
+                return 1
+            raise
+        sigterm = (received and received[0] == signal.SIGTERM) or isinstance(exc, _Terminated)
+        how, status = (("terminated (SIGTERM)", 143) if sigterm else ("interrupted (Ctrl-C)", 130))
         print(f"glstat study: {how}; the surfaces finished so far are saved in {out}; rerun the "
               f"same command to resume", file=sys.stderr)
         return status
     finally:
-        if main_thread:
-            signal.signal(signal.SIGTERM, previous)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
         if shutdown is not None:
             shutdown()
     print(f"study finished in {time.perf_counter() - t0:.1f} s "
