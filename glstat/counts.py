@@ -29,9 +29,10 @@ from __future__ import annotations
 
 import math
 import numbers
+from abc import ABC, abstractmethod
 
 import numpy as np
-from scipy import optimize, special
+from scipy import special
 
 __all__ = [
     "CountDistribution",
@@ -48,37 +49,36 @@ _TABLE_TAIL = 1e-18
 _TABLE_MAX = 1_000_000
 
 
-class CountDistribution:
+class CountDistribution(ABC):
     """Distribution of the number N >= 0 of draws whose maximum is taken.
 
-    Subclasses provide :meth:`log_pgf` and :meth:`one_minus_pgf` as functions of ``log F``
-    and the attributes ``p_zero`` (``P(N = 0)``) and ``mean`` (``E[N]``).
+    Subclasses provide the generating function as functions of ``log F`` and the attributes
+    ``p_zero`` (``P(N = 0)``) and ``mean`` (``E[N]``).
     """
 
     p_zero: float
     mean: float
 
-    # -- what subclasses provide -------------------------------------------------------------
+    @abstractmethod
     def one_minus_pgf(self, logf):
         """``1 - E[F^N]`` at ``log F`` (array), accurate when it is tiny."""
-        raise NotImplementedError
 
-    def _log_pgf_direct(self, logf):
-        """``log E[F^N]`` where it is not close to 0."""
-        raise NotImplementedError
-
-    def sample(self, size, rng) -> np.ndarray:
-        """``size`` random counts drawn with ``rng`` (a numpy Generator)."""
-        raise NotImplementedError
-
-    # -- derived -------------------------------------------------------------------------------
+    @abstractmethod
     def log_pgf(self, logf):
         """``log E[F^N]`` at ``log F`` (array; ``-inf`` allowed, where ``F = 0``)."""
-        logf = np.asarray(logf, dtype=float)
-        d = np.asarray(self.one_minus_pgf(logf), dtype=float)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out = np.where(d < 0.5, np.log1p(-np.minimum(d, 0.5)), self._log_pgf_direct(logf))
-        return out
+
+    @abstractmethod
+    def log_f_for(self, log_integrity) -> np.ndarray:
+        """``log F`` at which ``log E[F^N] = log_integrity`` (per element; ``-inf`` when the
+        level is at or below ``log P(N = 0)``, where every threshold gives that integrity)."""
+
+    @abstractmethod
+    def sample(self, size, rng) -> np.ndarray:
+        """``size`` random counts drawn with ``rng`` (a numpy Generator)."""
+
+    @abstractmethod
+    def conditional(self) -> TabulatedCount:
+        """The count given ``N >= 1`` (the maximum exists only when something is drawn)."""
 
     def log_integrity(self, logf, area_factor=1.0):
         """``k log E[F^N]``: the log-probability that no draw of k areas exceeds the level."""
@@ -92,47 +92,6 @@ class CountDistribution:
             return np.broadcast_to(np.asarray(self.one_minus_pgf(logf), dtype=float),
                                    np.broadcast_shapes(logf.shape, k.shape)).copy()
         return -np.expm1(k * self.log_pgf(logf))
-
-    def log_f_for(self, log_integrity) -> np.ndarray:
-        """``log F`` at which ``log E[F^N] = log_integrity`` (per element; ``-inf`` when the
-        level is at or below ``log P(N = 0)``, where every threshold gives that integrity)."""
-        g = np.asarray(log_integrity, dtype=float)
-        out = np.empty(g.shape)
-        flat_g = g.reshape(-1)
-        flat = out.reshape(-1)
-        log_p0 = math.log(self.p_zero) if self.p_zero > 0 else -math.inf
-        for i, gi in enumerate(flat_g):
-            flat[i] = self._solve_log_f(float(gi), log_p0)
-        return out
-
-    def _solve_log_f(self, g: float, log_p0: float) -> float:
-        if math.isnan(g) or g > 0:
-            return math.nan
-        if g == 0.0:
-            return 0.0
-        if g <= log_p0:
-            return -math.inf
-        # -log G is increasing in w = log(-log F); solve log(-log G(-e^w)) = log(-g)
-        target = math.log(-g)
-
-        def h(w):
-            lf = -math.exp(w)
-            lg = float(self.log_pgf(np.array([lf]))[0])
-            return (math.log(-lg) if lg < 0 else -math.inf) - target
-
-        lo, hi = -60.0, 8.0
-        while h(lo) > 0 and lo > -740:
-            lo -= 40.0
-        while h(hi) < 0 and hi < 700:
-            hi += 8.0
-        if not (h(lo) <= 0 <= h(hi)):
-            return math.nan
-        w = optimize.brentq(h, lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=200)
-        return -math.exp(w)
-
-    def conditional(self):
-        """The count given ``N >= 1`` (the maximum exists only when something is in contact)."""
-        raise NotImplementedError
 
 
 class PoissonCount(CountDistribution):
@@ -161,19 +120,15 @@ class PoissonCount(CountDistribution):
         logf = np.asarray(logf, dtype=float)
         return -np.expm1(self.mu * np.expm1(logf))
 
-    def _log_pgf_direct(self, logf):
+    def log_pgf(self, logf):
         return self.mu * np.expm1(np.asarray(logf, dtype=float))
 
-    def log_pgf(self, logf):
-        return self._log_pgf_direct(logf)
-
-    def _solve_log_f(self, g, log_p0):
-        if math.isnan(g) or g > 0:
-            return math.nan
+    def log_f_for(self, log_integrity):
+        g = np.asarray(log_integrity, dtype=float)
         s = -g / self.mu  # 1 - F
-        if s >= 1.0:
-            return -math.inf
-        return math.log1p(-s)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out = np.where(s >= 1.0, -np.inf, np.log1p(-np.minimum(s, 1.0)))
+        return np.where(np.isnan(g) | (g > 0), np.nan, out)
 
     def sample(self, size, rng):
         return rng.poisson(self.mu, size=size)
@@ -210,7 +165,6 @@ class TabulatedCount(CountDistribution):
         self.values = values[keep]
         w = weights[keep]
         self.weights = w / math.fsum(w)
-        self._logw = np.log(self.weights)
         self.p_zero = float(np.sum(self.weights[self.values == 0]))
         self.mean = float(np.dot(self.weights, self.values))
 
@@ -225,19 +179,22 @@ class TabulatedCount(CountDistribution):
                 raise ValueError("the count is 0 with probability 1: there is no maximum")
         return TabulatedCount(values, pmf)
 
-    def one_minus_pgf(self, logf):
-        logf = np.asarray(logf, dtype=float)
-        with np.errstate(invalid="ignore"):
-            terms = -np.expm1(np.multiply.outer(logf, self.values))
-        terms = np.where(self.values == 0, 0.0, terms)  # F^0 = 1 even where F = 0
-        return terms @ self.weights
+    def _rows(self, n: int = 1) -> RowCounts:
+        return RowCounts(self.values, np.broadcast_to(self.weights, (n, self.values.size)))
 
-    def _log_pgf_direct(self, logf):
-        logf = np.asarray(logf, dtype=float)
-        with np.errstate(invalid="ignore"):
-            terms = np.multiply.outer(logf, self.values)
-        terms = np.where(self.values == 0, 0.0, terms) + self._logw
-        return special.logsumexp(terms, axis=-1)
+    def one_minus_pgf(self, logf):
+        return self._rows().one_minus_pgf(np.asarray(logf, dtype=float)[None])[0]
+
+    def log_pgf(self, logf):
+        return self._rows().log_pgf(np.asarray(logf, dtype=float)[None])[0]
+
+    def log_dpgf(self, logf):
+        """``log E[N F^(N-1)]``: the log-derivative of the generating function."""
+        return self._rows().log_dpgf(np.asarray(logf, dtype=float)[None])[0]
+
+    def log_f_for(self, log_integrity):
+        g = np.asarray(log_integrity, dtype=float)
+        return self._rows(max(g.size, 1)).log_f_for(g.reshape(-1)).reshape(g.shape)
 
     def sample(self, size, rng):
         return rng.choice(self.values, size=size, p=self.weights).astype(np.int64)
@@ -487,11 +444,12 @@ class RowCounts:
             with np.errstate(divide="ignore"):
                 return np.log(-np.minimum(lg, 0.0)) - target
 
-        for _ in range(12):  # widen the bracket where needed
-            grow = h(hi) < 0
-            if not grow.any():
+        for _ in range(18):  # widen the bracket where needed (w below -740: log F underflows)
+            grow, shrink = h(hi) < 0, (h(lo) > 0) & (lo > -740.0)
+            if not (grow.any() or shrink.any()):
                 break
             hi = np.where(grow, hi + 8.0, hi)
+            lo = np.where(shrink, lo - 40.0, lo)
         for _ in range(72):
             mid = 0.5 * (lo + hi)
             up = h(mid) > 0

@@ -479,13 +479,8 @@ class _MaximumCountGen(_ExtremeGen):
     @_flat
     def _logpdf(self, x):
         # d/dx E[F^N] = E[N F^(N-1)] f
-        c = self._order
         _, logf, _, _ = self._parent.tail(x)
-        lp = self._parent.logpdf(x)
-        with np.errstate(invalid="ignore"):
-            terms = np.multiply.outer(logf, c.values - 1.0)
-        terms = np.where(c.values == 1, 0.0, terms) + c._logw + np.log(c.values)
-        return special.logsumexp(terms, axis=-1) + lp
+        return self._order.log_dpgf(logf) + self._parent.logpdf(x)
 
     def _quantile_vq(self, v, q, logv, logq):
         logv = np.asarray(logv, dtype=float)
