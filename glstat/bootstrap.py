@@ -676,6 +676,26 @@ class BootstrapFit:
         )
 
     # -- maximum and damage -----------------------------------------------------------------
+    def maximum_quantiles(self, n, v) -> np.ndarray:
+        """Quantiles ``Q_b(v^(1/n))`` of the maximum of n draws for every bootstrap GLD b.
+
+        Parameters
+        ----------
+        n : array_like
+            Numbers of draws (>= 1), broadcast against the columns of ``v``.
+        v : array_like, shape (n_successful, m)
+            Probabilities, one row per successful resample (e.g. uniform draws: one random
+            maximum of n draws per bootstrap GLD).
+
+        Returns
+        -------
+        ndarray, shape (n_successful, m)
+            In the units of the data; ``1 - v^(1/n)`` is formed as ``-expm1(log(v) / n)``.
+        """
+        with np.errstate(divide="ignore"):
+            logv = np.log(np.asarray(v, dtype=float))
+        return max_quantiles(self._lam(), self._fam, np.asarray(n, dtype=float), logv)
+
     def maximum(self, n: float | None = None, confidence_level: float | None = None, *, rng=None,
                 count=None) -> BootstrapMaximum:
         """The maximum of n draws for every bootstrap GLD (docs/method.md §6).

@@ -470,8 +470,7 @@ def _validate(per: list, kind: str, a: AnalysisSettings, ih: int, il: int, param
             ns = np.array([per[i][1] for i in tested], dtype=float)
             obs = np.array([per[i][2] for i in tested])
             v = sample_rng(a, ih, il, 3 if kind == "grid" else 4, f).random((bf.n_successful, len(tested)))
-            with np.errstate(all="ignore"):
-                draws = bf.batch().isf(-np.expm1(np.log(v) / ns[None, :]))
+            draws = bf.maximum_quantiles(ns[None, :], v)
             alpha = 1 - a.confidence_level
             lo, hi = np.nanquantile(draws, [alpha / 2, 1 - alpha / 2], axis=0)
             pred = np.nanmean(draws, axis=0)
