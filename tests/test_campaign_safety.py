@@ -164,7 +164,7 @@ def test_lost_scheduler_is_named(tmp_path):
 CAMPAIGN = r"""
 import sys
 from glstat.study import CampaignSettings, run_campaign
-s = CampaignSettings(n_surfaces=40, grid=96, n_terms=(5,), hurst=(0.5,), n_examples=0)
+s = CampaignSettings(n_surfaces=150, grid=128, n_terms=(5,), hurst=(0.5,), n_examples=0)
 run_campaign(s, sys.argv[1], workers=2, progress=False)
 """
 
@@ -201,11 +201,11 @@ def test_kill_9_leaves_no_worker_and_resume_gives_identical_files(tmp_path):
     assert _workers_of(marker) == []
     stale = next(out.glob("H*")) / ".surface_0039.npz.abcd.tmp"
     stale.write_bytes(b"partial")
-    settings = CampaignSettings(n_surfaces=40, grid=96, n_terms=(5,), hurst=(0.5,), n_examples=0)
+    settings = CampaignSettings(n_surfaces=150, grid=128, n_terms=(5,), hurst=(0.5,), n_examples=0)
     r = run_campaign(settings, out, executor=SerialExecutor(), progress=False)
     assert r.skipped >= 3 and not stale.exists()
     ref = run_campaign(settings, tmp_path / "ref", executor=SerialExecutor(), progress=False)
-    assert len(ref.computed) == 40
+    assert len(ref.computed) == 150
     assert _files(out) == _files(tmp_path / "ref")
 
 
