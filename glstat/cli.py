@@ -237,9 +237,20 @@ def study_main(argv: list[str]) -> int:
         received.append(signum)
         raise KeyboardInterrupt if signum == signal.SIGINT else _Terminated
 
+    def _redeliver(unraisable):
+        # an exception raised where Python cannot propagate it (a weakref callback, a __del__)
+        # is only reported; send the signal again so that the run still stops
+        if received and isinstance(unraisable.exc_value, (KeyboardInterrupt, _Terminated)):
+            signal.raise_signal(received[-1])
+        else:
+            previous_hook(unraisable)
+
     main_thread = threading.current_thread() is threading.main_thread()
     previous = ({sig: signal.signal(sig, _on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
                 if main_thread else {})
+    previous_hook = sys.unraisablehook
+    if main_thread:
+        sys.unraisablehook = _redeliver
     shutdown = None
     try:
         with lock_directory(out, wait=args.wait, on_wait=lambda holder: print(
@@ -277,8 +288,16 @@ def study_main(argv: list[str]) -> int:
     finally:
         for sig, handler in previous.items():
             signal.signal(sig, handler)
+        if main_thread:
+            sys.unraisablehook = previous_hook
         if shutdown is not None:
             shutdown()
+    if received:  # a signal whose exception was swallowed on the way: it still decides the exit
+        sigterm = received[0] == signal.SIGTERM
+        how, status = (("terminated (SIGTERM)", 143) if sigterm else ("interrupted (Ctrl-C)", 130))
+        print(f"glstat study: {how} as it finished; the results in {out} are complete",
+              file=sys.stderr)
+        return status
     print(f"study finished in {time.perf_counter() - t0:.1f} s "
           f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
     from .study.answer import degenerate_scene, fmt_mpa, fmt_probability
