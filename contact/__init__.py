@@ -14,12 +14,14 @@ from .generators import self_affine, weierstrass
 from .io import read, write
 from .like import (
     SpectrumFit,
+    WeierstrassParameters,
     compare_surfaces,
     fit_spectrum,
     plot_psd_comparison,
     psd_comparison,
     self_affine_like,
     weierstrass_like,
+    weierstrass_parameters,
 )
 from .result import ContactResult
 from .solver import effective_modulus, solve, solve_displacement
@@ -35,6 +37,7 @@ __all__ = [
     "Summits",
     "Surface",
     "TopographyFileError",
+    "WeierstrassParameters",
     "compare_models",
     "compare_surfaces",
     "contact_spots",
@@ -52,6 +55,7 @@ __all__ = [
     "summits",
     "weierstrass",
     "weierstrass_like",
+    "weierstrass_parameters",
     "write",
 ]
 

@@ -33,8 +33,10 @@ __all__ = [
     "plot_psd_comparison",
     "psd_comparison",
     "radial_psd",
+    "WeierstrassParameters",
     "self_affine_like",
     "weierstrass_like",
+    "weierstrass_parameters",
 ]
 
 #: Smallest number of grid points per side for a spectrum fit.
@@ -464,6 +466,109 @@ def self_affine_like(
     ]
 
 
+@dataclass(frozen=True)
+class WeierstrassParameters:
+    """The Weierstrass series statistically like a measured surface (:func:`weierstrass_parameters`).
+
+    Attributes
+    ----------
+    hurst : float
+        Hurst exponent in [0, 1] (the fitted one, moved to the nearest end of that range).
+    rq : float
+        RMS roughness about the least-squares plane, in metres.
+    shape : (int, int)
+        Grid points (nx, ny) of the simulated surfaces.
+    length : (float, float)
+        Side lengths (Lx, Ly) in metres, at the measured spacing.
+    gamma : float
+        Frequency ratio of successive terms.
+    n_terms : (int, int)
+        Terms per axis: every wavevector ``2π γ^k / max(Lx, Ly)`` up to the measured cut-off
+        ``q_s`` when one was detected, else up to the axis's Nyquist wavevector.
+    fit : SpectrumFit
+        The spectrum fit of the measured surface.
+    """
+
+    hurst: float
+    rq: float
+    shape: tuple[int, int]
+    length: tuple[float, float]
+    gamma: float
+    n_terms: tuple[int, int]
+    fit: SpectrumFit
+
+
+def weierstrass_parameters(
+    surface: Surface,
+    *,
+    gamma: float = 1.5,
+    shape: Sequence[int] | None = None,
+) -> WeierstrassParameters:
+    """The Weierstrass series (H, Rq, size, truncation) statistically like a measured surface.
+
+    Fits the measured surface (:func:`fit_spectrum`) and maps the fitted range onto the
+    series of :func:`contact.weierstrass`, whose term ``k`` (k = 0, 1, ...) sits at the
+    wavevector ``q_k = 2π γ^k / L`` with ``L = max(Lx, Ly)``: the lowest frequency is always
+    the grid's ``2π / L`` and only the truncation can be chosen. The number of terms per axis
+    is the number of wavevectors up to a detected cut-off,
+    ``n_terms = floor(log(q_s L / 2π) / log γ) + 1``, limited by the axis's Nyquist
+    wavevector ``π / dx`` (``π / dy``); without a detected cut-off every term up to that
+    Nyquist wavevector is kept.
+
+    Parameters
+    ----------
+    surface : Surface
+        The measured surface (fully measured, at least 32 x 32 points; metres).
+    gamma : float, default 1.5
+        Frequency ratio of successive terms, > 1.
+    shape : (nx, ny), optional
+        Grid of the simulated surfaces; default: the measured one, always at the measured
+        spacing.
+
+    Returns
+    -------
+    WeierstrassParameters
+
+    Warns
+    -----
+    contact.ContactWarning
+        The fitted H is outside [0, 1] (the nearest end is used), or a roll-off knee was
+        detected, which the series cannot reproduce (it keeps its power law down to
+        ``2π / L``).
+
+    Examples
+    --------
+    >>> import contact
+    >>> measured = contact.self_affine((128, 128), 1e-3, hurst=0.7, rq=1e-6, rng=3)
+    >>> p = contact.weierstrass_parameters(measured)
+    >>> p.shape, p.n_terms, round(p.hurst, 2), round(p.rq * 1e6, 2)
+    ((128, 128), (11, 11), 0.66, 0.97)
+    """
+    fit = fit_spectrum(surface)
+    nx, ny = _target_shape(fit, shape)
+    h = _physical_hurst(fit)
+    g = float(gamma) if isinstance(gamma, (int, float, np.integer, np.floating)) else math.nan
+    if isinstance(gamma, bool) or not (math.isfinite(g) and g > 1):
+        raise ValueError(f"gamma must be a finite frequency ratio > 1, got {gamma!r}")
+    lx, ly = nx * fit.dx, ny * fit.dy
+    big = max(lx, ly)
+    if fit.rolloff_detected and fit.q_r > 2 * math.pi / big:
+        warnings.warn(
+            f"the measured spectrum rolls off below q_r = {fit.q_r:.4g} rad/m, but a "
+            f"Weierstrass series keeps its power law down to 2π/L = {2 * math.pi / big:.4g} "
+            "rad/m; use self_affine_like to reproduce the roll-off",
+            ContactWarning,
+            stacklevel=2,
+        )
+
+    def terms(d: float) -> int:
+        top = min(fit.q_s, math.pi / d) if fit.cutoff_detected else math.pi / d
+        return max(1, math.floor(math.log(top * big / (2 * math.pi)) / math.log(g) + 1e-12) + 1)
+
+    return WeierstrassParameters(hurst=h, rq=fit.rq, shape=(nx, ny), length=(lx, ly), gamma=g,
+                                 n_terms=(terms(fit.dx), terms(fit.dy)), fit=fit)
+
+
 def weierstrass_like(
     surface: Surface,
     n: int,
@@ -474,9 +579,10 @@ def weierstrass_like(
 ) -> list[Surface]:
     """Weierstrass surfaces statistically like a measured one.
 
-    Fits the measured surface (:func:`fit_spectrum`) and draws ``n`` surfaces with
-    :func:`contact.weierstrass` at the fitted H; each is levelled by its least-squares
-    plane and scaled so that its Rq about that plane is the measured one.
+    Draws ``n`` surfaces with :func:`contact.weierstrass` with the parameters of
+    :func:`weierstrass_parameters` (the fitted H, the measured Rq, spacing and range); each
+    is levelled by its least-squares plane and scaled so that its Rq about that plane is the
+    measured one.
 
     Parameters
     ----------
@@ -501,20 +607,7 @@ def weierstrass_like(
     Warns
     -----
     contact.ContactWarning
-        The fitted H is outside [0, 1] (the nearest end is used), or a roll-off knee was
-        detected, which the series cannot reproduce (below).
-
-    Notes
-    -----
-    Mapping of the fitted range onto the series. :func:`contact.weierstrass` puts term
-    ``k`` (k = 0, 1, ...) at the wavevector ``q_k = 2π γ^k / L`` with ``L = max(Lx, Ly)``
-    of the generated grid: the lowest frequency is always the grid's ``2π / L`` and only the
-    truncation can be chosen. The number of terms per axis is the number of wavevectors up
-    to a detected cut-off, ``n_terms = floor(log(q_s L / 2π) / log γ) + 1``, limited by
-    the axis's Nyquist wavevector ``π / dx`` (``π / dy``); without a detected cut-off every
-    term up to that Nyquist wavevector is summed (the default of ``weierstrass``). A
-    roll-off knee ``q_r > 2π / L`` cannot be represented: the series keeps its power law
-    down to ``2π / L``, and a warning says so.
+        As :func:`weierstrass_parameters`.
 
     Examples
     --------
@@ -525,31 +618,11 @@ def weierstrass_like(
     (2, (128, 128), 1.0)
     """
     n = _count(n)
-    fit = fit_spectrum(surface)
-    nx, ny = _target_shape(fit, shape)
-    h = _physical_hurst(fit)
-    g = float(gamma) if isinstance(gamma, (int, float, np.integer, np.floating)) else math.nan
-    if isinstance(gamma, bool) or not (math.isfinite(g) and g > 1):
-        raise ValueError(f"gamma must be a finite frequency ratio > 1, got {gamma!r}")
+    p = weierstrass_parameters(surface, gamma=gamma, shape=shape)
     rng = np.random.default_rng(rng)
-    lx, ly = nx * fit.dx, ny * fit.dy
-    big = max(lx, ly)
-    if fit.rolloff_detected and fit.q_r > 2 * math.pi / big:
-        warnings.warn(
-            f"the measured spectrum rolls off below q_r = {fit.q_r:.4g} rad/m, but a "
-            f"Weierstrass series keeps its power law down to 2π/L = {2 * math.pi / big:.4g} "
-            "rad/m; use self_affine_like to reproduce the roll-off",
-            ContactWarning,
-            stacklevel=2,
-        )
-
-    def terms(d: float) -> int:
-        top = min(fit.q_s, math.pi / d) if fit.cutoff_detected else math.pi / d
-        return max(1, math.floor(math.log(top * big / (2 * math.pi)) / math.log(g) + 1e-12) + 1)
-
-    n_terms = (terms(fit.dx), terms(fit.dy))
     return [
-        _levelled(weierstrass((nx, ny), (lx, ly), h, gamma=g, rng=rng, n_terms=n_terms), fit.rq)
+        _levelled(weierstrass(p.shape, p.length, p.hurst, gamma=p.gamma, rng=rng,
+                              n_terms=p.n_terms), p.rq)
         for _ in range(n)
     ]
 
