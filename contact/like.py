@@ -450,7 +450,8 @@ def self_affine_like(
     >>> sims = contact.self_affine_like(measured, 3, rng=1)
     >>> len(sims), sims[0].shape, sims[0].dx == measured.dx
     (3, (128, 128), True)
-    >>> round(float(sims[0].roughness()["Sq"]) * 1e6, 6)
+    >>> measured_sq = float(measured.roughness(level="plane")["Sq"])
+    >>> round(float(sims[0].roughness()["Sq"]) / measured_sq, 6)
     1.0
     """
     n = _count(n)
@@ -614,7 +615,8 @@ def weierstrass_like(
     >>> import contact
     >>> measured = contact.self_affine((128, 128), 1e-3, hurst=0.7, rq=1e-6, rng=3)
     >>> sims = contact.weierstrass_like(measured, 2, rng=1)
-    >>> len(sims), sims[1].shape, round(float(sims[1].roughness()["Sq"]) * 1e6, 6)
+    >>> measured_sq = float(measured.roughness(level="plane")["Sq"])
+    >>> len(sims), sims[1].shape, round(float(sims[1].roughness()["Sq"]) / measured_sq, 6)
     (2, (128, 128), 1.0)
     """
     n = _count(n)
