@@ -418,7 +418,7 @@ def polonsky_keer(
     hf = np.ascontiguousarray(h, dtype=np.float64).ravel()
     vf = np.ascontiguousarray(valid, dtype=np.bool_).ravel()
     load_control = total_pressure is not None
-    shift = 0.0 if load_control else float(separation)
+    shift = 0.0 if separation is None else float(separation)
 
     if p0 is not None:
         if overwrite_p0:

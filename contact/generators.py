@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import cast
 
 import numpy as np
 
@@ -127,7 +128,10 @@ def weierstrass(
     if n1 < 1 or n2 < 1:
         raise ValueError(f"the grid {shape} is too coarse to resolve any Weierstrass term")
     if n_terms is not None:
-        m1, m2 = (n_terms, n_terms) if np.ndim(n_terms) == 0 else tuple(n_terms)
+        if np.ndim(n_terms) == 0:  # an int or a numpy integer
+            m1 = m2 = cast(int, n_terms)
+        else:
+            m1, m2 = tuple(cast("Sequence[int]", n_terms))
         if not (1 <= m1 <= n1 and 1 <= m2 <= n2) or int(m1) != m1 or int(m2) != m2:
             raise ValueError(
                 f"n_terms must be integers from 1 up to the Nyquist limit of this grid, "

@@ -34,11 +34,12 @@ def _local(tag: str) -> str:
 
 def _find(node: ET.Element, path: str) -> ET.Element | None:
     """Find a descendant by a '/'-separated path of local tag names (namespaces ignored)."""
+    found: ET.Element | None = node
     for name in path.split("/"):
-        if node is None:
+        if found is None:
             return None
-        node = next((c for c in node if _local(c.tag) == name), None)
-    return node
+        found = next((c for c in found if _local(c.tag) == name), None)
+    return found
 
 
 def _text(root: ET.Element, path: str, fname: str, default: str | None = None) -> str:
