@@ -29,6 +29,7 @@ import stat
 import sys
 import tempfile
 from pathlib import Path
+from typing import Any
 
 __all__ = ["cache_dir", "cache_is_cold", "compile_note", "package_dirs"]
 
@@ -81,7 +82,7 @@ def _choose() -> str | None:
     try:
         from numba.core import config
 
-        user = config.CACHE_DIR
+        user = config.CACHE_DIR  # type: ignore[attr-defined]  # set from the environment at run time
     except Exception:  # numba missing or reorganised: read the variable itself
         user = os.environ.get("NUMBA_CACHE_DIR", "")
     candidates: list[tuple[Path, bool]] = []
@@ -160,8 +161,9 @@ def _install() -> None:
     except ImportError:  # numba is a dependency; without it nothing is compiled anyway
         return
     impl = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
-    base = getattr(caching, "_CacheLocator", None)
-    mixin = getattr(caching, "_SourceFileBackedLocatorMixin", None)
+    # private numba classes, looked up at run time (absent in other numba versions)
+    base: Any = getattr(caching, "_CacheLocator", None)
+    mixin: Any = getattr(caching, "_SourceFileBackedLocatorMixin", None)
     classes = getattr(impl, "_locator_classes", None)
     if base is None or mixin is None or not isinstance(classes, list):
         return
