@@ -26,7 +26,8 @@ def main(argv: list[str] | None = None) -> int:
     if len(lambdas) != 4:
         parser.error(f"give four lambdas (lambda1 lambda2 lambda3 lambda4), got {len(lambdas)}")
     try:
-        g = GLD(*lambdas, param=args.param)
+        l1, l2, l3, l4 = lambdas
+        g = GLD(l1, l2, l3, l4, param=args.param)
     except InvalidParameterError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

@@ -53,7 +53,7 @@ def quantiles(lam: np.ndarray, fam: int, v, q) -> np.ndarray:
     return np.broadcast_to(l1, shape) + out / np.broadcast_to(np.abs(l2), shape)
 
 
-def max_quantiles(lam: np.ndarray, fam: int, n: float, logv) -> np.ndarray:
+def max_quantiles(lam: np.ndarray, fam: int, n: float | np.ndarray, logv) -> np.ndarray:
     """Quantiles of the maximum of n draws at probabilities exp(logv), Q(v^(1/n)) per row."""
     t = np.asarray(logv, dtype=float) / n
     return quantiles(lam, fam, np.exp(t), -np.expm1(t))

@@ -452,7 +452,8 @@ class BootstrapFit:
     def dists(self) -> list[GLD]:
         """The GLD of every successful resample, in resample order."""
         if "dists" not in self._cache:
-            self._cache["dists"] = [GLD(*row, param=self.param) for row in self._lam()]
+            self._cache["dists"] = [GLD(l1, l2, l3, l4, param=self.param)
+                                    for l1, l2, l3, l4 in self._lam()]
         return list(self._cache["dists"])
 
     def __glstat_distributions__(self) -> list[GLD]:
@@ -521,10 +522,10 @@ class BootstrapFit:
         if vectorized:
             res = np.asarray(statistic(frozen_batch(lam, self.param)), dtype=float)
             return res.reshape(lam.shape[0], -1)
-        rows = []
-        for row in lam:
+        rows: list[np.ndarray | None] = []
+        for l1, l2, l3, l4 in lam:
             try:
-                d = GLD(*row, param=self.param)
+                d = GLD(l1, l2, l3, l4, param=self.param)
             except InvalidParameterError:
                 rows.append(None)
                 continue
@@ -999,8 +1000,7 @@ def bootstrap(
             raise ValueError("groups need finite data: use nan_policy='raise' or 'omit'")
         grouping = _grouping(data, groups)
     x, _ = _S.prepare_data(data, nan_policy)
-    seq = np.random.SeedSequence([int(v) for v in np.random.default_rng(rng).integers(0, 2**63, size=4)])
-    entropy = tuple(int(v) for v in seq.entropy)
+    entropy = tuple(int(v) for v in np.random.default_rng(rng).integers(0, 2**63, size=4))
     if x is None:  # nan_policy="propagate" met a non-finite value
         full = fit(data, param, method, nan_policy="propagate", **options)
         lam = np.full((B, 4), np.nan)

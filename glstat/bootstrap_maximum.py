@@ -230,7 +230,7 @@ class BootstrapMaximum:
     confidence_level: float
     mixture: MaximumMixture
     full: MaximumDistribution
-    _lam: np.ndarray = field(repr=False, compare=False, default=None)
+    _lam: np.ndarray = field(repr=False, compare=False, default=None)  # type: ignore[arg-type]
     _param: str = field(repr=False, compare=False, default="rs")
     _means: np.ndarray | None = field(repr=False, compare=False, default=None)
     _counts: RowCounts | None = field(repr=False, compare=False, default=None)
@@ -241,8 +241,11 @@ class BootstrapMaximum:
         """Mean of each bootstrap GLD's maximum (NaN where it does not exist); with a random
         count, the count-weighted means of the fixed-n maxima (computed when first asked)."""
         if self._means is None:
-            object.__setattr__(self, "_means",
-                               count_max_moments(self._lam, FAMILY[self._param], self._counts, 1))
+            fam = FAMILY[self._param]
+            means = (max_raw_moments(self._lam, fam, self.n, 1) if self._counts is None
+                     else count_max_moments(self._lam, fam, self._counts, 1))
+            object.__setattr__(self, "_means", means)
+            return means
         return self._means
 
     @property
@@ -291,11 +294,12 @@ class BootstrapMaximum:
     def components(self) -> list[MaximumDistribution]:
         """``glstat.maximum(dist, n)`` of every bootstrap GLD (with its own count, if random)."""
         if self._counts is None:
-            return [maximum(GLD(*row, param=self._param), self.n) for row in self._lam]
+            return [maximum(GLD(l1, l2, l3, l4, param=self._param), self.n)
+                    for l1, l2, l3, l4 in self._lam]
         c = self._counts
-        return [maximum(GLD(*row, param=self._param),
-                         count=TabulatedCount(c.values, c.weights[b]))
-                for b, row in enumerate(self._lam)]
+        return [maximum(GLD(l1, l2, l3, l4, param=self._param),
+                        count=TabulatedCount(c.values, c.weights[b]))
+                for b, (l1, l2, l3, l4) in enumerate(self._lam)]
 
     def to_frame(self) -> pd.DataFrame:
         """One row per bootstrap GLD: draw, median and mean of its maximum."""

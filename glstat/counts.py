@@ -344,7 +344,13 @@ class RowCounts:
     @classmethod
     def common(cls, count: CountDistribution, rows: int) -> RowCounts:
         """The same count for ``rows`` rows."""
-        table = count if isinstance(count, TabulatedCount) else TabulatedCount(*count._table())
+        if isinstance(count, TabulatedCount):
+            table = count
+        elif isinstance(count, PoissonCount):
+            table = TabulatedCount(*count._table())
+        else:
+            raise TypeError(f"cannot tabulate the count {count!r}: give a glstat.PoissonCount or a "
+                            "glstat.TabulatedCount")
         return cls(table.values, np.broadcast_to(table.weights, (rows, table.values.size)))
 
     @classmethod

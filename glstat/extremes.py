@@ -517,7 +517,7 @@ class MaximumCountDistribution(MaximumDistribution):
     (see :func:`maximum` with ``count=``)."""
 
     @property
-    def n(self) -> None:
+    def n(self) -> None:  # type: ignore[override]  # no fixed number of draws
         """None: the number of draws is random (see :attr:`count`)."""
         return None
 
@@ -722,8 +722,8 @@ def order_statistic(dist, k: int, n: int) -> OrderStatisticDistribution:
         ``dist`` is not a continuous distribution.
     """
     parent = TailAccess(dist)
-    n = _check_integer(n, "n", "a number of draws")
-    k = _check_integer(k, "k", "a rank, 1 for the minimum")
-    if k > n:
-        raise ValueError(f"k must be between 1 and n = {n:g}, got k = {k:g}")
-    return OrderStatisticDistribution(_OrderStatisticGen(parent, (k, n), name="order_statistic"))
+    draws = _check_integer(n, "n", "a number of draws")
+    rank = _check_integer(k, "k", "a rank, 1 for the minimum")
+    if rank > draws:
+        raise ValueError(f"k must be between 1 and n = {draws:g}, got k = {rank:g}")
+    return OrderStatisticDistribution(_OrderStatisticGen(parent, (rank, draws), name="order_statistic"))

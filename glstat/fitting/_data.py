@@ -105,7 +105,7 @@ def _equation_shapes(x: np.ndarray, param: str):
         stats_list.append(("lmoments", lm))
     except FitError:
         pass
-    out = []
+    out: list[tuple[float, ...]] = []
     for meth, st in stats_list:
         try:
             roots = _roots(meth, param, st, 0.1)
@@ -290,7 +290,7 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     scored.sort(key=lambda t: t[0])
     # distinct starts: a start whose shapes are close to those of a better one explores the
     # same basin (the percentile and L-moment roots often pair up)
-    distinct = []
+    distinct: list[tuple[float, np.ndarray, np.ndarray]] = []
     for item in scored:
         if not _same_basin(item[1], [d[1] for d in distinct]):
             distinct.append(item)
@@ -305,7 +305,7 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     shift = n * math.log(iqr) if kind == L.MLE else 0.0
     rows = []
     flags = []
-    found = []
+    found: list[np.ndarray] = []
     best_val = math.inf
     cap = maxiter
     for i, (th0, w, is_guess) in enumerate(queue):

@@ -226,6 +226,7 @@ def _select(rows: list[dict], have_data: bool, by_objective: bool = False) -> in
     """
     best = -1
     best_key: tuple = ()
+    key: tuple[float, ...]
     for i, r in enumerate(rows):
         if not (r["valid"] and r["converged"]):
             continue
@@ -251,7 +252,7 @@ def _frame(rows, param: str):
         region = np.asarray(rs_region(lam[:, 2], lam[:, 3]), dtype=int)
     else:
         region = np.zeros(len(rows), dtype=int)
-    data = {f"lambda{i + 1}": lam[:, i] for i in range(4)}
+    data: dict[str, np.ndarray | list[Any]] = {f"lambda{i + 1}": lam[:, i] for i in range(4)}
     data["region"] = region
     for c in _COLUMNS[5:]:
         data[c] = [r[c] for r in rows]
@@ -264,7 +265,8 @@ def _make_fit(rows, sel, param, method, n, statistics, options, issues=()) -> GL
         lams = rows[sel]["lambdas"]
     else:
         lams = (math.nan,) * 4
-    return GLDFit(lambdas=tuple(float(v) for v in lams), param=param, method=method, n=n,
+    l1, l2, l3, l4 = (float(v) for v in lams)
+    return GLDFit(lambdas=(l1, l2, l3, l4), param=param, method=method, n=n,
                   statistics=statistics, options=options, issues=tuple(issues),
                   _candidates=tuple(rows))
 
@@ -378,12 +380,12 @@ def _poor_fit_issue(rows, param: str, method: str, x: np.ndarray) -> FitIssue | 
                 f"{count / (2.0 * n):.3g}), so fit the other values and the share of {value:.6g} "
                 "separately")
     elif method in _DATA_METHODS:
-        alt = " or ".join(f"'{m}'" for m in _DATA_METHODS if m != method)
-        msg += (f"; try param='{other}', method={alt}, or an equation method ('percentiles', "
+        others = " or ".join(f"'{m}'" for m in _DATA_METHODS if m != method)
+        msg += (f"; try param='{other}', method={others}, or an equation method ('percentiles', "
                 "'lmoments')")
     else:
-        alt = " or ".join(f"'{m}'" for m in ("percentiles", "lmoments") if m != method)
-        msg += (f"; try param='{other}', method={alt}, or a data-based method ('mle', 'mps', "
+        others = " or ".join(f"'{m}'" for m in ("percentiles", "lmoments") if m != method)
+        msg += (f"; try param='{other}', method={others}, or a data-based method ('mle', 'mps', "
                 "'starship')")
     return FitIssue(FitWarning, msg)
 
@@ -479,6 +481,7 @@ def fit_percentiles(rho=None, param: str = "rs", *, quantiles=None, u: float = 0
     u = _check_u(u)
     if (rho is None) == (quantiles is None):
         raise ValueError("give exactly one of rho=(rho1, rho2, rho3, rho4) or quantiles=(5 values)")
+    stats: tuple[float, ...]
     if quantiles is not None:
         q = np.asarray(quantiles, dtype=float)
         if q.shape != (5,):
