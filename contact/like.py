@@ -28,12 +28,12 @@ if TYPE_CHECKING:
 
 __all__ = [
     "SpectrumFit",
+    "WeierstrassParameters",
     "compare_surfaces",
     "fit_spectrum",
     "plot_psd_comparison",
     "psd_comparison",
     "radial_psd",
-    "WeierstrassParameters",
     "self_affine_like",
     "weierstrass_like",
     "weierstrass_parameters",

@@ -164,6 +164,19 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--target-pressure", type=_positive(float), metavar="MPA",
                    help="choose Rq so that the asperity model's mean contact pressure is MPA "
                         "(one Rq for all H, found on a few seeds; replaces --rq)")
+    src = p.add_mutually_exclusive_group()
+    src.add_argument("--topographies", nargs="+", metavar="PATH",
+                     help="measured topographies instead of simulated surfaces: files, folders or "
+                          "glob patterns (X3P, npy/npz, text, XYZ, and SurfaceTopography's formats "
+                          "when installed), each file one surface; they must share one square grid "
+                          "and spacing. --grid, --size, --rq, --hurst and the Weierstrass options "
+                          "do not apply")
+    src.add_argument("--like", metavar="FILE",
+                     help="simulate --surfaces Weierstrass surfaces statistically like this "
+                          "measured topography (H, Rq, grid, spacing and truncation from its "
+                          "spectrum) and compare them with it in the report")
+    p.add_argument("--form", choices=("plane", "mean", "none"), default="plane",
+                   help="form removed from each measured file (--topographies, --like)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--wait", action="store_true",
                    help="when another campaign runs in the output directory, wait for it to end "
@@ -202,7 +215,9 @@ def study_main(argv: list[str]) -> int:
             n_surfaces=surfaces, grid=grid, length=length, rq=args.rq * 1e-6, gamma=args.gamma,
             n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
             cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
-        if args.target_pressure is not None:
+        if args.topographies or args.like:
+            settings, surfaces = _measured_scene(args, argv, settings, surfaces)
+        elif args.target_pressure is not None:
             import dataclasses
 
             from .study import rq_for_pressure
@@ -218,7 +233,7 @@ def study_main(argv: list[str]) -> int:
         if args.compare_bem > surfaces:
             raise ValueError(f"--compare-bem K = {args.compare_bem} cannot exceed the {surfaces} "
                              f"surfaces per H (--surfaces); lower K or add surfaces")
-    except ValueError as exc:
+    except (ValueError, FileNotFoundError) as exc:
         print(f"glstat study: error: {exc}", file=sys.stderr)
         return 2
     import signal
@@ -300,19 +315,20 @@ def study_main(argv: list[str]) -> int:
         return status
     print(f"study finished in {time.perf_counter() - t0:.1f} s "
           f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
-    from .study.answer import degenerate_scene, fmt_mpa, fmt_probability
+    from .study.answer import case_name, degenerate_scene, fmt_mpa, fmt_probability
 
     table = res.summary()
     lvl = round(100 * asettings.confidence_level)
     print(f"Probability that the contact pressure exceeds {args.hardness:g} MPa somewhere on one "
-          f"{args.size:g} x {args.size:g} mm² area ({lvl} % interval):")
+          f"{settings.length * 1e3:g} x {settings.length * 1e3:g} mm² area ({lvl} % interval):")
     for _, r in table[table["sample"] == "asperity"].iterrows():
         model = "asperity model" if r["model"] == "asperity" else "elastic BEM   "
         check = ("" if r["coverage"] != r["coverage"] else
                  "  no GLD could be fitted (report: Moments and fitted GLD)" if r["damage"] != r["damage"]
                  else ("  check on held-out surfaces: passed" if r["passes_check"] else
                        "  check on held-out surfaces: failed"))
-        print(f"  H = {r['hurst']:g}, {model}: {fmt_probability(r['damage'])} "
+        case = "measured" if settings.measured else f"H = {r['hurst']:g}"
+        print(f"  {case}, {model}: {fmt_probability(r['damage'])} "
               f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}]; observed "
               f"{fmt_probability(r['observed_damage'])} of {r['n_surfaces']} surfaces; mean contact "
               f"pressure {fmt_mpa(r['mean_pressure_mpa'])}{check}")
@@ -325,13 +341,39 @@ def study_main(argv: list[str]) -> int:
         for (ih, il), c in res.bem.items():
             r = c.summary().set_index("quantity")["ratio_mean"]
             fits = c.fit_frame().set_index("model")["damage"]
-            print(f"H = {settings.hurst[ih]:g}, {settings.pressures[il] / 1e6:g} MPa: asperity / BEM "
+            print(f"{case_name(settings, ih)}, {settings.pressures[il] / 1e6:g} MPa: asperity / BEM "
                   f"contact fraction {_num(r['contact_fraction'], '.3g')}, mean pressure "
                   f"{_num(r['mean_pressure_MPa'], '.3g')}, max pressure "
                   f"{_num(r['max_pressure_MPa'], '.3g')}; damage P {_num(fits['asperity'], '.4g')} "
                   f"(asperity) vs {_num(fits['bem'], '.4g')} (BEM)")
     print(f"report: {res.report_html}  (and {res.report_md})")
     return 0
+
+
+#: Options that describe simulated surfaces, refused with --topographies.
+SIMULATION_OPTIONS = ("--grid", "--size", "--rq", "--hurst", "--n-terms", "--max-frequency",
+                      "--gamma", "--target-pressure", "--surfaces")
+
+
+def _measured_scene(args, argv: list[str], settings, surfaces: int):
+    """The campaign settings of ``--topographies`` or ``--like`` (the scene's material and loads
+    from ``settings``) and the number of surfaces per group."""
+    import dataclasses
+
+    from .study.measured import like_settings, measured_settings
+
+    scene = {name: getattr(settings, name) for name in ("pressures", "E", "nu", "cone_factor", "seed")}
+    if args.topographies:
+        given = [o for o in SIMULATION_OPTIONS if any(a == o or a.startswith(o + "=") for a in argv)]
+        if given:
+            raise ValueError(f"{', '.join(given)}: options of simulated surfaces, which do not "
+                             f"apply to --topographies (the files give grid, size and Rq)")
+        measured = measured_settings(args.topographies, form=args.form, **scene)
+        return measured, measured.n_surfaces
+    if args.target_pressure is not None:
+        raise ValueError("--target-pressure chooses Rq, which --like takes from the measured file")
+    like, _ = like_settings(args.like, surfaces, form=args.form, gamma=args.gamma, **scene)
+    return dataclasses.replace(like, n_examples=min(1, like.n_surfaces)), surfaces
 
 
 def _num(value, spec: str, factor: float = 1.0, unit: str = "") -> str:

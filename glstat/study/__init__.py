@@ -356,13 +356,20 @@ def run_study(
             "command": command or " ".join(sys.argv),
             "workers": workers_label or (type(executor).__name__ if executor is not None
                                          else f"{workers or os.cpu_count()} local processes")}
-    try:
-        from .paper import paper_findings
+    info["paper_findings"] = []  # the paper's tables describe its simulated scene only
+    if not settings.topographies:
+        try:
+            from .paper import paper_findings
 
-        info["paper_findings"] = paper_findings(n_contact={
-            settings.hurst[ih]: r["summary"]["n_contact"] for (ih, il), r in an.items() if il == 0})
-    except Exception as exc:  # the paper's tables never stop a report
-        info["paper_findings"] = [f"the consistency check could not be computed: {exc}"]
+            info["paper_findings"] = paper_findings(n_contact={
+                settings.hurst[ih]: r["summary"]["n_contact"] for (ih, il), r in an.items() if il == 0})
+        except Exception as exc:  # the paper's tables never stop a report
+            info["paper_findings"] = [f"the consistency check could not be computed: {exc}"]
+    if settings.like:
+        from .measured import like_comparison
+
+        say("measured template against the simulated surfaces")
+        info["like"] = like_comparison(settings, results)
     info["bem_analysis"] = bem_an
     info["bem_left_out"] = left_out if model != "asperity" else []
     if bem is not None:

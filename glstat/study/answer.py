@@ -15,6 +15,11 @@ from .analysis import SAMPLE_LABELS
 __all__ = ["calibration_frame", "degenerate_scene", "fmt_mpa", "fmt_probability", "summary_frame"]
 
 #: Columns of ``summary.csv`` (one row per H × load × model × sample).
+def case_name(settings, ih: int) -> str:
+    """How the report names group ``ih``: "H = 0.5", or "measured" for measured files."""
+    return "measured" if getattr(settings, "measured", False) else f"H = {settings.hurst[ih]:g}"
+
+
 SUMMARY_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "mean_pressure_mpa",
                    "asperities_per_surface", "points_in_contact_per_surface", "fit", "damage",
                    "damage_low", "damage_high", "observed_damage", "coverage", "coverage_low",
@@ -183,8 +188,10 @@ def degenerate_scene(analysis: dict) -> str:
 
 def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
                       bem_analysis: dict | None = None) -> tuple[list[list[Any]], list[str]]:
-    """Rows of the report's first table, one per (H, load) and model."""
+    """Rows of the report's first table, one per (H, load) and model (the paper's columns
+    only for the simulated Weierstrass scene)."""
     lvl = round(100 * asettings.confidence_level)
+    simulated = not getattr(settings, "topographies", ())
     rows = []
     cases = [(k, r, "") for k, r in analysis.items()]
     if bem_analysis:
@@ -212,18 +219,20 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
         elif bem and (ih, il) in bem and bem[(ih, il)].fits["bem"].damage is not None:
             de = bem[(ih, il)].fits["bem"].damage
             elastic = fmt_probability(_scalar(de.estimate))
-        rows.append([
-            f"H = {h:g}" + (f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1
-                            else "") + label,
+        row = [
+            case_name(settings, ih) + (f", {settings.pressures[il] / 1e6:g} MPa"
+                                       if len(settings.pressures) > 1 else "") + label,
             answer, check, fmt_probability(r["summary"].get("observed_damage", math.nan)),
             elastic, fmt_mpa(r["summary"]["mean_pressure"]),
-            PAPER_VERDICTS.get(h, "—") if abs(asettings.hardness - 2050) < 1e-9 else "—",
-            fmt_mpa(PAPER_MEAN_MPA.get(h, math.nan)) if h in PAPER_MEAN_MPA else "—",
-        ])
-    return rows, ["case", f"damage probability at {asettings.hardness:g} MPa, one area "
-                          f"[{lvl} % interval]", "check on held-out surfaces",
-                  "observed fraction of surfaces damaged", "elastic BEM", "mean contact pressure",
-                  "paper: damage", "paper: mean pressure"]
+        ]
+        if simulated:
+            row += [PAPER_VERDICTS.get(h, "—") if abs(asettings.hardness - 2050) < 1e-9 else "—",
+                    fmt_mpa(PAPER_MEAN_MPA.get(h, math.nan)) if h in PAPER_MEAN_MPA else "—"]
+        rows.append(row)
+    columns = ["case", f"damage probability at {asettings.hardness:g} MPa, one area "
+                       f"[{lvl} % interval]", "check on held-out surfaces",
+               "observed fraction of surfaces damaged", "elastic BEM", "mean contact pressure"]
+    return rows, columns + (["paper: damage", "paper: mean pressure"] if simulated else [])
 
 
 def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = None
@@ -238,7 +247,7 @@ def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = 
     for (ih, il), r, label in items:
         for kind in ("asperity", "grid"):
             v = r[kind].validation
-            case = f"H = {settings.hurst[ih]:g}" + (
+            case = case_name(settings, ih) + (
                 f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1 else "") + label
             if v.table is None:
                 rows.append([case, SAMPLE_LABELS[kind], "—", "—", "—", "—",

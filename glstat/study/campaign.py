@@ -90,6 +90,18 @@ class CampaignSettings:
         Root of the :class:`numpy.random.SeedSequence`.
     n_examples : int
         Surfaces per (H, load) (the first ones) whose full height and pressure maps are kept.
+    topographies : tuple of str
+        Measured files (absolute paths). Empty (the default): every surface is simulated.
+        Otherwise each file is one surface (surface i is file i, ``hurst`` is one label value
+        and ``grid``, ``length`` and ``rq`` describe the files; see
+        :func:`glstat.study.measured.measured_settings`), or, with ``like``, the one file is
+        the template whose spectrum gave the simulated surfaces' parameters.
+    digests : tuple of str
+        SHA-256 of each file, checked before it is used.
+    form : {"plane", "mean", "none"}
+        Form removed from each measured file.
+    like : bool
+        The measured file is a template; the surfaces are simulated.
     """
 
     hurst: tuple[float, ...] = (0.0, 0.5, 1.0)
@@ -105,8 +117,23 @@ class CampaignSettings:
     cone_factor: float = 0.2
     seed: int = 2019
     n_examples: int = 1
+    topographies: tuple[str, ...] = ()
+    digests: tuple[str, ...] = ()
+    form: str = "plane"
+    like: bool = False
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "topographies", tuple(str(v) for v in self.topographies))
+        object.__setattr__(self, "digests", tuple(str(v) for v in self.digests))
+        if len(self.digests) != len(self.topographies):
+            raise ValueError("digests must hold one SHA-256 per measured file (topographies)")
+        if self.form not in ("plane", "mean", "none"):
+            raise ValueError(f"form must be 'plane', 'mean' or 'none', got {self.form!r}")
+        if self.like and len(self.topographies) != 1:
+            raise ValueError("like=True needs exactly one measured file (topographies)")
+        if self.topographies and not self.like and self.n_surfaces > len(self.topographies):
+            raise ValueError(f"n_surfaces = {self.n_surfaces} exceeds the {len(self.topographies)} "
+                             f"measured files (one surface per file)")
         h = tuple(float(v) for v in np.atleast_1d(self.hurst))
         p = tuple(float(v) for v in np.atleast_1d(self.pressures))
         nt = self.n_terms if isinstance(self.n_terms, tuple | list) else (self.n_terms,)
@@ -160,9 +187,17 @@ class CampaignSettings:
         """
         d = dataclasses.asdict(self)
         d.pop("n_surfaces")
+        if not self.topographies:  # simulated surfaces: the identity of earlier versions
+            for name in ("topographies", "digests", "form", "like"):
+                d.pop(name)
         d = {k: list(v) if isinstance(v, tuple) else v for k, v in d.items()}
         d["format_version"] = FORMAT_VERSION
         return d
+
+    @property
+    def measured(self) -> bool:
+        """Whether the surfaces are measured files (not simulated)."""
+        return bool(self.topographies) and not self.like
 
     def max_frequency(self, ih: int) -> float:
         """Highest Weierstrass frequency of Hurst exponent number ``ih``, in 1/m."""
@@ -202,6 +237,30 @@ def surface_path(root: str | os.PathLike, settings: CampaignSettings, ih: int, i
     return Path(root) / f"H{h:g}_P{p:g}MPa" / f"surface_{i:04d}.npz"
 
 
+#: ISO 25178 parameters stored for every measured surface (``iso_<name>``).
+MEASURED_PARAMETERS = ("Sq", "Ssk", "Sku", "Sdq", "Sp", "Sv", "hurst")
+
+
+def campaign_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> Any:
+    """Surface i of (H index ``ih``, load index ``il``): measured file i, or the Weierstrass
+    surface of seed ``settings.seed_sequence(ih, il, i)`` (a :class:`contact.Surface`, metres)."""
+    import contact
+
+    if settings.measured:
+        from .measured import read_topography
+
+        return read_topography(settings.topographies[i], settings.form, settings.digests[i])
+    rng = np.random.default_rng(settings.seed_sequence(ih, il, i))
+    return contact.weierstrass((settings.grid, settings.grid), settings.length, settings.hurst[ih],
+                               settings.gamma, rq=settings.rq, rng=rng, n_terms=settings.n_terms[ih])
+
+
+def measured_rq(surface: Any) -> float:
+    """RMS height (m) of a surface's measured points about their mean."""
+    h = surface.heights if surface.mask is None else surface.heights[~np.asarray(surface.mask, bool)]
+    return float(np.sqrt(np.mean((h - h.mean()) ** 2)))
+
+
 def simulate_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> dict[str, np.ndarray]:
     """Generate and solve one surface (a campaign task; runs on a worker).
 
@@ -219,9 +278,7 @@ def simulate_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> di
     """
     import contact
 
-    rng = np.random.default_rng(settings.seed_sequence(ih, il, i))
-    surf = contact.weierstrass((settings.grid, settings.grid), settings.length, settings.hurst[ih],
-                               settings.gamma, rq=settings.rq, rng=rng, n_terms=settings.n_terms[ih])
+    surf = campaign_surface(settings, ih, il, i)
     with warnings.catch_warnings():
         # a load inside a jump of the model's force is recorded per surface (in_jump,
         # force_jump) and summarised once in the report, rather than warned about per surface
@@ -247,8 +304,14 @@ def simulate_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> di
         "force_error": np.float64(res.force_error),
         "in_jump": np.int64(bool(res.info.get("in_jump", False))),
         "force_jump": np.float64(abs(res.info.get("force_jump", 0.0))),
-        "rq": np.float64(np.sqrt(np.mean((surf.heights - surf.heights.mean()) ** 2))),
+        "rq": np.float64(measured_rq(surf)),
     }
+    if settings.measured:  # ISO 25178 parameters of each measured file (its form removed)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", contact.ContactWarning)
+            iso = surf.roughness(level="mean")
+        out.update({f"iso_{k}": np.float64(iso[k]) for k in MEASURED_PARAMETERS})
+        out["masked_fraction"] = np.float64(0.0 if surf.mask is None else np.mean(surf.mask))
     if i < settings.n_examples:
         out["heights"] = surf.heights.astype(np.float32)
         out["pressure"] = p.astype(np.float32)

@@ -154,7 +154,9 @@ def _display(a: np.ndarray, how: str, size: int = 512) -> np.ndarray:
 
 
 def _label(settings, ih: int, il: int) -> str:
-    return f"H = {settings.hurst[ih]:g}, {settings.pressures[il] / 1e6:g} MPa"
+    from .answer import case_name
+
+    return f"{case_name(settings, ih)}, {settings.pressures[il] / 1e6:g} MPa"
 
 
 def _kind_panels(plt) -> tuple[Any, list[tuple[Any, str]]]:
@@ -465,7 +467,8 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     rep = Report("Mechanical integrity of rough surfaces in contact — study report")
 
     # ---- the answer -------------------------------------------------------------------------
-    from .answer import check_rows, degenerate_scene, first_screen_rows
+    from .answer import case_name, check_rows, degenerate_scene, first_screen_rows
+    from .report_surfaces import like_section, measured_section, scene_sentence, surface_rows
 
     rep.heading("The answer")
     bem = info.get("bem")
@@ -487,17 +490,17 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         ratios = []
         for (ih, _), c in bem.items():
             r = c.summary().set_index("quantity")["ratio_mean"]
-            ratios.append(f"H = {settings.hurst[ih]:g}: mean pressure ×{1 / r['mean_pressure_MPa']:.2g}, "
+            ratios.append(f"{case_name(settings, ih)}: mean pressure ×{1 / r['mean_pressure_MPa']:.2g}, "
                           f"maximal pressure ×{1 / r['max_pressure_MPa']:.2g}")
         rep.paragraph("Contact model error: on the same surfaces the elastic boundary-element "
                       "solution gives " + "; ".join(ratios) + " the asperity model's (c = "
                       f"{settings.cone_factor:g}). The asperity model neglects elastic interaction "
                       "and prescribes the pressure shape; the damage verdict depends on the model.")
-    notes = [f"H = {settings.hurst[ih]:g}: {r['asperity'].end_note}" for (ih, il), r in analysis.items()
+    notes = [f"{case_name(settings, ih)}: {r['asperity'].end_note}" for (ih, il), r in analysis.items()
              if r["asperity"].end_note]
     if notes:
         rep.paragraph("⚠ Fitted end point: " + "; ".join(notes) + ".")
-    choices = [f"H = {settings.hurst[ih]:g}: {r['asperity'].choice.reason}"
+    choices = [f"{case_name(settings, ih)}: {r['asperity'].choice.reason}"
                for (ih, il), r in analysis.items() if r["asperity"].choice is not None]
     if choices:
         rep.paragraph("Fit of the peak pressures, chosen on an inner split of the surfaces (never on "
@@ -528,10 +531,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     # ---- summary ---------------------------------------------------------------------------
     rep.heading("Main results")
     rep.paragraph(
-        f"{settings.n_surfaces} Weierstrass surfaces per Hurst exponent, {settings.grid}² points on "
-        f"{settings.length * 1e3:g} × {settings.length * 1e3:g} mm², Rq = {settings.rq * 1e6:g} µm, "
-        f"pressed by a rigid flat (asperity model, c = {settings.cone_factor:g}, E = "
-        f"{settings.E / 1e9:g} GPa, ν = {settings.nu:g}). Per-asperity peaks: the GLD chosen per H "
+        scene_sentence(settings) + f" Per-asperity peaks: the GLD chosen per H "
         f"(above), B = {asettings.n_resamples} bootstrap resamples of whole surfaces; grid-point "
         f"pressures: {asettings.param.upper()} by {asettings.method} (the paper's), B = "
         f"{asettings.grid_resamples}; hardness {hard:g} MPa, {lvl} % intervals. Pressures in MPa.")
@@ -580,20 +580,15 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
                       "centring t-test at the test level not rejecting; docs/method.md §9): "
                       + "; ".join(calib) + ".")
 
+    # ---- the surfaces, when measured -----------------------------------------------------------
+    if settings.measured:
+        measured_section(rep, settings, results)
+    if info.get("like") is not None:
+        like_section(rep, settings, info["like"], plt)
+
     # ---- settings ---------------------------------------------------------------------------
     rep.heading("Settings, versions and timings")
-    srows = [["Hurst exponents H", ", ".join(f"{h:g}" for h in settings.hurst)],
-             ["nominal pressures (MPa)", ", ".join(f"{p / 1e6:g}" for p in settings.pressures)],
-             ["surfaces per (H, load)", settings.n_surfaces],
-             ["grid", f"{settings.grid} × {settings.grid}"],
-             ["size (mm)", f"{settings.length * 1e3:g} × {settings.length * 1e3:g}"],
-             ["Rq (µm)", settings.rq * 1e6], ["γ", settings.gamma],
-             ["Weierstrass terms per axis (n_terms) per H",
-              ", ".join("Nyquist" if n is None else str(n) for n in settings.n_terms)],
-             ["highest frequency γ^(N−1)/L (1/mm) per H",
-              ", ".join(f"{settings.max_frequency(i) / 1e3:.3g}" for i in range(len(settings.hurst)))],
-             ["shortest wavelength (µm) per H",
-              ", ".join(f"{1e6 / settings.max_frequency(i):.3g}" for i in range(len(settings.hurst)))],
+    srows = [*surface_rows(settings),
              ["E (GPa), ν, cone factor c",
               f"{settings.E / 1e9:g}, {settings.nu:g}, {settings.cone_factor:g}"],
              ["seed", settings.seed], ["hardness Pd (MPa)", hard],
@@ -608,9 +603,9 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
                       f"{b.n_compare}, {'periodic' if b.periodic else 'isolated patch'}, {b.tol:g}, "
                       f"{b.max_iter}"])
     rep.table(["setting", "value"], [[a, _fmt(b)] for a, b in srows])
-    for text in truncation_paragraphs(settings, info):
+    for text in ([] if settings.measured else truncation_paragraphs(settings, info)):
         rep.paragraph(text)
-    if info.get("truncation"):
+    if info.get("truncation") and not settings.measured:
         rep.table(["H", "n_terms", "highest frequency (1/mm)", "mean pressure (GPa)", "1 − α",
                    "asperities in contact"], info["truncation"],
                   truncation_caption(settings, info.get("truncation_reference")))

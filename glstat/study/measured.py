@@ -1,0 +1,297 @@
+"""Measured topographies in the study: each file one surface, or the template of simulated ones.
+
+Two ways in (docs/study.md, "Measured surfaces"):
+
+* :func:`measured_settings` — every file is one surface of the campaign (``glstat study
+  --topographies PATH ...``). The files must share grid and spacing; the form (plane by
+  default) is removed from each; heights and lengths come from the file in metres.
+* :func:`like_settings` — one measured file is the template: its spectrum gives the Hurst
+  exponent, Rq, size and truncation of the Weierstrass surfaces the campaign simulates
+  (``glstat study --like FILE``), the paper's "measure, then simulate statistically equivalent
+  surfaces" workflow.
+
+Either way the file names and their SHA-256 digests are part of the campaign's identity, so a
+changed or swapped file is never mixed with results computed from the old one.
+"""
+
+from __future__ import annotations
+
+import glob
+import hashlib
+import math
+import os
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .campaign import CampaignSettings, measured_rq
+
+__all__ = ["FORMS", "find_topographies", "like_settings", "measured_settings", "read_measured"]
+
+#: Form removal applied to each measured file: the least-squares plane, the mean, or nothing.
+FORMS = ("plane", "mean", "none")
+#: Relative tolerance on the grid spacing shared by all files.
+SPACING_RTOL = 1e-6
+
+
+def _suffixes() -> set[str]:
+    from contact.io import FORMATS
+
+    return set(FORMATS)
+
+
+def find_topographies(specs: str | os.PathLike | Iterable[str | os.PathLike]) -> list[Path]:
+    """The topography files named by ``specs``: files, folders (their files with a known
+    extension, not recursive) or glob patterns, sorted by name within each spec.
+
+    Raises
+    ------
+    FileNotFoundError
+        A file, folder or pattern matches nothing, or no topography file is found at all.
+    """
+    items = [specs] if isinstance(specs, str | os.PathLike) else list(specs)
+    known = _suffixes()
+    found: list[Path] = []
+    for spec in items:
+        text = os.fspath(spec)
+        p = Path(text).expanduser()
+        if p.is_dir():
+            files = sorted(f for f in p.iterdir() if f.is_file() and f.suffix.lower() in known)
+            if not files:
+                raise FileNotFoundError(
+                    f"no topography file in the folder {text} (known extensions: "
+                    f"{', '.join(sorted(known))}); name the files to read other formats")
+        elif p.is_file():
+            files = [p]
+        elif glob.has_magic(text):
+            files = sorted(Path(f) for f in glob.glob(os.path.expanduser(text)) if Path(f).is_file())
+            if not files:
+                raise FileNotFoundError(f"the pattern {text} matches no file")
+        else:
+            raise FileNotFoundError(f"no such topography file or folder: {text}")
+        found.extend(files)
+    unique = list(dict.fromkeys(f.resolve() for f in found))
+    if not unique:
+        raise FileNotFoundError("no topography file given")
+    return unique
+
+
+def file_digest(path: str | os.PathLike) -> str:
+    """SHA-256 of a file's bytes (hex), read in blocks."""
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def remove_form(surface: Any, form: str) -> Any:
+    """``surface`` less its least-squares plane (``"plane"``) or mean (``"mean"``), fitted on
+    the measured points, or unchanged (``"none"``)."""
+    if form not in FORMS:
+        raise ValueError(f"form must be one of {', '.join(FORMS)}, got {form!r}")
+    return surface if form == "none" else surface.detrend(form)
+
+
+def read_topography(path: str | os.PathLike, form: str, digest: str | None = None) -> Any:
+    """Read one measured file (:func:`contact.read`) and remove its form; with ``digest``,
+    refuse a file whose content changed since the campaign started."""
+    import contact
+
+    if digest is not None and file_digest(path) != digest:
+        raise ValueError(
+            f"{os.fspath(path)} changed since the campaign in this directory started (its SHA-256 "
+            f"differs); results of the old and new file must not be mixed: restore the file, or "
+            f"start over with --force or another --out")
+    return remove_form(contact.read(path), form)
+
+
+def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane") -> list[Any]:
+    """Read every file, remove its form, and check that all share one square grid and spacing.
+
+    Returns
+    -------
+    list of contact.Surface
+
+    Raises
+    ------
+    ValueError
+        Files of different grid or spacing, a grid that is not square with equal spacing on
+        both axes, or fewer than 16 points per side (the message names the file).
+    """
+    surfaces = []
+    first = None
+    for path in paths:
+        s = read_topography(path, form)
+        name = os.fspath(path)
+        nx, ny = s.shape
+        if nx != ny or not math.isclose(s.dx, s.dy, rel_tol=SPACING_RTOL):
+            raise ValueError(
+                f"{name}: the study needs square topographies with one spacing on both axes; this "
+                f"one has {nx} × {ny} points at {s.dx * 1e6:.6g} × {s.dy * 1e6:.6g} µm: crop it to "
+                f"a square (contact.Surface(heights[:n, :n], dx)) or resample it")
+        if nx < 16:
+            raise ValueError(f"{name}: {nx} × {ny} points is too small a grid (at least 16 per side)")
+        if first is None:
+            first = (name, s.shape, s.dx)
+        elif s.shape != first[1] or not math.isclose(s.dx, first[2], rel_tol=SPACING_RTOL):
+            raise ValueError(
+                f"{name} has {s.shape[0]} × {s.shape[1]} points at {s.dx * 1e6:.6g} µm spacing but "
+                f"{first[0]} has {first[1][0]} × {first[1][1]} at {first[2] * 1e6:.6g} µm: every "
+                f"topography of one study must share grid and spacing (one surface per file)")
+        if s.mask is not None and np.all(s.mask):
+            raise ValueError(f"{name}: every point is missing (masked)")
+        surfaces.append(s)
+    return surfaces
+
+
+def _hurst_estimate(surface: Any) -> float:
+    """Hurst exponent of a measured surface from its structure function (NaN when unphysical)."""
+    import warnings
+
+    import contact
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", contact.ContactWarning)
+        return float(surface.roughness(level="plane")["hurst"])
+
+
+def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
+                      form: str = "plane", **scene: Any) -> CampaignSettings:
+    """Campaign settings whose surfaces are measured files, one surface per file.
+
+    Parameters
+    ----------
+    specs : path, pattern or folder, or a sequence of them
+        The topographies (:func:`find_topographies`).
+    form : {"plane", "mean", "none"}
+        Form removed from each file before the contact solve.
+    **scene
+        Other :class:`CampaignSettings` fields: ``pressures`` (Pa), ``E`` (Pa), ``nu``,
+        ``cone_factor``, ``seed``.
+
+    Returns
+    -------
+    CampaignSettings
+        ``grid`` and ``length`` from the files, ``rq`` their mean RMS height about the removed
+        form (m), ``hurst`` one value: the median of the files' structure-function estimates in
+        [0, 1] (0.5 when none is physical) — a label of the group, not a simulation input.
+    """
+    paths = find_topographies(specs)
+    surfaces = read_measured(paths, form)
+    s0 = surfaces[0]
+    estimates = [h for h in (_hurst_estimate(s) for s in surfaces) if math.isfinite(h)]
+    hurst = float(np.clip(np.median(estimates), 0.0, 1.0)) if estimates else 0.5
+    return CampaignSettings(
+        hurst=(hurst,), n_surfaces=len(paths), grid=s0.shape[0], length=s0.shape[0] * s0.dx,
+        rq=float(np.mean([measured_rq(s) for s in surfaces])), n_terms=(None,),
+        n_examples=min(1, len(paths)), topographies=tuple(os.fspath(p) for p in paths),
+        digests=tuple(file_digest(p) for p in paths), form=form, **scene)
+
+
+def like_settings(path: str | os.PathLike, n_surfaces: int, *, form: str = "plane",
+                  gamma: float = 1.5, **scene: Any) -> tuple[CampaignSettings, Any]:
+    """Campaign settings for Weierstrass surfaces statistically like one measured file.
+
+    The file's form is removed, its spectrum fitted (:func:`contact.fit_spectrum`) and mapped
+    onto the series (:func:`contact.weierstrass_parameters`): H, Rq about the plane, grid and
+    spacing, truncation at the measured cut-off.
+
+    Parameters
+    ----------
+    path : path
+        The measured topography (square grid, one spacing, fully measured).
+    n_surfaces : int
+        Simulated surfaces.
+    form : {"plane", "mean", "none"}
+        Form removed from the file before the fit.
+    gamma : float
+        Frequency ratio of the series.
+    **scene
+        Other :class:`CampaignSettings` fields.
+
+    Returns
+    -------
+    settings : CampaignSettings
+    parameters : contact.WeierstrassParameters
+        The mapping, with the spectrum fit and its quality (``parameters.fit.r2``).
+    """
+    import contact
+
+    (p,) = find_topographies(path)
+    (measured,) = read_measured([p], form)
+    if measured.mask is not None and np.any(measured.mask):
+        raise ValueError(f"{os.fspath(path)} has missing points; the spectrum fit of --like needs "
+                         f"a fully measured topography (fill or crop the missing points)")
+    params = contact.weierstrass_parameters(measured, gamma=gamma)
+    settings = CampaignSettings(
+        hurst=(params.hurst,), n_surfaces=n_surfaces, grid=params.shape[0], length=params.length[0],
+        rq=params.rq, gamma=params.gamma, n_terms=(params.n_terms[0],),
+        topographies=(os.fspath(p),), digests=(file_digest(p),), form=form, like=True, **scene)
+    return settings, params
+
+
+#: Simulated surfaces regenerated for the comparison with the measured template.
+LIKE_COMPARED = 10
+
+
+def like_comparison(settings: CampaignSettings, results: dict) -> dict[str, Any]:
+    """The measured template of a ``like`` campaign against the surfaces simulated from it.
+
+    Parameters
+    ----------
+    settings : CampaignSettings
+        A campaign with ``like=True``.
+    results : dict
+        The campaign's per-surface results (:func:`glstat.study.campaign.load_results`).
+
+    Returns
+    -------
+    dict
+        ``parameters`` (:class:`contact.WeierstrassParameters` of the template), ``iso``
+        (:func:`contact.compare_surfaces` of the template and the first
+        :data:`LIKE_COMPARED` simulated surfaces), ``psd`` (:func:`contact.psd_comparison`),
+        ``measured`` and ``simulated`` (lists of :class:`contact.Surface`), ``pressure`` (a
+        DataFrame, one row per load and quantity: the template's asperity-model value and the
+        simulated surfaces' mean, 5 % and 95 % quantiles; pressures in Pa).
+    """
+    import warnings
+
+    import pandas as pd
+
+    import contact
+
+    from .campaign import campaign_surface
+
+    (measured,) = read_measured(settings.topographies, settings.form)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", contact.ContactWarning)
+        params = contact.weierstrass_parameters(measured, gamma=settings.gamma)
+        sims = [campaign_surface(settings, 0, 0, i) for i in range(min(LIKE_COMPARED,
+                                                                       settings.n_surfaces))]
+        iso = contact.compare_surfaces(measured, sims)
+    psd = contact.psd_comparison(measured, sims)
+    rows = []
+    for il, load in enumerate(settings.pressures):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", contact.ContactWarning)
+            res = contact.solve(measured, load, settings.E, settings.nu, settings.cone_factor)
+        mine = {"mean contact pressure": res.mean_pressure, "max pressure": res.max_pressure,
+                "asperities in contact": float(len(res.asperities)),
+                "contact fraction": float(np.mean(res.pressure > 0))}
+        keys = [k for k in results if k[0] == 0 and k[1] == il]
+        sim = {"mean contact pressure": [results[k]["mean_pressure"] for k in keys],
+               "max pressure": [results[k]["max_pressure"] for k in keys],
+               "asperities in contact": [results[k]["n_asperities"] for k in keys],
+               "contact fraction": [results[k]["n_contact"] / results[k]["n_points"] for k in keys]}
+        for name, value in mine.items():
+            v = np.asarray(sim[name], dtype=float)
+            rows.append({"pressure_mpa": load / 1e6, "quantity": name, "measured": float(value),
+                         "simulated_mean": float(v.mean()) if v.size else math.nan,
+                         "simulated_q05": float(np.quantile(v, 0.05)) if v.size else math.nan,
+                         "simulated_q95": float(np.quantile(v, 0.95)) if v.size else math.nan,
+                         "n_simulated": int(v.size)})
+    return {"parameters": params, "iso": iso, "psd": psd, "measured": measured, "simulated": sims,
+            "pressure": pd.DataFrame(rows)}

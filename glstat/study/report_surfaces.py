@@ -1,0 +1,166 @@
+"""Report text and sections describing the surfaces: simulated, measured, or simulated like a
+measured template (computations live in :mod:`glstat.study.measured`)."""
+
+from __future__ import annotations
+
+import math
+import os
+from typing import Any
+
+from .campaign import MEASURED_PARAMETERS
+
+__all__ = ["like_section", "measured_section", "scene_sentence", "surface_rows"]
+
+#: Units and scale of the ISO parameters in the measured table.
+_ISO_DISPLAY = {"Sq": ("Sq (µm)", 1e6), "Ssk": ("Ssk", 1.0), "Sku": ("Sku", 1.0),
+                "Sdq": ("Sdq", 1.0), "Sp": ("Sp (µm)", 1e6), "Sv": ("Sv (µm)", 1e6),
+                "hurst": ("H (structure function)", 1.0)}
+
+
+def _mm(settings) -> str:
+    return f"{settings.length * 1e3:g} × {settings.length * 1e3:g} mm²"
+
+
+def scene_sentence(settings) -> str:
+    """The first sentence of "Main results": what surfaces were pressed, and how."""
+    model = (f"pressed by a rigid flat (asperity model, c = {settings.cone_factor:g}, E = "
+             f"{settings.E / 1e9:g} GPa, ν = {settings.nu:g})")
+    if settings.measured:
+        return (f"{settings.n_surfaces} measured topographies (one surface per file, form removed: "
+                f"{settings.form}), {settings.grid}² points on {_mm(settings)}, mean Rq = "
+                f"{settings.rq * 1e6:.3g} µm, {model}.")
+    like = ""
+    if settings.like:
+        like = (f", statistically like the measured {os.path.basename(settings.topographies[0])} "
+                f"(H, Rq, size and truncation from its spectrum; section \"Measured template and "
+                f"simulated surfaces\")")
+    return (f"{settings.n_surfaces} Weierstrass surfaces per Hurst exponent{like}, {settings.grid}² "
+            f"points on {_mm(settings)}, Rq = {settings.rq * 1e6:.4g} µm, {model}.")
+
+
+def surface_rows(settings) -> list[list[Any]]:
+    """The rows of the settings table that describe the surfaces."""
+    rows: list[list[Any]] = []
+    if settings.measured:
+        rows += [["measured topographies", f"{len(settings.topographies)} files in "
+                  f"{os.path.commonpath([os.path.dirname(p) for p in settings.topographies])}"],
+                 ["form removed", settings.form],
+                 ["Hurst exponent (median structure-function estimate; a label only)",
+                  f"{settings.hurst[0]:.3g}"]]
+    else:
+        rows.append(["Hurst exponents H", ", ".join(f"{h:.4g}" for h in settings.hurst)])
+        if settings.like:
+            rows += [["measured template", settings.topographies[0]],
+                     ["its SHA-256", settings.digests[0]], ["form removed", settings.form]]
+    rows += [["nominal pressures (MPa)", ", ".join(f"{p / 1e6:g}" for p in settings.pressures)],
+             ["surfaces per (H, load)", settings.n_surfaces],
+             ["grid", f"{settings.grid} × {settings.grid}"],
+             ["size (mm)", f"{settings.length * 1e3:g} × {settings.length * 1e3:g}"],
+             ["Rq (µm)" + (" (mean over the files)" if settings.measured else ""), settings.rq * 1e6]]
+    if not settings.measured:
+        n = len(settings.hurst)
+        rows += [["γ", settings.gamma],
+                 ["Weierstrass terms per axis (n_terms) per H",
+                  ", ".join("Nyquist" if t is None else str(t) for t in settings.n_terms)],
+                 ["highest frequency γ^(N−1)/L (1/mm) per H",
+                  ", ".join(f"{settings.max_frequency(i) / 1e3:.3g}" for i in range(n))],
+                 ["shortest wavelength (µm) per H",
+                  ", ".join(f"{1e6 / settings.max_frequency(i):.3g}" for i in range(n))]]
+    return rows
+
+
+def _num(v: float, scale: float = 1.0, spec: str = ".3g") -> str:
+    return "—" if v is None or not math.isfinite(v) else format(v * scale, spec)
+
+
+def measured_section(rep, settings, results: dict) -> None:
+    """"Measured topographies": one row per file with its ISO 25178 parameters and its contact."""
+    rep.heading("Measured topographies")
+    rep.paragraph(
+        f"Each file is one surface; its form ({settings.form}) was removed before the contact "
+        f"solve, lengths and heights come from the file in metres and the analysed area is one "
+        f"file's ({_mm(settings)}; points missing in a file carry no load). ISO 25178-2 parameters "
+        f"about the mean of the levelled heights; the Hurst exponent from the structure function "
+        f"(— when the fit is outside [0, 1]). A file's SHA-256 is checked before it is used, so a "
+        f"changed file is never mixed with results of the old one.")
+    cols = ["file", *[_ISO_DISPLAY[k][0] for k in MEASURED_PARAMETERS], "missing points",
+            *[f"{p / 1e6:g} MPa: mean / max pressure (MPa), asperities" for p in settings.pressures]]
+    rows = []
+    for i, path in enumerate(settings.topographies[:settings.n_surfaces]):
+        first = next((results[k] for k in results if k[0] == 0 and k[2] == i), None)
+        if first is None:
+            continue
+        row = [os.path.basename(path)]
+        row += [_num(float(first.get(f"iso_{k}", math.nan)), _ISO_DISPLAY[k][1])
+                for k in MEASURED_PARAMETERS]
+        row.append(f"{100 * float(first.get('masked_fraction', 0.0)):.2g} %")
+        for il in range(len(settings.pressures)):
+            r = results.get((0, il, i))
+            row.append("—" if r is None else
+                       f"{_num(float(r['mean_pressure']), 1e-6, '.4g')} / "
+                       f"{_num(float(r['max_pressure']), 1e-6, '.4g')}, {int(r['n_asperities'])}")
+        rows.append(row)
+    rep.table(cols, rows, "One row per measured file.")
+    if settings.n_surfaces < 10:
+        rep.paragraph(f"⚠ {settings.n_surfaces} files: the checks on held-out surfaces need about "
+                      f"ten or more; with fewer they are weak or not run (the table of checks says "
+                      f"which).")
+
+
+def like_section(rep, settings, like: dict, plt) -> None:
+    """"Measured template and simulated surfaces": spectrum fit, ISO parameters and PSDs side by
+    side, and the contact of the template against the simulated surfaces."""
+    p = like["parameters"]
+    fit = p.fit
+    rep.heading("Measured template and simulated surfaces")
+    rep.paragraph(
+        f"The surfaces of this study are Weierstrass series statistically like the measured "
+        f"{os.path.basename(settings.topographies[0])} (form removed: {settings.form}). Its "
+        f"radially averaged PSD gives H = {fit.hurst:.3g} ± {fit.hurst_se:.2g} (R² = {fit.r2:.3g} "
+        f"over {fit.n_bins} rings, {fit.q_fit_min:.3g}–{fit.q_fit_max:.3g} rad/m"
+        + (f"; used H = {p.hurst:.3g}, the nearest end of [0, 1]" if p.hurst != fit.hurst else "")
+        + f"), Rq = {p.rq * 1e6:.4g} µm about its plane, and "
+        + (f"a short-wavelength cut-off at {fit.q_s:.3g} rad/m" if fit.cutoff_detected
+           else "no short-wavelength cut-off (the series runs to the Nyquist wavevector)")
+        + (f"; its roll-off below {fit.q_r:.3g} rad/m cannot be reproduced by the series"
+           if fit.rolloff_detected else "")
+        + f". The series has {p.n_terms[0]} terms per axis (γ = {p.gamma:g}) on the measured grid "
+          f"and spacing.")
+    iso = like["iso"]
+    n_sim = len(like["simulated"])
+    rows = [[name, _num(r["measured"], 1e6 if r["unit"] == "m" else 1.0, ".4g"),
+             _num(r["simulated_mean"], 1e6 if r["unit"] == "m" else 1.0, ".4g"),
+             _num(r["simulated_std"], 1e6 if r["unit"] == "m" else 1.0, ".2g"),
+             _num(r["z"], 1.0, ".2g"), "µm" if r["unit"] == "m" else r["unit"]]
+            for name, r in iso.iterrows()]
+    rep.table(["parameter", "measured", "simulated mean", "simulated sd", "z", "unit"], rows,
+              f"ISO 25178-2 parameters (about the least-squares plane) of the measured template and "
+              f"of the first {n_sim} simulated surfaces; z = (measured − simulated mean) / "
+              f"simulated sd.")
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
+    psd = like["psd"]
+    ax.fill_between(psd["q"], psd["simulated_low"], psd["simulated_high"], alpha=0.3, color="C1",
+                    label=f"simulated ({n_sim}), 95 % band")
+    ax.loglog(psd["q"], psd["simulated_mean"], "--", color="C1", label="simulated, mean")
+    ax.loglog(psd["q"], psd["measured"], color="C0", label="measured")
+    ax.set_xlabel("wavevector q (rad/m)")
+    ax.set_ylabel("radially averaged PSD (m⁴)")
+    ax.legend()
+    rep.figure("psd_like", fig, "Radially averaged power spectral density of the measured template "
+                                "and of the simulated surfaces.")
+    prow = []
+    for _, r in like["pressure"].iterrows():
+        scale, spec = ((1e-6, ".4g") if "pressure" in r["quantity"] else (1.0, ".3g"))
+        prow.append([f"{r['pressure_mpa']:g} MPa", r["quantity"], _num(r["measured"], scale, spec),
+                     _num(r["simulated_mean"], scale, spec),
+                     f"{_num(r['simulated_q05'], scale, spec)} – {_num(r['simulated_q95'], scale, spec)}"])
+    rep.table(["load", "quantity", "measured template", "simulated mean", "simulated 5–95 %"], prow,
+              "The asperity model on the measured template and on the simulated surfaces "
+              "(pressures in MPa). A template value outside the simulated range means the "
+              "simulated surfaces do not reproduce its contact.")
+    outside = [r["quantity"] for _, r in like["pressure"].iterrows()
+               if not (r["simulated_q05"] <= r["measured"] <= r["simulated_q95"])]
+    if outside:
+        rep.paragraph("⚠ Outside the simulated 5–95 % range: " + ", ".join(sorted(set(outside)))
+                      + ". The damage probability above describes the simulated surfaces; compare "
+                        "with a study of measured topographies (--topographies).")
