@@ -176,12 +176,13 @@ def plot_histogram(data, *fits_or_dists, bins: str | int | Any = "auto", names=N
     return ax
 
 
-def _hazen(n: int) -> np.ndarray:
-    return (np.arange(1, n + 1) - 0.5) / n
+# Hazen plotting positions (i - 0.5)/n: statsmodels' ProbPlot with a = 0.5 (its default a = 0
+# gives i/(n + 1))
+_HAZEN_A = 0.5
 
 
-def _probability_plot(caller: str, data, fits_or_dists, names, ax):
-    """The sample, the named models, the axes and the plotting positions of a Q–Q or P–P plot.
+def _probability_plots(caller: str, data, fits_or_dists, names, ax):
+    """The named models of a Q–Q or P–P plot, each with its statsmodels ``ProbPlot``, and the axes.
 
     Parameters
     ----------
@@ -198,24 +199,31 @@ def _probability_plot(caller: str, data, fits_or_dists, names, ax):
 
     Returns
     -------
-    x : ndarray
-        The sorted finite sample.
-    models : list of (str, distribution)
-        As :func:`_named_dists` returns them.
+    plots : list of (str, statsmodels.graphics.gofplots.ProbPlot)
+        One per model, in the order given: the legend label and the probability plot of the
+        sorted finite sample against the model (taken as given, ``fit=False``), with Hazen
+        plotting positions (i − 0.5)/n.
     ax : matplotlib.axes.Axes
-    p : ndarray
-        Hazen plotting positions (i − 0.5)/n.
 
     Raises
     ------
     ValueError
         No model given.
     """
+    from statsmodels.graphics.gofplots import ProbPlot
+
     if not fits_or_dists:
         raise ValueError(f"{caller} needs at least one fit or distribution")
     x = _sample(data)
     models = _named_dists(fits_or_dists, names)
-    return x, models, _axes(ax), _hazen(x.size)
+    return [(name, ProbPlot(x, dist=dist, fit=False, a=_HAZEN_A)) for name, dist in models], _axes(ax)
+
+
+def _style(j: int, name: str) -> dict[str, Any]:
+    """Marker style of the j-th model's points (statsmodels colours every face C0 otherwise)."""
+    colour = f"C{j}"
+    return {"color": colour, "markerfacecolor": colour, "markeredgecolor": colour, "marker": "o",
+            "markersize": 3, "linestyle": "none", "label": name}
 
 
 def plot_qq(data, *fits_or_dists, names=None, ax=None) -> Any:
@@ -239,17 +247,14 @@ def plot_qq(data, *fits_or_dists, names=None, ax=None) -> Any:
         (i − 0.5)/n, y: the i-th smallest data value, both in data units), then the
         reference line y = x (label ``"y = x"``).
     """
-    x, models, ax, p = _probability_plot("plot_qq", data, fits_or_dists, names, ax)
-    lo, hi = x[0], x[-1]
-    for j, (name, dist) in enumerate(models):
-        q = np.asarray(dist.ppf(p), dtype=float)
-        ax.plot(q, x, linestyle="none", marker="o", markersize=3, color=f"C{j}", label=name)
-        fin = q[np.isfinite(q)]
-        if fin.size:
-            lo, hi = min(lo, fin.min()), max(hi, fin.max())
-    ax.plot([lo, hi], [lo, hi], color="k", linewidth=1, label="y = x")
-    ax.set_xlabel("model quantile")
-    ax.set_ylabel("sample quantile")
+    from statsmodels.graphics.gofplots import qqline
+
+    plots, ax = _probability_plots("plot_qq", data, fits_or_dists, names, ax)
+    for j, (name, pp) in enumerate(plots):
+        with np.errstate(all="ignore"):
+            pp.qqplot(ax=ax, xlabel="model quantile", ylabel="sample quantile", **_style(j, name))
+    # across the points of every model: ends at the smaller and the larger of the two axis limits
+    qqline(ax, "45", fmt="k-", linewidth=1, label="y = x")
     ax.legend()
     return ax
 
@@ -274,16 +279,14 @@ def plot_pp(data, *fits_or_dists, names=None, ax=None) -> Any:
         One marker line per model (x: empirical probability (i − 0.5)/n, y: F(x_(i)), both
         dimensionless), then the diagonal (label ``"y = x"``).
     """
-    x, models, ax, p = _probability_plot("plot_pp", data, fits_or_dists, names, ax)
-    for j, (name, dist) in enumerate(models):
+    from statsmodels.graphics.gofplots import qqline
+
+    plots, ax = _probability_plots("plot_pp", data, fits_or_dists, names, ax)
+    for j, (name, pp) in enumerate(plots):
         with np.errstate(all="ignore"):
-            f = np.asarray(dist.cdf(x), dtype=float)
-        ax.plot(p, f, linestyle="none", marker="o", markersize=3, color=f"C{j}", label=name)
-    ax.plot([0, 1], [0, 1], color="k", linewidth=1, label="y = x")
-    ax.set_xlim(0, 1)
-    ax.set_ylim(0, 1)
-    ax.set_xlabel("empirical probability")
-    ax.set_ylabel("model probability")
+            pp.ppplot(ax=ax, xlabel="empirical probability", ylabel="model probability", **_style(j, name))
+    # ppplot has set both axes to [0, 1]: the diagonal from (0, 0) to (1, 1)
+    qqline(ax, "45", fmt="k-", linewidth=1, label="y = x")
     ax.legend()
     return ax
 

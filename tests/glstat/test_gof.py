@@ -441,3 +441,120 @@ def test_gev_fit_at_least_as_likely_as_its_gumbel_special_case(seed):
     tab = compare_families(x, families=("genextreme", "gumbel_r")).set_index("family")
     assert tab.loc["genextreme", "loglik"] >= tab.loc["gumbel_r", "loglik"] - 1e-6
     assert tab.loc["genextreme", "ks"] < 0.05
+
+
+# ---------------------------------------------------------------------------------------------
+# multiple testing
+# ---------------------------------------------------------------------------------------------
+def _holm(p):
+    """Holm (1979) step-down adjusted p-values: with p_(1) <= ... <= p_(m), the adjusted p_(i)
+    is max over j <= i of min(1, (m - j + 1) p_(j))."""
+    p = np.asarray(p, dtype=float)
+    m = p.size
+    order = np.argsort(p, kind="stable")
+    out = np.empty(m)
+    running = 0.0
+    for j, k in enumerate(order, start=1):
+        running = max(running, min(1.0, (m - j + 1) * p[k]))
+        out[k] = running
+    return out
+
+
+def test_holm_adjustment_by_hand():
+    from glstat.gof import adjust_pvalues
+
+    p = np.array([0.01, 0.04, 0.03, 0.005, 0.2])
+    # sorted 0.005, 0.01, 0.03, 0.04, 0.2 times 5, 4, 3, 2, 1 = 0.025, 0.04, 0.09, 0.08, 0.2,
+    # then the running maximum: 0.025, 0.04, 0.09, 0.09, 0.2
+    expected = np.array([0.04, 0.09, 0.09, 0.025, 0.2])
+    np.testing.assert_allclose(_holm(p), expected, rtol=1e-15)
+    np.testing.assert_allclose(adjust_pvalues(p), expected, rtol=1e-15)
+    np.testing.assert_allclose(adjust_pvalues(p, method="holm"), expected, rtol=1e-15)
+    # ties, a p-value of 1 and the cap at 1
+    q = [0.02, 0.02, 0.5, 1.0, 0.3]
+    np.testing.assert_allclose(adjust_pvalues(q), _holm(q), rtol=1e-15)
+    assert adjust_pvalues(q).max() == 1.0
+    # a single test is left as it is; the shape is kept
+    np.testing.assert_array_equal(adjust_pvalues([0.03]), [0.03])
+    np.testing.assert_allclose(adjust_pvalues(p[:4].reshape(2, 2)), _holm(p[:4]).reshape(2, 2), rtol=1e-15)
+
+
+def test_adjusted_pvalues_other_methods_and_nan():
+    from statsmodels.stats.multitest import multipletests
+
+    from glstat.gof import adjust_pvalues
+
+    p = np.array([0.01, 0.04, 0.03, 0.005, 0.2])
+    np.testing.assert_allclose(adjust_pvalues(p, "bonferroni"), np.minimum(1.0, 5 * p), rtol=1e-15)
+    for method in ("sidak", "holm-sidak", "hommel", "fdr_bh", "fdr_by"):
+        np.testing.assert_array_equal(adjust_pvalues(p, method), multipletests(p, method=method)[1])
+    np.testing.assert_array_equal(adjust_pvalues(p, "fdr_tsbh", alpha=0.1),
+                                  multipletests(p, alpha=0.1, method="fdr_tsbh")[1])
+    # NaN (a test without a p-value) stays NaN and is no part of the family
+    with_nan = np.array([0.01, np.nan, 0.04, 0.03])
+    out = adjust_pvalues(with_nan)
+    assert math.isnan(out[1])
+    np.testing.assert_allclose(out[[0, 2, 3]], _holm([0.01, 0.04, 0.03]), rtol=1e-15)
+    assert np.all(np.isnan(adjust_pvalues([np.nan, np.nan])))
+    s = pd.Series(with_nan, index=["H=0.5", "H=0.6", "H=0.7", "H=0.8"], name="ks_pvalue")
+    adj = adjust_pvalues(s)
+    assert isinstance(adj, pd.Series) and adj.name == "ks_pvalue" and list(adj.index) == list(s.index)
+    np.testing.assert_array_equal(adj.to_numpy(), out)
+
+
+def test_adjusted_columns_of_goodness_of_fit_tables():
+    from glstat.gof import adjust_pvalues
+
+    # one sample per Hurst exponent, each tested against a model fixed in advance
+    rng = np.random.default_rng(3)
+    hurst = (0.5, 0.6, 0.7, 0.8)
+    tabs = []
+    for h in hurst:
+        x = rng.normal(0.2 * (h - 0.5), 1.0, size=80)
+        t = gof_report(x, stats.norm(), RS_NORMAL, names=["norm", "gld"])
+        t.insert(0, "hurst", h)
+        tabs.append(t)
+    tab = pd.concat(tabs, ignore_index=True)
+    before = tab.copy()
+    out = adjust_pvalues(tab)
+    pd.testing.assert_frame_equal(tab, before)  # the input is not modified
+    for col in ("ks_pvalue", "ad_pvalue", "cvm_pvalue", "chi2_pvalue"):
+        cols = list(out.columns)
+        assert cols[cols.index(col) + 1] == f"{col}_adj"
+        np.testing.assert_allclose(out[f"{col}_adj"], _holm(tab[col]), rtol=1e-15)
+        pd.testing.assert_series_equal(out[col], tab[col])
+    assert (out["pvalue_adjustment"] == "holm").all()
+    assert len(out.columns) == len(tab.columns) + 5
+    # one family per model: its tests across the Hurst exponents
+    by = adjust_pvalues(tab, method="bonferroni", columns="ks_pvalue", by="name")
+    assert "ad_pvalue_adj" not in by.columns
+    for name in ("norm", "gld"):
+        rows = tab["name"] == name
+        np.testing.assert_allclose(by.loc[rows, "ks_pvalue_adj"],
+                                   np.minimum(1.0, len(hurst) * tab.loc[rows, "ks_pvalue"]), rtol=1e-15)
+    assert (by["pvalue_adjustment"] == "bonferroni").all()
+
+
+def test_adjust_pvalues_bad_input():
+    from glstat.gof import adjust_pvalues
+
+    with pytest.raises(ValueError, match=r"in \[0, 1\]"):
+        adjust_pvalues([0.1, 1.5])
+    with pytest.raises(ValueError, match=r"in \[0, 1\]"):
+        adjust_pvalues([-0.1])
+    with pytest.raises(ValueError, match="not a statsmodels multipletests method"):
+        adjust_pvalues([0.1], method="holmes")
+    with pytest.raises(ValueError, match="alpha"):
+        adjust_pvalues([0.1], alpha=1.0)
+    with pytest.raises(TypeError, match="numeric"):
+        adjust_pvalues(["a", "b"])
+    with pytest.raises(TypeError, match="DataFrame only"):
+        adjust_pvalues([0.1], by="name")
+    frame = pd.DataFrame({"name": ["a", "b"], "p": [0.1, 0.2]})
+    with pytest.raises(ValueError, match="no '\\*_pvalue' column"):
+        adjust_pvalues(frame)
+    with pytest.raises(ValueError, match="lacks column"):
+        adjust_pvalues(frame, columns=["q"])
+    with pytest.raises(ValueError, match="by column"):
+        adjust_pvalues(frame, columns="p", by="model")
+    np.testing.assert_allclose(adjust_pvalues(frame, columns="p")["p_adj"], [0.2, 0.2])

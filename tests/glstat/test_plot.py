@@ -77,6 +77,65 @@ def test_pp_points_are_model_cdf_against_plotting_positions():
     assert ax.get_xlim() == (0.0, 1.0) and ax.get_ylim() == (0.0, 1.0)
 
 
+def test_qq_and_pp_points_by_hand():
+    # three points against U(0, 4): Hazen positions (i - 0.5)/n = 1/6, 1/2, 5/6
+    data = [3.0, np.nan, 1.0, 2.0]  # the NaN is left out
+    unif = stats.uniform(0.0, 4.0)
+    p = np.array([1.0, 3.0, 5.0]) / 6.0
+    qq = plot_qq(data, unif).get_lines()
+    np.testing.assert_allclose(qq[0].get_xdata(), 4.0 * p, rtol=1e-15)
+    np.testing.assert_array_equal(qq[0].get_ydata(), [1.0, 2.0, 3.0])
+    pp = plot_pp(data, unif).get_lines()
+    np.testing.assert_allclose(pp[0].get_xdata(), p, rtol=1e-15)
+    np.testing.assert_allclose(pp[0].get_ydata(), [0.25, 0.5, 0.75], rtol=1e-15)
+    np.testing.assert_array_equal(pp[-1].get_xdata(), [0.0, 1.0])
+    np.testing.assert_array_equal(pp[-1].get_ydata(), [0.0, 1.0])
+
+
+def test_probability_plots_are_statsmodels_probplot_with_hazen_positions():
+    from statsmodels.graphics.gofplots import ProbPlot
+
+    norm = stats.norm(0.1, 1.1)
+    qq = plot_qq(X, FIT, norm).get_lines()
+    pp = plot_pp(X, FIT, norm).get_lines()
+    for j, dist in enumerate((FIT.dist, norm)):
+        ref = ProbPlot(X, dist=dist, fit=False, a=0.5)
+        np.testing.assert_array_equal(ref.theoretical_percentiles, (np.arange(1, X.size + 1) - 0.5) / X.size)
+        np.testing.assert_array_equal(qq[j].get_xdata(), ref.theoretical_quantiles)
+        np.testing.assert_array_equal(qq[j].get_ydata(), ref.sample_quantiles)
+        np.testing.assert_array_equal(pp[j].get_xdata(), ref.theoretical_percentiles)
+        np.testing.assert_array_equal(pp[j].get_ydata(), ref.sample_percentiles)
+
+
+def test_qq_style_labels_and_reference_line():
+    far = stats.norm(3.0, 2.0)  # its quantiles reach well beyond the data
+    ax = plot_qq(X, FIT, far, names=["fit", "far"])
+    lines = ax.get_lines()
+    assert [ln.get_label() for ln in lines] == ["fit", "far", "y = x"]
+    for j, line in enumerate(lines[:2]):
+        assert line.get_linestyle() == "None" and line.get_marker() == "o"
+        assert line.get_markerfacecolor() == line.get_markeredgecolor() == line.get_color() == f"C{j}"
+    # the reference line runs across every model's points, and the axes are square
+    ref = lines[-1]
+    lo, hi = ref.get_xdata()
+    np.testing.assert_array_equal(ref.get_ydata(), [lo, hi])
+    assert ax.get_xlim() == ax.get_ylim() == (lo, hi)
+    for line in lines[:2]:
+        for v in (line.get_xdata(), line.get_ydata()):
+            assert lo <= v.min() and v.max() <= hi
+    assert lo < far.ppf(0.5 / X.size) and hi > far.ppf(1 - 0.5 / X.size)
+    assert ref.get_color() == "k"
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("model quantile", "sample quantile")
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["fit", "far", "y = x"]
+
+
+def test_pp_on_given_axes():
+    _, ax = plt.subplots()
+    assert plot_pp(X, FIT, ax=ax) is ax
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("empirical probability", "model probability")
+    assert [ln.get_label() for ln in ax.get_lines()] == ["GLD-RS (moments)", "y = x"]
+
+
 def _lambda_table(b=200, seed=1):
     rng = np.random.default_rng(seed)
     lam = np.column_stack([rng.normal(0, 0.1, b), rng.normal(0.2, 0.01, b),
