@@ -47,6 +47,7 @@ Wear 231 (1999) 206-219.
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 
 import numba as nb
@@ -55,6 +56,8 @@ import numpy as np
 from ._bem_kernel import LinearOperator2D
 
 __all__ = ["PKOutcome", "initial_pressure", "polonsky_keer"]
+
+logger = logging.getLogger(__name__)
 
 # consecutive carried-along displacement updates before an exact recomputation
 _REFRESH = 50
@@ -450,6 +453,9 @@ def polonsky_keer(
         d = -gbar
         _shift_and_norm(g, gbar, p)
     on, off, _ = _residuals(p, g, vf)
+    logger.debug("%s iteration stopped after %d iterations and %d convolutions: %s",
+                 "accelerated" if accelerate else "reference", state["n_iter"], state["n_conv"] + 1,
+                 state["reason"])
     return PKOutcome(
         pressure=p.reshape(shape),
         displacement=u.reshape(shape),
@@ -548,6 +554,8 @@ def _stop(p: np.ndarray, change: float, entered: int, tol: float, state: dict) -
     norm = p.sum()
     err = change / norm if norm > 0 else (0.0 if change == 0 else np.inf)
     state["history"].append(err)
+    logger.debug("iteration %d: relative pressure change %.3e, %d point(s) entered the contact set",
+                 state["n_iter"], err, entered)
     if not np.isfinite(err):
         state["reason"] = "non-finite values in the iteration"
         return True

@@ -10,6 +10,7 @@ module validates input and builds the :class:`~contact.result.ContactResult`.
 
 from __future__ import annotations
 
+import logging
 import math
 import numbers
 import warnings
@@ -25,6 +26,8 @@ from .solver import effective_modulus
 from .surface import Surface, require_surface
 
 __all__ = ["BEMConvergenceWarning", "solve_bem", "solve_bem_displacement"]
+
+logger = logging.getLogger(__name__)
 
 
 class BEMConvergenceWarning(RuntimeWarning):
@@ -114,6 +117,9 @@ def _result(
         target = float(nominal_pressure) * cell_area * int(valid.sum())
         force_error = (force - target) / target
     last = float(out.history[-1]) if out.history.size else float("nan")
+    logger.info("%s on %s grid: %s after %d iterations (%d convolutions), last relative change %.3g, "
+                "force error %.3g", method, "x".join(map(str, surface.shape)), out.reason, out.n_iterations,
+                out.n_convolutions, last, force_error)
     if not out.converged:
         warnings.warn(
             f"solve_bem did not converge: {out.reason} after {out.n_iterations} iterations "

@@ -8,6 +8,7 @@ Coatings 10(1):15, 2019, §2.2). The numerical work is done by the compiled kern
 
 from __future__ import annotations
 
+import logging
 import math
 import warnings
 from collections.abc import Sequence
@@ -22,6 +23,8 @@ from .summits import surface_arrays
 from .surface import Surface
 
 __all__ = ["effective_modulus", "solve", "solve_displacement"]
+
+logger = logging.getLogger(__name__)
 
 _COLUMNS = ["i", "j", "x", "y", "height", "delta", "a", "b", "beta", "p_m", "F"]
 
@@ -379,6 +382,9 @@ def solve(
     model = _Model(surface, E, nu, cone_factor, counter_face)
     target = float(nominal_pressure) * model.nominal_area
     lo, hi, f_lo, f_hi, it, ok = _find_separation(model, target, rtol, maxiter)
+    logger.debug("separation search: %s after %d force evaluations, bracket [%.17g, %.17g] m, forces %.6g N "
+                 "and %.6g N for a target of %.6g N", "converged" if ok else "not converged", it, lo, hi,
+                 f_lo, f_hi, target)
     if not ok:
         raise RuntimeError(
             f"the separation search did not converge in maxiter={maxiter} iterations "

@@ -40,6 +40,7 @@ A resample without a fit is kept, with NaN lambdas and its reason in
 
 from __future__ import annotations
 
+import logging
 import math
 import warnings
 from collections.abc import Callable
@@ -76,6 +77,8 @@ __all__ = [
     "MaximumMixture",
     "bootstrap",
 ]
+
+logger = logging.getLogger(__name__)
 
 KINDS = ("nonparametric", "parametric")
 METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
@@ -1015,6 +1018,9 @@ def bootstrap(
     compiled = method in COMPILED
     if progress is None:
         progress = B * n > _PROGRESS_WORK["compiled" if compiled else "data"]
+    logger.debug("bootstrap: %d %s resamples of %d values (groups: %s), %s %s fits, %s", B, kind, n,
+                 "no" if grouping is None else grouping[2].size, param, method,
+                 "compiled batch" if compiled else f"executor {executor!r}")
     bar = _progress_bar(B, bool(progress), f"bootstrap {method}")
     try:
         if compiled:
@@ -1135,6 +1141,7 @@ def _result(full, lam, nroots, stats_df, reasons, B, level, kind, method, param,
                       f"(listed in .failed; intervals use the other {B - len(bad)}). Reasons: {why}",
                       BootstrapWarning, stacklevel=3)
     ok = np.all(np.isfinite(lam), axis=1)
+    logger.info("bootstrap %s %s: %d of %d resamples fitted", param, method, int(ok.sum()), B)
     note = _branch_note(region[ok], jump[ok], param, full.region)
     if warn and note:
         warnings.warn(f"bootstrap lambdas on several branches: {note}", BootstrapWarning, stacklevel=3)

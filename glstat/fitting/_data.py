@@ -6,6 +6,7 @@ compiled kernels of :mod:`glstat.fitting._likelihood`.
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
@@ -15,6 +16,8 @@ from ..errors import ConvergenceWarning, FitError
 from . import _kernels as K
 from . import _likelihood as L
 from ._stats import distinct_note
+
+logger = logging.getLogger(__name__)
 
 _KIND = {"mle": L.MLE, "mps": L.MPS, "starship": L.STARSHIP}
 OPTIMIZERS = ("bfgs", "nelder-mead")
@@ -332,6 +335,9 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
         lams = _to_lambdas(th, param, med, iqr)
         obj = float(val) + shift
         rows.append(_candidate(lams, param, math.isfinite(obj) and not abandoned, obj, x))
+        logger.debug("%s %s start %d of %d (%s): %s %.10g, %s", method, param, i + 1, len(queue), optimizer,
+                     _OBJECTIVE_NAME[method], obj,
+                     "abandoned" if abandoned else "converged" if ok else f"stopped at maxiter={maxiter}")
         flags.append(ok)
     sel = _select(rows, True, by_objective=True)
     if sel < 0:

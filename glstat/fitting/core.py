@@ -7,7 +7,9 @@ and Newton solver) and :mod:`glstat.fitting._likelihood` (data-based objectives)
 
 from __future__ import annotations
 
+import logging
 import math
+import textwrap
 import warnings
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
@@ -27,6 +29,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
 __all__ = ["FitIssue", "GLDFit", "fit", "fit_batch", "fit_lmoments", "fit_moments", "fit_percentiles"]
+
+logger = logging.getLogger(__name__)
 
 METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
 _KIND = {"moments": K.MOMENTS, "percentiles": K.PERCENTILES, "lmoments": K.LMOMENTS}
@@ -133,7 +137,13 @@ class GLDFit:
         return self.solutions.copy()
 
     def summary(self) -> pd.DataFrame:
-        """One-row table: method, parameterisation, n, selected lambdas, matched statistics."""
+        """One-row table: method, parameterisation, n, selected lambdas, matched statistics.
+
+        ``print(fit)`` shows the fit as a text block in the style of a statsmodels summary:
+        method, parameterisation, n, the objective at the optimum (the log-likelihood for
+        ``"mle"``), Kolmogorov–Smirnov distance, support, RS region, the lambdas, the
+        matched statistics and the fit's warnings.
+        """
         import pandas as pd
 
         row: dict[str, Any] = {"method": self.method, "param": self.param, "n": self.n}
@@ -148,6 +158,74 @@ class GLDFit:
         l1, l2, l3, l4 = self.lambdas
         return (f"GLDFit(method={self.method!r}, param={self.param!r}, lambdas=({l1:.6g}, {l2:.6g}, "
                 f"{l3:.6g}, {l4:.6g}), n={self.n}, solutions={len(self._candidates)})")
+
+    def __str__(self) -> str:
+        return _summary_text(self)
+
+
+_TEXT_WIDTH = 78
+# (label, sign) of the objective of the data-based methods in the text summary
+_OBJECTIVE_TEXT = {"neg_loglik": ("Log-likelihood", -1.0), "neg_mean_log_spacing": ("Mean log spacing", -1.0),
+                   "anderson_darling": ("Anderson-Darling A2", 1.0)}
+
+
+def _summary_text(f: GLDFit) -> str:
+    """The fit as a statsmodels-style text block (``print(fit)``)."""
+
+    def num(v) -> str:
+        return "n/a" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.6g}"
+
+    sel = next((r for r in f._candidates if r["selected"]), None)
+    ok = f.dist is not None
+    if ok:
+        lo, hi = gld_support(f.param, f.lambdas)
+        support = f"[{lo:.6g}, {hi:.6g}]"
+    else:
+        support = "n/a"
+    covers = None if sel is None else sel["covers_data"]
+    left = [("Method:", f.method), ("Parameterisation:", f.param.upper()),
+            ("No. observations:", "n/a" if f.n is None else str(f.n))]
+    right = [("RS region:", "n/a" if f.region is None else str(f.region)),
+             ("KS distance:", num(None if sel is None else sel["ks"])),
+             ("Covers the data:", "n/a" if covers is None else ("yes" if covers else "no"))]
+    for key, (label, sign) in _OBJECTIVE_TEXT.items():
+        if key in f.statistics:
+            left.append((f"{label}:", num(sign * f.statistics[key])))
+    right.append(("Candidates (valid):", f"{len(f._candidates)} ({f.n_valid})"))
+    while len(left) < len(right):
+        left.append(("", ""))
+    while len(right) < len(left):
+        right.append(("", ""))
+    half = _TEXT_WIDTH // 2
+    rule, thin = "=" * _TEXT_WIDTH, "-" * _TEXT_WIDTH
+    lines = ["GLD fit results".center(_TEXT_WIDTH).rstrip(), rule]
+    for (a, b), (c, d) in zip(left, right, strict=True):
+        lines.append(f"{a:<20}{b:>{half - 22}}  " + f"  {c:<20}{d:>{half - 22}}".rstrip())
+    lines.append(f"{'Support:':<20}{support:>{_TEXT_WIDTH - 20}}")
+    lines += [rule, f"{'':<12}{'value':>16}", thin]
+    for i, v in enumerate(f.lambdas, start=1):
+        lines.append(f"{f'lambda{i}':<12}{num(v):>16}")
+    lines.append(rule)
+    matched = [k for k in f.statistics if k not in _OBJECTIVE_TEXT]
+    if matched:
+        lines.append(textwrap.fill("Matched statistics: " + ", ".join(f"{k} = {num(f.statistics[k])}"
+                                                                       for k in matched),
+                                   _TEXT_WIDTH, subsequent_indent="    "))
+    if f.options:
+        lines.append(textwrap.fill("Options: " + ", ".join(f"{k}={v!r}" for k, v in f.options.items()),
+                                   _TEXT_WIDTH, subsequent_indent="    "))
+    if not ok:
+        lines.append("No fit: the lambdas are NaN (nan_policy='propagate' met a non-finite value).")
+    notes = ["lambda1 in data units, lambda2 in 1/(data unit), lambda3 and lambda4 dimensionless, "
+             "in R's order: glstat.GLD(*fit.lambdas, param=fit.param) is the distribution.",
+             "Standard errors are not part of a fit; glstat.bootstrap(data, ...).summary() gives "
+             "bootstrap standard errors and intervals."]
+    notes += [f"{issue.category.__name__}: {issue.message}" for issue in f.issues]
+    lines.append("")
+    lines.append("Notes:")
+    lines += [textwrap.fill(f"[{k}] {note}", _TEXT_WIDTH, subsequent_indent="    ", break_long_words=False,
+                            break_on_hyphens=False) for k, note in enumerate(notes, start=1)]
+    return "\n".join(lines)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -167,6 +245,8 @@ def _table(kind: int, fam: int, u: float) -> tuple[np.ndarray, ...]:
     Returns the shape grid, the two statistics on it, and the lambda -> 0 limit table of
     :func:`glstat.fitting._kernels.build_limit_table`.
     """
+    logger.debug("building the %s seed table of the %s statistics (u=%g)",
+                 "RS" if fam == _gld.RS else "FKML", {k: m for m, k in _KIND.items()}.get(kind), u)
     nodes = K.grid_nodes(kind)
     t1 = np.empty((nodes.size, nodes.size))
     t2 = np.empty_like(t1)
@@ -703,6 +783,8 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
         f = _fit_from_stats(method, param, stats, u, x, n,
                             dict(zip(_STAT_NAMES[method], stats, strict=True)),
                             {"u": u} if method == "percentiles" else {})
+    logger.debug("fit %s %s of n=%d: %d candidate(s), %d valid; selected lambdas %s", param, method, n,
+                 len(f._candidates), f.n_valid, f.lambdas)
     issue = _poor_fit_issue(f._candidates, param, method, x)
     if issue is not None:
         object.__setattr__(f, "issues", (issue, *f.issues))
