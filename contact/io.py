@@ -329,6 +329,8 @@ class _Rows:
                     ) from None
             raise TopographyFileError(f"{self.fname}: lines {self.lines[0][0]}-"
                                       f"{self.lines[-1][0]} hold a non-number")
+        if self.width is None:  # set by the first add(), which every line goes through
+            raise AssertionError("rows buffered without a row width")
         self.chunks.append(values.reshape(len(self.lines), self.width))
         self.count += len(self.lines)
         self.tokens, self.lines = [], []
@@ -352,7 +354,7 @@ def _header_spacing(name: str, value: str, fname: str, lineno: int) -> float:
             number = float(m.group("number"))
         except ValueError:
             number = None
-    if number is None:
+    if m is None or number is None:
         raise TopographyFileError(
             f"{fname}: line {lineno}: {name} = {value!r} is not a length; write a number "
             "in metres, optionally followed by a unit (m, mm, um, µm or nm)"
@@ -592,11 +594,12 @@ def write(surface: Surface, path: str | os.PathLike, *, format: str | None = Non
             with open(tmp, "wb") as fh:
                 np.save(fh, h)
         elif fmt == "npz":
-            arrays = {"heights": h, "dx": np.float64(surface.dx), "dy": np.float64(surface.dy)}
-            if mask is not None:
-                arrays["mask"] = mask
+            dx, dy = np.float64(surface.dx), np.float64(surface.dy)
             with open(tmp, "wb") as fh:
-                np.savez_compressed(fh, **arrays)
+                if mask is None:
+                    np.savez_compressed(fh, heights=h, dx=dx, dy=dy)
+                else:
+                    np.savez_compressed(fh, heights=h, dx=dx, dy=dy, mask=mask)
         elif fmt == "text":
             delimiter = "," if p.suffix.lower() == ".csv" else " "
             header = (

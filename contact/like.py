@@ -338,9 +338,9 @@ def fit_spectrum(surface: Surface, *, q_range: Sequence[float] | None = None) ->
             hi = min(hi, q[max(k - 2, 0)] * (1 + 1e-12))
         sel = (q >= lo) & (q <= hi)
         if sel.sum() >= 8:
-            k = _knee(x[sel], y[sel], counts[sel])
-            if k is not None:
-                q_r, rolloff = float(q[sel][k]), True
+            knee = _knee(x[sel], y[sel], counts[sel])
+            if knee is not None:
+                q_r, rolloff = float(q[sel][knee]), True
                 sel &= q >= q_r * (1 - 1e-12)
     n = int(sel.sum())
     if n < 4:
