@@ -27,7 +27,7 @@ import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -278,12 +278,13 @@ def parse_n_max(text: str):
     InputError
         Anything else, with the accepted forms.
     """
-    from .counts import ObservedCounts, PoissonCount
+    from .counts import CountDistribution, ObservedCounts, PoissonCount
 
     text = str(text).strip()
     forms = ("a number of points >= 1, 'poisson:MU' with MU > 0, or 'counts:N1,N2,...' with "
              "integers >= 0")
     kind, sep, value = text.partition(":")
+    c: CountDistribution
     try:
         if not sep:
             n = float(text)
@@ -462,13 +463,18 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
     from .gof import gof_report
 
     x = sample.values
-    seed = int(args.seed) if args.seed is not None else int(np.random.SeedSequence().entropy % 2**63)
+    # SeedSequence() without entropy draws a fresh int
+    seed = (int(args.seed) if args.seed is not None
+            else int(cast(int, np.random.SeedSequence().entropy) % 2**63))
     notes: list[str] = []
     with _phase(f"fitting ({_METHOD_NAMES[args.method]}, n = {x.size})"), \
             warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         f = fit(x, args.param, args.method)
     _collect_warnings(caught, notes)
+    if f.dist is None:
+        raise FitError(f"the {f.param.upper()} {f.method} fit has non-finite lambdas {f.lambdas}: "
+                       "no distribution to report")
     lo, hi = (float(v) for v in f.dist.support())
     res = FitResults(sample=sample, fit=f, gof=None, seed=seed, support=(lo, hi), notes=notes)
     _print_fit(res, emit)
@@ -497,17 +503,17 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
                                  confidence_level=args.confidence_level, rng=seed, progress=None)
             res.boot_summary = res.boot.summary()
         _collect_warnings(caught, notes)
-        _print_bootstrap(res, emit)
+        _print_bootstrap(res.boot, res.boot_summary, emit)
     if args.n_max is not None:
         with _phase("distribution of the maximum"):
             res.maximum = _maximum(res, args.n_max, args.confidence_level, args.count)
-        _print_maximum(res, emit)
+        _print_maximum(res.maximum, emit)
     if args.hardness is not None:
         n = args.n_max if args.n_max is not None else float(x.size)
         factors = np.asarray(args.area_factor if args.area_factor is not None else [1.0], dtype=float)
         with _phase("damage probability"):
             res.damage = _damage(res, args.hardness, n, factors, args.confidence_level, args.count)
-        _print_damage(res, args, emit)
+        _print_damage(res.damage, args, emit)
     return res
 
 
@@ -557,9 +563,8 @@ def _print_gof(res: FitResults, emit: Callable[[str], None]) -> None:
         emit(f"  {res.gof_note}")
 
 
-def _print_bootstrap(res: FitResults, emit: Callable[[str], None]) -> None:
-    bf = res.boot
-    s = res.boot_summary.reset_index()
+def _print_bootstrap(bf: BootstrapFit, summary: Any, emit: Callable[[str], None]) -> None:
+    s = summary.reset_index()
     cols = [c for c in ("quantity", "estimate", "bootstrap_mean", "low", "high", "standard_error")
             if c in s.columns]
     emit("")
@@ -568,8 +573,7 @@ def _print_bootstrap(res: FitResults, emit: Callable[[str], None]) -> None:
     emit(_indent(_table(s[cols])))
 
 
-def _print_maximum(res: FitResults, emit: Callable[[str], None]) -> None:
-    m = res.maximum
+def _print_maximum(m: dict[str, Any], emit: Callable[[str], None]) -> None:
     level = 100 * m["confidence_level"]
     emit("")
     if "table" in m:
@@ -589,10 +593,9 @@ def _how_many(d: dict, unit: str = "values") -> str:
     return f"a random number of {unit}, {c!r}"
 
 
-def _print_damage(res: FitResults, args: argparse.Namespace, emit: Callable[[str], None]) -> None:
+def _print_damage(d: dict[str, Any], args: argparse.Namespace, emit: Callable[[str], None]) -> None:
     import pandas as pd
 
-    d = res.damage
     src = "--n-max" if args.n_max is not None else "the sample size; set --n-max for the analysed area"
     level = 100 * d["confidence_level"]
     emit("")
@@ -628,11 +631,10 @@ def _save(fig, out: Path, name: str, res: FitResults) -> None:
     res.files.append(name)
 
 
-def _integrity_figure(res: FitResults, ax) -> None:
+def _integrity_figure(res: FitResults, d: dict[str, Any], ax) -> None:
     from .damage import integrity_probability
     from .plot import plot_integrity_vs_area
 
-    d = res.damage
     k = d["area_factors"]
     k_lo, k_hi = min(0.01, float(k.min()) / 10), max(100.0, float(k.max()) * 10)
     grid = np.logspace(math.log10(k_lo), math.log10(k_hi), 61)
@@ -688,7 +690,7 @@ def _write_figures(res: FitResults, out: Path) -> None:
     if res.damage is not None:
         fig = _figure()
         ax = fig.add_subplot()
-        _integrity_figure(res, ax)
+        _integrity_figure(res, res.damage, ax)
         _save(fig, out, "integrity_vs_area.png", res)
 
 
@@ -730,7 +732,8 @@ def _summary_frame(res: FitResults) -> Any:
         rows.append({"quantity": name, "area_factor": np.nan, "n": np.nan, "estimate": float(v),
                      "low": lo, "high": hi, "confidence_level": level})
     for stat, _ in _GOF_ROWS:
-        rows.append({"quantity": f"gof_{stat}", "area_factor": np.nan, "n": float(res.fit.n),
+        rows.append({"quantity": f"gof_{stat}", "area_factor": np.nan,
+                     "n": float(res.fit.n) if res.fit.n is not None else np.nan,
                      "estimate": float(res.gof.iloc[0][stat]), "low": np.nan, "high": np.nan,
                      "confidence_level": None})
     if res.maximum is not None:

@@ -339,7 +339,7 @@ def bootstrap_sample(x: np.ndarray, a: AnalysisSettings, rng, param=None, method
     first = (param or a.param, method or a.method)
     if order is None:
         order = [first] + ([] if param is not None else [f for f in FALLBACKS if f != first])
-    notes = []
+    notes: list[str] = []
     state = rng.bit_generator.state
     for p, m in order:
         rng.bit_generator.state = state
@@ -640,12 +640,12 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                 "n_left_out": settings.n_surfaces - len(rs),
             }
             slot = MODEL_SLOTS[model]
-            case = {}
+            case: dict[str, SampleAnalysis | dict[str, float]] = {}
             for kind in SAMPLES:
                 if progress is not None:
                     progress(f"analysis ({MODEL_NAMES[model]}): H = {settings.hurst[ih]:g}, "
                              f"{settings.pressures[il] / 1e6:g} MPa, {SAMPLE_LABELS[kind]}")
                 case[kind] = analyse_sample(results, keys, kind, a, ih + slot, il)
+            case["summary"] = summary
             out[(ih, il)] = case
-            out[(ih, il)]["summary"] = summary
     return out

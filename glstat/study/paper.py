@@ -35,8 +35,14 @@ import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+
+    from ..gld import GLD
 
 __all__ = [
     "CLAIM_RANGES",
@@ -504,12 +510,12 @@ def _n_for(n_contact, hurst: float) -> float:
     return n
 
 
-def _readings(r: Table1Row, roots) -> list[tuple[str, object, tuple]]:
+def _readings(r: Table1Row, roots) -> list[tuple[str, GLD, tuple[float, ...]]]:
     """(source, GLD, λ's) of every reading of one row: the printed λ's, their mirror image,
     and every valid moment-fit root."""
     from ..gld import GLD
 
-    out = []
+    out: list[tuple[str, GLD, tuple[float, ...]]] = []
     if r.has_lambdas:
         from ..errors import InvalidParameterError
 
@@ -618,7 +624,7 @@ def _family(source: str) -> str:
 def _common_n(damage) -> list[dict]:
     """Per family of readings, the n reproducing every H's claim at once (the best choice of
     reading per H within the family)."""
-    out = []
+    out: list[dict] = []
     have = damage[damage["claim"].notna()] if len(damage) else damage
     if not len(have):
         return out
@@ -665,11 +671,11 @@ class PaperConsistency:
         True when the stored :data:`TABLE1` (means only) was used.
     """
 
-    table: object
-    roots: object
-    printed: object
-    damage: object
-    common_n: object
+    table: pd.DataFrame
+    roots: pd.DataFrame
+    printed: pd.DataFrame
+    damage: pd.DataFrame
+    common_n: pd.DataFrame
     hardness_mpa: float
     n_contact: dict = field(default_factory=dict)
     stored_only: bool = True

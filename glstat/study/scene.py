@@ -430,10 +430,12 @@ def rq_for_pressure(
     record: list = []
     # groups of positions k in idx solved together (one Rq each)
     groups = [[k] for k in range(len(idx))] if per_hurst else [list(range(len(idx)))]
-    use_coarse = (coarse_grid is not None and s.grid >= 2 * int(coarse_grid)
-                  and all(s.n_terms[i] is not None
-                          and s.n_terms[i] <= nyquist_terms(int(coarse_grid), s.length, s.gamma)
-                          for i in idx))
+    coarse_n = None if coarse_grid is None else int(coarse_grid)
+    if coarse_n is not None and not (
+            s.grid >= 2 * coarse_n
+            and all(nt is not None and nt <= nyquist_terms(coarse_n, s.length, s.gamma)
+                    for nt in (s.n_terms[i] for i in idx))):
+        coarse_n = None
     n = len(idx)
     rq_out, ach, na, nc = [math.nan] * n, [math.nan] * n, [math.nan] * n, [math.nan] * n
     converged = True
@@ -443,8 +445,8 @@ def rq_for_pressure(
         x0 = math.log(min(max(s.rq, lo_b), hi_b))
         fine = _Evaluator(s, ihs, 0, n_seeds, s.grid, load, record)
         try:
-            if use_coarse:
-                coarse = _Evaluator(s, ihs, 0, n_seeds, int(coarse_grid), load, record)
+            if coarse_n is not None:
+                coarse = _Evaluator(s, ihs, 0, n_seeds, coarse_n, load, record)
                 try:
                     x0, _, _ = _root(coarse, tg, x0, (lo_b, hi_b), 2 * tol, 3)
                 except _Unreachable:
@@ -567,7 +569,9 @@ def scene_summary(settings: CampaignSettings | None = None, *, n_seeds: int = 3,
                 tb.append(float(np.mean(np.tan(res.asperities["beta"].to_numpy(float)))))
                 na.append(len(res.asperities))
                 nc.append(int(np.count_nonzero(res.pressure > 0)))
-        nt = s.n_terms[ih] if s.n_terms[ih] is not None else nyquist_terms(s.grid, s.length, s.gamma)
+        nt = s.n_terms[ih]
+        if nt is None:
+            nt = nyquist_terms(s.grid, s.length, s.gamma)
         pp = paper_pressures.get(float(h), math.nan)
         row = {
             "hurst": h, "rq_m": s.rq, "n_terms": nt,
