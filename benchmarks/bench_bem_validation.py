@@ -1,9 +1,10 @@
 """Validation of :func:`contact.bem.solve_bem` against analytic contact solutions.
 
-Prints the tables of ``docs/bem.md``: Hertz (sphere on a flat, Johnson, *Contact
-Mechanics*, §4.2) and Westergaard (periodic wavy surface, Johnson §13.2) under grid
-refinement, and the convergence history of a rough surface at the paper's load. With
-``--plot DIR`` it also draws the validation figures into ``DIR`` (matplotlib).
+Prints the tables of ``docs/bem.md``: Hertz (sphere on a flat,
+:func:`contact.reference.hertz_sphere`) and Westergaard (periodic wavy surface,
+:func:`contact.reference.westergaard`) under grid refinement, and the convergence history of
+a rough surface at the paper's load. With ``--plot DIR`` it also draws the validation figures
+into ``DIR`` (matplotlib).
 
 Usage::
 
@@ -19,20 +20,20 @@ from pathlib import Path
 
 import numpy as np
 
-from contact import Surface, self_affine
+from contact import Surface, effective_modulus, reference, self_affine
 from contact.bem import solve_bem
 
 E, NU = 210e9, 0.3
-E_STAR = E / (1 - NU**2)
+E_STAR = effective_modulus(E, NU)
 
-# Hertz: sphere of radius R under the force W (Johnson eqs. 4.22-4.23)
+# Hertz: sphere of radius R under the force W
 R_SPHERE, W_LOAD = 0.01, 10.0
-A_HERTZ = (3 * W_LOAD * R_SPHERE / (4 * E_STAR)) ** (1 / 3)
-P0_HERTZ = 3 * W_LOAD / (2 * math.pi * A_HERTZ**2)
+HERTZ = reference.hertz_sphere(W_LOAD, R_SPHERE, E_STAR)
+A_HERTZ, P0_HERTZ = HERTZ.contact_radius, HERTZ.max_pressure
 
-# Westergaard: h = DELTA cos(2 pi x / LAMBDA), p* = pi E* DELTA / LAMBDA (Johnson §13.2)
+# Westergaard: h = DELTA cos(2 pi x / LAMBDA), full contact above P_STAR
 LAMBDA, DELTA = 1e-3, 1e-6
-P_STAR = math.pi * E_STAR * DELTA / LAMBDA
+P_STAR = reference.full_contact_pressure(DELTA, LAMBDA, E_STAR)
 
 
 def hertz(n: int):
@@ -44,7 +45,7 @@ def hertz(n: int):
     t = time.perf_counter()
     res = solve_bem(s, W_LOAD / s.area, E, NU)
     t = time.perf_counter() - t
-    exact = P0_HERTZ * np.sqrt(np.clip(1 - (np.hypot(X, Y) / A_HERTZ) ** 2, 0, None))
+    exact = HERTZ.pressure(np.hypot(X, Y))
     a_num = math.sqrt(res.in_contact.sum() * dx * dx / math.pi)
     row = {
         "n": n,
@@ -52,21 +53,11 @@ def hertz(n: int):
         "pmax": res.max_pressure / P0_HERTZ - 1,
         "profile": float(np.sqrt(np.mean((res.pressure - exact) ** 2)) / P0_HERTZ),
         "radius": a_num / A_HERTZ - 1,
-        "approach": -res.separation / (A_HERTZ**2 / R_SPHERE) - 1,
+        "approach": -res.separation / HERTZ.approach - 1,
         "iterations": res.n_iterations,
         "time": t,
     }
     return row, x, res.pressure[:, n // 2], exact[:, n // 2]
-
-
-def westergaard_exact(x: np.ndarray, ratio: float):
-    """Contact fraction and pressure of the wavy surface at pbar = ratio p* (ratio < 1)."""
-    a = LAMBDA / math.pi * math.asin(math.sqrt(ratio))
-    s2 = math.sin(math.pi * a / LAMBDA) ** 2
-    xw = x - LAMBDA * np.round(x / LAMBDA)
-    p = (2 * ratio * P_STAR * np.cos(np.pi * xw / LAMBDA) / s2
-         * np.sqrt(np.clip(s2 - np.sin(np.pi * xw / LAMBDA) ** 2, 0, None)))
-    return 2 * a / LAMBDA, p
 
 
 def westergaard(n: int, ratio: float):
@@ -74,7 +65,8 @@ def westergaard(n: int, ratio: float):
     x = np.arange(n) * dx
     h = np.repeat((DELTA * np.cos(2 * np.pi * x / LAMBDA))[:, None], 4, axis=1)
     res = solve_bem(Surface(h, dx), ratio * P_STAR, E, NU, periodic=True)
-    fraction, exact = westergaard_exact(x, ratio)
+    w = reference.westergaard(ratio * P_STAR, LAMBDA, DELTA, E_STAR)
+    fraction, exact = w.contact_fraction, w.pressure(x)
     central = exact > 0.5 * exact.max()
     return {
         "n": n,
@@ -148,8 +140,9 @@ def plot(folder: Path, hz, ratios, wg, ref, rough) -> None:
     ax[0].plot(x / A_HERTZ, p / P0_HERTZ, "o", ms=3, label="solve_bem, n = 128")
     ax[0].set(xlabel="x / a", ylabel="p / p0", title="Hertz pressure profile")
     ax[0].legend()
-    r = np.linspace(0, 1, 400)
-    ax[1].plot(r, 2 / np.pi * np.arcsin(np.sqrt(r)), "k-", label="Westergaard")
+    r = np.linspace(1e-4, 1, 400)
+    ax[1].plot(r, [reference.westergaard(v * P_STAR, LAMBDA, DELTA, E_STAR).contact_fraction
+                   for v in r], "k-", label="Westergaard")
     ax[1].plot(ratios, [w["fraction"] for w in wg], "o", label="solve_bem, n = 256")
     ax[1].set(xlabel="pbar / p*", ylabel="contact fraction", title="Wavy surface")
     ax[1].legend()

@@ -9,6 +9,7 @@ solver (:func:`solve_bem`) as its reference.
 
 import _glstat_numba  # noqa: F401  (first: numba caches outside the package)
 
+from . import reference  # noqa: F401  (contact.reference: analytic solutions)
 from .errors import ContactWarning, TopographyFileError
 from .generators import self_affine, weierstrass
 from .io import read, write

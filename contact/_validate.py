@@ -7,7 +7,7 @@ import numbers
 
 import numpy as np
 
-__all__ = ["finite_separation", "positive_pressure", "real_array", "real_scalar"]
+__all__ = ["finite_separation", "positive_finite", "positive_pressure", "real_array", "real_scalar"]
 
 
 def real_scalar(value) -> float | None:
@@ -61,6 +61,34 @@ def positive_pressure(value) -> float:
             f"{value!r}; a compressive load is positive"
         )
     return p
+
+
+def positive_finite(value, name: str, what: str) -> float:
+    """``value`` as one real, finite, positive number.
+
+    Parameters
+    ----------
+    value : object
+        The candidate number, in the unit ``what`` names.
+    name : str
+        The argument's name, for messages.
+    what : str
+        What the number is, with its unit, for messages (e.g. ``"length in metres"``).
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`), or not finite and positive.
+    """
+    x = real_scalar(value)
+    if x is None or not (math.isfinite(x) and x > 0):
+        raise ValueError(f"{name} must be a positive finite {what}, got {value!r}")
+    return x
 
 
 def finite_separation(value) -> float:

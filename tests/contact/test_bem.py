@@ -3,14 +3,13 @@
 Reference solutions:
 - Love (1929): displacement of a half-space under a uniformly loaded rectangle, the
   closed-form integral of 1/r (evaluated here in 40-digit arithmetic with mpmath).
-- Johnson, *Contact Mechanics* (1985), §4.2: Hertz contact of a
-  sphere of radius R with a flat, a = (3 W R / (4 E*))^(1/3), p0 = 3 W / (2 pi a^2),
-  approach delta = a^2 / R, p(r) = p0 sqrt(1 - r^2/a^2).
-- Johnson §13.2 (Westergaard 1939): periodic wavy surface h = Delta cos(2 pi x / lambda),
-  p* = pi E* Delta / lambda, pbar = p* sin^2(pi a / lambda),
-  p(x) = 2 pbar cos(pi x/lambda) / sin^2(pi a/lambda) sqrt(sin^2(pi a/lambda) - sin^2(pi x/lambda)).
-- Johnson §13.2 (the full-contact wavy surface): a pressure p* cos(q x) gives the surface
-  displacement Delta cos(q x) with p* = pi E* Delta / lambda, i.e. u = 2 p / (E* q).
+- contact.reference.hertz_sphere (Johnson, *Contact Mechanics* (1985), §4.2): Hertz contact
+  of a sphere of radius R with a flat: contact radius, peak pressure, approach and profile.
+- contact.reference.westergaard (Johnson §13.2, Westergaard 1939): the periodic wavy surface
+  h = Delta cos(2 pi x / lambda), contact width and profile below p* = pi E* Delta / lambda,
+  p = pbar + p* cos(2 pi x / lambda) in full contact above it.
+- contact.reference.sinusoidal_displacement (Johnson §13.2): a pressure p cos(q x) displaces
+  the surface by 2 p / (E* q) cos(q x).
 - Love (1929) at the centre of a uniformly loaded square of side s: ∫∫ 1/r = 4 s asinh(1).
 """
 
@@ -22,7 +21,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from contact import Surface, solve, weierstrass
+from contact import Surface, reference, solve, weierstrass
 from contact._bem_kernel import NonPeriodicOperator, PeriodicOperator, love_coefficients
 from contact.bem import BEMConvergenceWarning, solve_bem, solve_bem_displacement
 
@@ -83,13 +82,14 @@ def test_periodic_operator_reproduces_the_sinusoidal_response():
     x = np.arange(nx) * dx
     p = np.repeat(np.cos(q * x)[:, None], ny, axis=1)
     u = PeriodicOperator((nx, ny), dx, dx, E_STAR).apply(p)
-    np.testing.assert_allclose(u, 2 * p / (E_STAR * q), atol=1e-14 * 2 / (E_STAR * q))
+    amplitude = reference.sinusoidal_displacement(1.0, 2 * np.pi / q, E_STAR)
+    np.testing.assert_allclose(u, amplitude * p, atol=1e-14 * amplitude)
 
 
 # --------------------------------------------------------------------------- Hertz
 R_SPHERE, W_LOAD = 0.01, 10.0  # m, N
-A_HERTZ = (3 * W_LOAD * R_SPHERE / (4 * E_STAR)) ** (1 / 3)
-P0_HERTZ = 3 * W_LOAD / (2 * np.pi * A_HERTZ**2)
+HERTZ = reference.hertz_sphere(W_LOAD, R_SPHERE, E_STAR)
+A_HERTZ, P0_HERTZ = HERTZ.contact_radius, HERTZ.max_pressure
 
 
 def _hertz(nx, ny=None, aspect=1.0):
@@ -102,8 +102,7 @@ def _hertz(nx, ny=None, aspect=1.0):
     X, Y = np.meshgrid(x, y, indexing="ij")
     surface = Surface(-(X**2 + Y**2) / (2 * R_SPHERE), dx, dy)
     res = solve_bem(surface, W_LOAD / surface.area, E, NU)
-    r = np.hypot(X, Y)
-    exact = P0_HERTZ * np.sqrt(np.clip(1 - (r / A_HERTZ) ** 2, 0, None))
+    exact = HERTZ.pressure(np.hypot(X, Y))
     return res, exact, dx * dy
 
 
@@ -114,7 +113,7 @@ def _hertz_errors(n):
         "pmax": abs(res.max_pressure / P0_HERTZ - 1),
         "profile": float(np.sqrt(np.mean((res.pressure - exact) ** 2)) / P0_HERTZ),
         "radius": abs(a_num / A_HERTZ - 1),
-        "approach": abs(-res.separation / (A_HERTZ**2 / R_SPHERE) - 1),
+        "approach": abs(-res.separation / HERTZ.approach - 1),
         "res": res,
     }
 
@@ -148,7 +147,7 @@ def test_hertz_on_rectangular_cells():
 
 # --------------------------------------------------------------------------- Westergaard
 LAMBDA, DELTA = 1e-3, 1e-6
-P_STAR = np.pi * E_STAR * DELTA / LAMBDA
+P_STAR = reference.full_contact_pressure(DELTA, LAMBDA, E_STAR)
 
 
 def _westergaard(n, ratio):
@@ -157,12 +156,8 @@ def _westergaard(n, ratio):
     h = np.repeat((DELTA * np.cos(2 * np.pi * x / LAMBDA))[:, None], 4, axis=1)
     pbar = ratio * P_STAR
     res = solve_bem(Surface(h, dx), pbar, E, NU, periodic=True)
-    a = LAMBDA / np.pi * np.arcsin(np.sqrt(min(ratio, 1.0)))
-    s2 = np.sin(np.pi * a / LAMBDA) ** 2
-    xw = x - LAMBDA * np.round(x / LAMBDA)
-    exact = (2 * pbar * np.cos(np.pi * xw / LAMBDA) / s2
-             * np.sqrt(np.clip(s2 - np.sin(np.pi * xw / LAMBDA) ** 2, 0, None)))
-    return res, 2 * a / LAMBDA, exact
+    exact = reference.westergaard(pbar, LAMBDA, DELTA, E_STAR)
+    return res, exact.contact_fraction, exact.pressure(x)
 
 
 @pytest.mark.parametrize("ratio", [0.02, 0.1, 0.3, 0.5, 0.7, 0.9])
@@ -201,13 +196,11 @@ def test_westergaard_converges_with_grid_refinement():
 
 
 def test_westergaard_full_contact_above_p_star():
-    res, _, _ = _westergaard(64, 1.2)
+    res, fraction, exact = _westergaard(64, 1.2)
     assert res.converged
-    assert res.contact_fraction == 1.0
-    # full contact: p = pbar + p* cos(2 pi x / lambda) (Johnson §13.2)
-    x = np.arange(64) * LAMBDA / 64
-    np.testing.assert_allclose(res.pressure[:, 0], 1.2 * P_STAR + P_STAR * np.cos(2 * np.pi * x
-                               / LAMBDA), rtol=1e-6)
+    assert res.contact_fraction == fraction == 1.0
+    # full contact: p = pbar + p* cos(2 pi x / lambda)
+    np.testing.assert_allclose(res.pressure[:, 0], exact, rtol=1e-6)
 
 
 # --------------------------------------------------------------------------- rough surfaces

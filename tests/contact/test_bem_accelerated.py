@@ -4,8 +4,8 @@ References:
 - the Polonsky & Keer (1999) iteration as published (``accelerate=False``), run to a tight
   tolerance: the two iterations share the fixed point, so their pressures must agree to
   about the tolerance;
-- Johnson, *Contact Mechanics* (1985), §4.2: Hertz contact of a sphere of radius R with a
-  flat, a = (3 W R / (4 E*))^(1/3), p0 = 3 W / (2 pi a^2), approach a^2 / R.
+- contact.reference.hertz_sphere (Johnson, *Contact Mechanics* (1985), §4.2): Hertz contact
+  of a sphere of radius R with a flat.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contact import Surface
+from contact import Surface, reference
 from contact._bem_core import initial_pressure, polonsky_keer
 from contact._bem_kernel import NonPeriodicOperator, PeriodicOperator, inverse_stencil
 from contact.bem import BEMConvergenceWarning, solve_bem, solve_bem_displacement
@@ -67,25 +67,24 @@ def test_accelerated_agrees_with_the_published_iteration(periodic):
 @pytest.mark.parametrize("accelerate", [True, False])
 def test_both_iterations_reproduce_hertz(accelerate):
     n = 64
-    a = (3 * 10.0 * 0.01 / (4 * E_STAR)) ** (1 / 3)
-    p0 = 3 * 10.0 / (2 * np.pi * a**2)
+    hertz = reference.hertz_sphere(10.0, 0.01, E_STAR)
+    a, p0 = hertz.contact_radius, hertz.max_pressure
     dx = 4 * a / n
     x = (np.arange(n) - n / 2 + 0.5) * dx
     X, Y = np.meshgrid(x, x, indexing="ij")
     s = Surface(-(X**2 + Y**2) / (2 * 0.01), dx)
     res = solve_bem(s, 10.0 / s.area, E, NU, accelerate=accelerate)
-    exact = p0 * np.sqrt(np.clip(1 - (np.hypot(X, Y) / a) ** 2, 0, None))
+    exact = hertz.pressure(np.hypot(X, Y))
     assert res.converged
     # errors of the 64² grid (a/dx = 16), docs/bem.md: 8.7e-4, 2.9e-3 and 2.3e-4
     assert abs(res.max_pressure / p0 - 1) < 1.5e-3
     assert np.sqrt(np.mean((res.pressure - exact) ** 2)) / p0 < 4e-3
-    assert abs(-res.separation / (a**2 / 0.01) - 1) < 5e-4
+    assert abs(-res.separation / hertz.approach - 1) < 5e-4
 
 
 def test_hertz_is_the_same_solution_for_both_iterations():
     n = 48
-    a = (3 * 10.0 * 0.01 / (4 * E_STAR)) ** (1 / 3)
-    dx = 4 * a / n
+    dx = 4 * reference.hertz_sphere(10.0, 0.01, E_STAR).contact_radius / n
     x = (np.arange(n) - n / 2 + 0.5) * dx
     X, Y = np.meshgrid(x, x, indexing="ij")
     s = Surface(-(X**2 + Y**2) / (2 * 0.01), dx)
@@ -162,7 +161,7 @@ def test_no_stall_once_the_contact_set_has_settled():
     x = np.arange(n) * lam / n
     h = np.repeat((delta * np.cos(2 * np.pi * x / lam))[:, None], 4, axis=1)
     s = Surface(h, lam / n)
-    load = 0.05 * np.pi * E_STAR * delta / lam
+    load = 0.05 * reference.full_contact_pressure(delta, lam, E_STAR)
     fast = solve_bem(s, load, E, NU, periodic=True)
     plain = solve_bem(s, load, E, NU, periodic=True, accelerate=False)
     assert fast.converged and plain.converged
