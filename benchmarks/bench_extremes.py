@@ -16,7 +16,7 @@ import mpmath as mp
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "glstat"))
-from _mpref import gld_fs, max_ref
+from mp_reference import gld_fs, max_ref, rel
 
 from glstat import GLD, maximum
 
@@ -74,8 +74,8 @@ def main() -> None:
             ("sf", m.sf(xp), naive_sf(xp), s_ref),
         ):
             if ref > mp.mpf("1e-300"):
-                worst[key][0] = max(worst[key][0], float(abs((mp.mpf(float(ours)) - ref) / ref)))
-                worst[key][1] = max(worst[key][1], float(abs((mp.mpf(float(naive)) - ref) / ref)))
+                worst[key][0] = max(worst[key][0], rel(float(ours), ref))
+                worst[key][1] = max(worst[key][1], rel(float(naive), ref))
     # quantile: relative error of the upper-tail probability recovered from the quantile
     q = np.logspace(-300, -1, 20)
     ppf_err = float(np.max(np.abs(m.sf(m.isf(q)) / q - 1)))

@@ -1,13 +1,33 @@
-"""High-precision references for the GLD, computed with mpmath.
+"""High-precision references (mpmath) for the glstat tests and benchmarks.
 
-The quantile function is evaluated at 40 significant digits through expm1/log1p, so that
-u**lam and (1-u)**lam keep full relative precision for u down to 1e-300; the CDF is the root
-of Q(u) = x found by bisection in log u to 1e-45 relative, far below double precision.
+Test-only: mpmath is a test dependency, and glstat never imports it. The tests import this
+module as ``mp_reference`` (pytest puts ``tests/glstat`` on ``sys.path``); a benchmark puts
+``tests/glstat`` on ``sys.path`` first.
+
+Every function computes at its own working precision (``mp.workdps``) and returns mpmath
+numbers; none changes mpmath's global precision.
+
+The standardized GLD (``fam`` 0 = RS, 1 = FKML, shapes ``a`` = lambda3, ``b`` = lambda4),
+at 40 significant digits unless told otherwise: :func:`q_mp` evaluates the quantile function
+through expm1/log1p, so that u**lam and (1-u)**lam keep full relative precision for u down to
+1e-300; :func:`tail_probability` is the smaller of F(y) and 1 - F(y), the root of Q(u) = y
+found by bisection in log u to about 1e-50 relative, far below double precision;
+:func:`central_moment_closed` and :func:`entropy_reference` give moments and entropy.
+
+Parents as (F, S) = (cdf, sf) pairs at ``PARENT_DPS`` = 60 digits, for the tests of the
+maximum and the damage: in closed form for the exponential, logistic and Weibull
+(:func:`expon_fs`, :func:`logistic_fs`, :func:`weibull_fs`), and for a GLD in lambda notation
+(:func:`gld_fs`, by :func:`tail_probability`; its quantile function is :func:`gld_q`).
+:func:`max_ref` is the (cdf, sf) of the maximum of n draws, :func:`rel` a relative error.
 """
+
+import math
 
 import mpmath as mp
 
 DPS = 40
+PARENT_DPS = 60
+RS, FKML = 0, 1
 
 
 def q_mp(fam, a, b, t, l1):
@@ -147,3 +167,97 @@ def entropy_reference(fam, a, b, dps=30):
                         pts.extend(v for v in (r - d, r + d) if 0 < v < 1)
         pts = sorted(set(pts))
         return mp.quad(lq, pts)
+
+
+# --------------------------------------------------------------------------- lambda notation
+def _family(param):
+    if param not in ("rs", "fkml"):
+        raise ValueError(f"param must be 'rs' or 'fkml', got {param!r}")
+    return RS if param == "rs" else FKML
+
+
+def gld_q(lambdas, param):
+    """Q(u, s) of the GLD (l1, l2, l3, l4), s = 1 - u given separately (exact for tiny s).
+
+    ``l1 + Q_std(u) / |l2|`` with the standardized :func:`q_mp`, at ``PARENT_DPS`` digits.
+    """
+    fam = _family(param)
+    l1, l2, a, b = lambdas
+
+    def q(u, s):
+        with mp.workdps(PARENT_DPS):
+            return mp.mpf(l1) + q_mp(fam, a, b, mp.log(u), mp.log(s)) / abs(mp.mpf(l2))
+
+    return q
+
+
+def gld_fs(lambdas, param, dps=PARENT_DPS):
+    """x -> (F, S) of the GLD (l1, l2, l3, l4), by :func:`tail_probability` at ``dps`` digits.
+
+    The smaller of the two is the root found in logarithms, the other its complement; below
+    the lower end point (0, 1), above the upper one (1, 0).
+    """
+    fam = _family(param)
+    l1, l2, a, b = lambdas
+
+    def fs(x):
+        with mp.workdps(dps):
+            y = (mp.mpf(x) - mp.mpf(l1)) * abs(mp.mpf(l2))
+            p, upper = tail_probability(fam, a, b, y, dps=dps)
+            return (1 - p, p) if upper else (p, 1 - p)
+
+    return fs
+
+
+# --------------------------------------------------------------------------- closed-form parents
+def expon_fs(x):
+    """(F, S) of the standard exponential at x."""
+    with mp.workdps(PARENT_DPS):
+        x = mp.mpf(x)
+        if x <= 0:
+            return mp.mpf(0), mp.mpf(1)
+        return -mp.expm1(-x), mp.exp(-x)
+
+
+def logistic_fs(x):
+    """(F, S) of the standard logistic at x."""
+    with mp.workdps(PARENT_DPS):
+        x = mp.mpf(x)
+        return 1 / (1 + mp.exp(-x)), 1 / (1 + mp.exp(x))
+
+
+def weibull_fs(c):
+    """x -> (F, S) of the standard Weibull of shape c."""
+
+    def fs(x):
+        with mp.workdps(PARENT_DPS):
+            x = mp.mpf(x)
+            if x <= 0:
+                return mp.mpf(0), mp.mpf(1)
+            k = mp.mpf(c)
+            return -mp.expm1(-(x**k)), mp.exp(-(x**k))
+
+    return fs
+
+
+# --------------------------------------------------------------------------- the maximum
+def max_ref(fs, x, n):
+    """(cdf, sf) of the maximum of n at x: F^n and 1 - F^n = -expm1(n log1p(-S))."""
+    with mp.workdps(PARENT_DPS):
+        f, s = fs(x)
+        n = mp.mpf(n)
+        if s < mp.mpf("0.5"):
+            y = n * mp.log1p(-s)
+        else:
+            y = n * mp.log(f) if f > 0 else mp.mpf("-inf")
+        if y == mp.mpf("-inf"):
+            return mp.mpf(0), mp.mpf(1)
+        return mp.exp(y), -mp.expm1(y)
+
+
+def rel(a, b):
+    """Relative error of the float a against the mpmath b (0 when both are 0)."""
+    if b == 0:
+        return 0.0 if a == 0 else math.inf
+    with mp.workdps(PARENT_DPS):
+        return float(abs((mp.mpf(a) - b) / b))

@@ -11,6 +11,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 import scipy.stats as st
+from mp_reference import expon_fs
 
 import glstat
 from glstat.counts import RowCounts
@@ -19,15 +20,11 @@ mp.mp.dps = 50
 EXPON = st.expon()
 
 
-def _mp_f(x):  # exponential cdf and sf at 50 digits
-    return 1 - mp.exp(-mp.mpf(x)), mp.exp(-mp.mpf(x))
-
-
 @pytest.mark.parametrize("x", [0.01, 0.5, 3.0, 20.0, 200.0, 700.0])
 @pytest.mark.parametrize("mu", [0.3, 6.2, 1e4])
 def test_poisson_damage_and_integrity_match_mpmath(x, mu):
     c = glstat.PoissonCount(mu)
-    _, s = _mp_f(x)
+    _, s = expon_fs(x)
     ref_damage = -mp.expm1(-mu * s)
     ref_integrity = mp.exp(-mu * s)
     d = glstat.damage_probability(EXPON, x, count=c)
@@ -39,7 +36,7 @@ def test_poisson_damage_and_integrity_match_mpmath(x, mu):
 @pytest.mark.parametrize("x", [0.05, 1.0, 5.0, 40.0, 650.0])
 def test_observed_counts_damage_matches_mpmath(x):
     counts = [0, 3, 5, 5, 9, 14]
-    _, s = _mp_f(x)
+    _, s = expon_fs(x)
     ref = mp.fsum(-mp.expm1(n * mp.log1p(-s)) for n in counts) / len(counts)
     d = glstat.damage_probability(EXPON, x, count=glstat.ObservedCounts(counts))
     assert d == pytest.approx(float(ref), rel=1e-13, abs=0)
@@ -74,7 +71,7 @@ def test_maximum_with_count_tails_and_quantiles():
     c = glstat.ObservedCounts([4, 6, 6, 11])
     m = glstat.maximum(EXPON, count=c)
     for x in (0.01, 1.0, 30.0, 600.0):
-        f, s = _mp_f(x)
+        f, s = expon_fs(x)
         ref_cdf = mp.fsum(f**n for n in [4, 6, 6, 11]) / 4
         ref_sf = mp.fsum(-mp.expm1(n * mp.log1p(-s)) for n in [4, 6, 6, 11]) / 4
         assert m.cdf(x) == pytest.approx(float(ref_cdf), rel=1e-12)

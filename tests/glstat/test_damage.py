@@ -1,6 +1,6 @@
 """Tests of integrity_probability, damage_probability and guaranteed_threshold.
 
-References: mpmath at 60 digits (tests/glstat/_mpref.py): integrity F^(k n) = exp(k n log1p(-S))
+References: mpmath at 60 digits (tests/glstat/mp_reference.py): integrity F^(k n) = exp(k n log1p(-S))
 and damage -expm1(k n log1p(-S)) with S from the closed-form exponential sf or from the GLD
 by root finding on Q.
 """
@@ -11,10 +11,11 @@ import mpmath as mp
 import numpy as np
 import pytest
 import scipy.stats as st
-from _mpref import expon_fs, gld_fs, max_ref, rel
+from mp_reference import expon_fs, gld_fs, max_ref, rel
 
 from glstat import GLD, damage_probability, guaranteed_threshold, integrity_probability, maximum
 
+mp.mp.dps = 60  # the mpmath arithmetic of these tests, at the precision of the references
 EPS = np.finfo(float).eps
 RS_NORMAL = (0.0, 0.197451, 0.134912, 0.134912)
 FKML = (1.0, 2.0, 0.3, -0.2)

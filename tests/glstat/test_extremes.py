@@ -1,6 +1,6 @@
 """Tests of glstat.maximum and glstat.order_statistic.
 
-References: mpmath at 60 digits (tests/glstat/_mpref.py) for cdf/sf/pdf; closed-form moments
+References: mpmath at 60 digits (tests/glstat/mp_reference.py) for cdf/sf/pdf; closed-form moments
 of the maximum of n exponentials (mean psi(n+1) + gamma, variance psi'(1) - psi'(n+1)) and of
 n uniforms (Beta(n, 1)); scipy.stats.order_statistic (scipy >= 1.15); seeded simulation.
 """
@@ -14,13 +14,15 @@ import mpmath as mp
 import numpy as np
 import pytest
 import scipy.stats as st
-from _mpref import expon_fs, gld_fs, logistic_fs, max_ref, rel, weibull_fs
+from mp_reference import expon_fs, gld_fs, gld_q, logistic_fs, max_ref, rel, weibull_fs
 from scipy import special
 from scipy.stats._distn_infrastructure import rv_continuous_frozen
 
 import glstat
 from glstat import GLD, maximum, order_statistic
 from glstat.distributions import gld_fkml, gld_rs
+
+mp.mp.dps = 60  # the mpmath arithmetic of these tests, at the precision of the references
 
 NS = [1.0, 7.5, 1e3, 1e6, 1e9, 1e12]
 # probabilities of the maximum at which to probe both tails (lower via ppf, upper via isf)
@@ -144,16 +146,10 @@ def test_maximum_gld_mean_vs_mpmath_quadrature():
     lambdas, param = GLDS["fkml-skew"]
     g = GLD(*lambdas, param=param)
     n = 1e9
-    q = _mpref_q(lambdas, param)
+    q = gld_q(lambdas, param)
     # E max = int_0^inf Q(exp(-s/n)) e^-s ds, upper argument 1 - exp(-s/n) = -expm1(-s/n)
     ref = mp.quad(lambda s: q(mp.exp(-s / n), -mp.expm1(-s / n)) * mp.exp(-s), [0, 1, 10, 100, 800])
     assert maximum(g, n).mean() == pytest.approx(float(ref), rel=1e-12)
-
-
-def _mpref_q(lambdas, param):
-    from _mpref import gld_q
-
-    return gld_q(lambdas, param)
 
 
 def test_maximum_moment_nan_when_it_does_not_exist():
