@@ -315,7 +315,7 @@ def study_main(argv: list[str]) -> int:
         return status
     print(f"study finished in {time.perf_counter() - t0:.1f} s "
           f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
-    from .study.answer import case_name, degenerate_scene, fmt_mpa, fmt_probability
+    from .study.answer import case_name, degenerate_scene, fmt_mpa, fmt_probability, overlap_note
 
     table = res.summary()
     lvl = round(100 * asettings.confidence_level)
@@ -332,9 +332,9 @@ def study_main(argv: list[str]) -> int:
               f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}]; observed "
               f"{fmt_probability(r['observed_damage'])} of {r['n_surfaces']} surfaces; mean contact "
               f"pressure {fmt_mpa(r['mean_pressure_mpa'])}{check}")
-    warn = degenerate_scene(res.analysis)
-    if warn:
-        print(f"warning: {warn}")
+    for warn in (degenerate_scene(res.analysis), overlap_note(settings, res.analysis)):
+        if warn:
+            print(f"warning: {warn}")
     if res.bem:
         run = res.bem_run
         print(f"BEM comparison: {len(run.computed)} surfaces solved, {run.skipped} reused")

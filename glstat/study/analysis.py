@@ -306,6 +306,18 @@ def surface_values(res: dict, kind: str) -> tuple[np.ndarray, int, float]:
     return peaks, int(peaks.size), float(peaks.max()) if peaks.size else 0.0
 
 
+#: A surface's maximal pressure above its largest asperity peak by more than this fraction is
+#: set by overlapping asperity patches (their pressures add up).
+OVERLAP_MARGIN = 0.01
+
+
+def _overlap_sets_maximum(res: dict) -> bool:
+    """Whether a surface's maximal grid pressure exceeds every asperity's own peak (the
+    patches of neighbouring asperities overlap there and their pressures add up)."""
+    peaks = np.asarray(res.get("asperity_peak", ()), dtype=float)
+    return bool(peaks.size and float(res["max_pressure"]) > (1 + OVERLAP_MARGIN) * peaks.max())
+
+
 def _pool(per: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(pooled values, group label per value, count per surface) of per-surface values."""
     data = np.concatenate([p[0] for p in per]) if per else np.empty(0)
@@ -633,6 +645,7 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                 "max_pressure": float(np.mean([r["max_pressure"] for r in rs])) / 1e6,
                 "observed_damage": float(np.mean([float(r["max_pressure"]) / 1e6 > a.hardness
                                                   for r in rs])),
+                "overlap_fraction": float(np.mean([_overlap_sets_maximum(r) for r in rs])),
                 "force_error": float(np.max(np.abs([r["force_error"] for r in rs]))),
                 "n_in_jump": int(sum(int(r.get("in_jump", 0)) for r in rs)),
                 "max_force_jump": float(max(float(r.get("force_jump", 0.0)) for r in rs)),

@@ -186,6 +186,23 @@ def degenerate_scene(analysis: dict) -> str:
             "level with --rq or --target-pressure (docs/method.md §10).")
 
 
+def overlap_note(settings, analysis: dict, threshold: float = 0.1) -> str:
+    """A warning when, on more than ``threshold`` of the surfaces of a case, the maximal
+    pressure is where asperity patches overlap ("" otherwise): the per-asperity predictor
+    describes each asperity's own peak, not these sums."""
+    cases = [(case_name(settings, ih), r["summary"].get("overlap_fraction", 0.0))
+             for (ih, _), r in analysis.items()]
+    many = [(name, f) for name, f in cases if f > threshold]
+    if not many:
+        return ""
+    return ("Overlapping asperities: on " + ", ".join(f"{100 * f:.0f} % of the surfaces ({name})"
+                                                      for name, f in many)
+            + " the maximal pressure lies where the pressure patches of neighbouring asperities "
+              "overlap and add up, above every asperity's own peak. The per-asperity prediction "
+              "describes the peaks, not these sums, and understates the damage probability there: "
+              "read it next to the observed fraction of surfaces damaged and the elastic BEM.")
+
+
 def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
                       bem_analysis: dict | None = None) -> tuple[list[list[Any]], list[str]]:
     """Rows of the report's first table, one per (H, load) and model (the paper's columns

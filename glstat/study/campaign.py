@@ -650,6 +650,16 @@ def _check_writable(root: Path) -> None:
         ) from None
 
 
+def _short(value: Any, width: int = 70) -> str:
+    """``repr(value)`` cut to about ``width`` characters (a long list says how many items)."""
+    text = repr(value)
+    if len(text) <= width:
+        return text
+    if isinstance(value, list):
+        return f"[{len(value)} items: {text[1:width - 20]}...]"
+    return text[:width] + "..."
+
+
 def _prepare_dir(root: Path, settings: CampaignSettings, force: bool) -> None:
     """Check (or create) the manifest of a campaign in ``root``, whose lock the caller holds."""
     mpath = root / MANIFEST
@@ -673,7 +683,8 @@ def _prepare_dir(root: Path, settings: CampaignSettings, force: bool) -> None:
                 ) from None
             old = {}
         if old != ident and not force:
-            diff = ", ".join(f"{k}: {old.get(k)!r} -> {v!r}" for k, v in ident.items() if old.get(k) != v)
+            diff = ", ".join(f"{k}: {_short(old.get(k))} -> {_short(v)}" for k, v in ident.items()
+                             if old.get(k) != v)
             raise CampaignError(
                 f"{root} holds results of a campaign with different settings ({diff}); "
                 f"resuming would mix them. Use a new output directory (--out DIR), or --force "

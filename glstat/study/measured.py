@@ -36,10 +36,23 @@ FORMS = ("plane", "mean", "none")
 SPACING_RTOL = 1e-6
 
 
+#: Extensions of formats SurfaceTopography reads besides the built-in ones (folders are
+#: scanned for them when it is installed).
+SURFACETOPOGRAPHY_SUFFIXES = (".sdf", ".sur", ".plu", ".plux", ".opd", ".opdx", ".datx", ".nc",
+                              ".h5", ".ibw", ".mi", ".vk3", ".vk4", ".vk6", ".zon", ".al3d", ".gwy",
+                              ".lext", ".oir", ".poir", ".tmd", ".di", ".spm", ".zmg", ".nms", ".frt",
+                              ".mat", ".qep", ".wsxm", ".stp", ".tif", ".tiff", ".jpk")
+
+
 def _suffixes() -> set[str]:
+    import importlib.util
+
     from contact.io import FORMATS
 
-    return set(FORMATS)
+    known = set(FORMATS)
+    if importlib.util.find_spec("SurfaceTopography") is not None:
+        known.update(SURFACETOPOGRAPHY_SUFFIXES)
+    return known
 
 
 def find_topographies(specs: str | os.PathLike | Iterable[str | os.PathLike]) -> list[Path]:

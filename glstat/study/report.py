@@ -467,14 +467,14 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     rep = Report("Mechanical integrity of rough surfaces in contact — study report")
 
     # ---- the answer -------------------------------------------------------------------------
-    from .answer import case_name, check_rows, degenerate_scene, first_screen_rows
+    from .answer import case_name, check_rows, degenerate_scene, first_screen_rows, overlap_note
     from .report_surfaces import like_section, measured_section, scene_sentence, surface_rows
 
     rep.heading("The answer")
     bem = info.get("bem")
-    warn = degenerate_scene(analysis)
-    if warn:
-        rep.paragraph("⚠ " + warn)
+    for warn in (degenerate_scene(analysis), overlap_note(settings, analysis)):
+        if warn:
+            rep.paragraph("⚠ " + warn)
     bem_an = info.get("bem_analysis")
     arows, acols = first_screen_rows(settings, asettings, analysis, bem, bem_an)
     rep.table(acols, arows,

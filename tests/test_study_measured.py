@@ -1,0 +1,182 @@
+"""The study on measured topographies (--topographies) and on surfaces like one (--like)."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import contact
+from glstat.study import AnalysisSettings, CampaignError, run_study
+from glstat.study.campaign import CampaignSettings, campaign_surface
+from glstat.study.measured import (
+    find_topographies,
+    like_settings,
+    measured_settings,
+    read_measured,
+    read_topography,
+)
+
+FAST = AnalysisSettings(n_resamples=20, grid_resamples=10)
+TILT = 0.05  # a form (plane) of 50 µm per mm, which the study must remove
+
+
+def _write_measured(folder, n=10, grid=128, side=0.25e-3, rq=0.5e-6):
+    """``n`` self-affine topographies with a tilted plane, as .npz files; returns the levelled
+    surfaces."""
+    folder.mkdir(parents=True, exist_ok=True)
+    truth = []
+    for i in range(n):
+        s = contact.self_affine((grid, grid), side, hurst=0.7, rq=rq, rng=i)
+        tilt = TILT * (np.arange(grid)[:, None] * s.dx + 0.5 * np.arange(grid)[None, :] * s.dy)
+        contact.write(contact.Surface(s.heights + tilt, s.dx), folder / f"scan_{i:02d}.npz")
+        truth.append(s)
+    return truth
+
+
+@pytest.fixture(scope="module")
+def measured_dir(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("measured")
+    _write_measured(folder)
+    return folder
+
+
+@pytest.fixture(scope="module")
+def measured_study(measured_dir, tmp_path_factory):
+    out = tmp_path_factory.mktemp("measured_study")
+    settings = measured_settings(measured_dir)
+    return settings, run_study(settings, FAST, out, workers=1, progress=False, compare_bem=0)
+
+
+def test_find_topographies_takes_files_folders_and_patterns(measured_dir, tmp_path):
+    every = find_topographies(measured_dir)
+    assert [p.name for p in every] == [f"scan_{i:02d}.npz" for i in range(10)]
+    assert find_topographies(str(measured_dir / "scan_0[12].npz")) == every[1:3]
+    assert find_topographies([every[3], str(every[3])]) == [every[3]]  # once
+    with pytest.raises(FileNotFoundError, match="no such topography file or folder"):
+        find_topographies(tmp_path / "missing.x3p")
+    with pytest.raises(FileNotFoundError, match="matches no file"):
+        find_topographies(str(tmp_path / "*.x3p"))
+    (tmp_path / "notes.md").write_text("not a topography")
+    with pytest.raises(FileNotFoundError, match="no topography file in the folder"):
+        find_topographies(tmp_path)
+
+
+def test_form_removal_takes_the_plane_out(measured_dir):
+    (surface,) = read_measured([measured_dir / "scan_00.npz"], "plane")
+    truth = contact.self_affine((128, 128), 0.25e-3, hurst=0.7, rq=0.5e-6, rng=0).detrend("plane")
+    np.testing.assert_allclose(surface.heights, truth.heights, atol=1e-15)
+    (raw,) = read_measured([measured_dir / "scan_00.npz"], "none")
+    assert np.ptp(raw.heights) > 3 * np.ptp(surface.heights)  # the tilt is still there
+
+
+def test_files_of_different_grid_spacing_or_shape_are_refused(measured_dir, tmp_path):
+    s = contact.self_affine((64, 64), 0.25e-3, hurst=0.7, rq=0.5e-6, rng=1)
+    contact.write(s, tmp_path / "small.npz")
+    with pytest.raises(ValueError, match=r"small\.npz has 64 × 64 points .* must share grid and spacing"):
+        read_measured([measured_dir / "scan_00.npz", tmp_path / "small.npz"])
+    wide = contact.Surface(np.zeros((64, 32)), 1e-6)
+    contact.write(wide, tmp_path / "wide.npz")
+    with pytest.raises(ValueError, match=r"wide\.npz: the study needs square topographies"):
+        read_measured([tmp_path / "wide.npz"])
+
+
+def test_a_changed_file_is_refused_and_never_mixed(measured_dir, measured_study, tmp_path):
+    f = tmp_path / "scan.npz"
+    f.write_bytes((measured_dir / "scan_00.npz").read_bytes())
+    one = measured_settings(f)
+    contact.write(contact.self_affine((128, 128), 0.25e-3, hurst=0.7, rq=0.5e-6, rng=99), f)
+    with pytest.raises(ValueError, match=r"changed since the campaign .* started"):
+        read_topography(f, "plane", one.digests[0])
+    # the digests are part of the identity: a rerun in the same directory is refused
+    assert measured_settings(f).identity() != one.identity()
+    with pytest.raises(CampaignError, match="different settings"):
+        run_study(measured_settings(f), FAST, measured_study[1].out, workers=1,
+                  progress=False, compare_bem=0)
+
+
+def test_simulated_identity_is_unchanged_by_the_measured_fields():
+    keys = set(CampaignSettings().identity())
+    assert not keys & {"topographies", "digests", "form", "like"}
+
+
+def test_measured_study_reads_every_file_as_one_surface(measured_study):
+    settings, res = measured_study
+    assert settings.measured and settings.n_surfaces == 10 and settings.grid == 128
+    assert settings.length == pytest.approx(0.25e-3)
+    table = res.summary()
+    row = table[(table["model"] == "asperity") & (table["sample"] == "asperity")].iloc[0]
+    assert row["n_surfaces"] == 10
+    # the contact of each file equals the asperity model on that file with its plane removed
+    for i in (0, 7):
+        direct = contact.solve(campaign_surface(settings, 0, 0, i), 20e6, settings.E, settings.nu,
+                               settings.cone_factor)
+        stored = np.load(res.out / f"H{settings.hurst[0]:g}_P20MPa" / f"surface_{i:04d}.npz")
+        assert float(stored["mean_pressure"]) == pytest.approx(direct.mean_pressure, rel=1e-12)
+        truth = contact.self_affine((128, 128), 0.25e-3, hurst=0.7, rq=0.5e-6, rng=i)
+        assert float(stored["iso_Sq"]) == pytest.approx(
+            float(truth.detrend("plane").roughness()["Sq"]), rel=1e-9)
+    text = res.report_md.read_text()
+    assert "## Measured topographies" in text and "scan_09.npz" in text
+    assert "| measured |" in text and "paper: damage" not in text
+    assert "Consistency with the paper" not in text
+    manifest = json.loads((res.out / "manifest.json").read_text())["campaign"]
+    assert len(manifest["digests"]) == 10 and manifest["form"] == "plane"
+
+
+def test_like_study_simulates_the_measured_statistics(measured_dir, tmp_path):
+    settings, params = like_settings(measured_dir / "scan_03.npz", 10)
+    assert params.fit.r2 > 0.9  # a self-affine template fits its power law
+    measured = read_topography(measured_dir / "scan_03.npz", "plane")
+    direct = contact.weierstrass_parameters(measured)
+    assert (settings.hurst[0], settings.rq, settings.n_terms[0]) == (direct.hurst, direct.rq,
+                                                                    direct.n_terms[0])
+    assert settings.grid == 128 and not settings.measured and settings.like
+    res = run_study(settings, FAST, tmp_path / "like", workers=1, progress=False, compare_bem=0)
+    text = res.report_md.read_text()
+    assert "## Measured template and simulated surfaces" in text
+    assert "scan_03.npz" in text and (res.out / "report_files" / "psd_like.png").is_file()
+    # the simulated surfaces carry the template's Rq (the table's Sq row, in µm)
+    sq_row = next(line for line in text.splitlines() if line.startswith("| Sq |"))
+    measured_sq, simulated_sq = (float(v) for v in sq_row.split("|")[2:4])
+    assert simulated_sq == pytest.approx(measured_sq, rel=0.05)
+
+
+def test_surfacetopography_formats_reach_the_study(tmp_path):
+    """An ISO 25178-71 SDF file, which only SurfaceTopography reads (installed with [all])."""
+    if importlib.util.find_spec("SurfaceTopography") is None:
+        pytest.fail("SurfaceTopography is part of the 'all' extra; install glstat[all]")
+    rows = np.arange(1.0, 17.0 * 17.0 + 1).reshape(17, 17)
+    header = ["aISO-1.0", "ManufacID = glstat", "CreateDate = 010120251200",
+              "ModDate = 010120251200", "NumPoints = 17", "NumProfiles = 17", "Xscale = 2.0E-06",
+              "Yscale = 2.0E-06", "Zscale = 1.0E-09", "Zresolution = -1", "Compression = 0",
+              "DataType = 7", "CheckType = 0", "NumDataSet = 1", "NanPresent = 0", "*"]
+    body = [" ".join(f"{v:g}" for v in r) for r in rows]
+    (tmp_path / "scan.sdf").write_text("\n".join([*header, *body, "*", ""]))
+    assert find_topographies(tmp_path) == [(tmp_path / "scan.sdf").resolve()]
+    (s,) = read_measured([tmp_path / "scan.sdf"], "none")
+    assert s.shape == (17, 17) and s.dx == pytest.approx(2e-6)
+    np.testing.assert_allclose(s.heights, rows.T * 1e-9, rtol=1e-12)  # rows are profiles (y)
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--grid", "64"], "--grid: options of simulated surfaces"),
+    (["--rq", "2"], "--rq: options of simulated surfaces"),
+])
+def test_cli_refuses_simulation_options_with_topographies(measured_dir, tmp_path, extra, message):
+    r = subprocess.run([sys.executable, "-m", "glstat.cli", "study", "--topographies",
+                        str(measured_dir), "--out", str(tmp_path / "o"), *extra],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and message in r.stderr and "Traceback" not in r.stderr
+
+
+def test_cli_names_a_missing_topography(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "glstat.cli", "study", "--like",
+                        str(tmp_path / "nowhere.x3p"), "--out", str(tmp_path / "o")],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "no such topography file or folder" in r.stderr
+    assert "nowhere.x3p" in r.stderr
