@@ -45,9 +45,9 @@ def main() -> None:
     parser.add_argument("--out", default="study-measured", help="output folder")
     args = parser.parse_args()
     folder = Path(args.folder) if args.folder else Path(args.out) / "scans"
-    if not args.folder:
+    if not args.folder and not any(folder.glob("*.x3p")):
         folder.mkdir(parents=True, exist_ok=True)
-        demo_scans(folder)  # the same bytes every time: a rerun resumes
+        demo_scans(folder)  # written once: a rerun resumes on the same files
     analysis = AnalysisSettings(n_resamples=50, grid_resamples=20)
 
     settings = measured_settings(folder, form="plane", pressures=(20e6,))
