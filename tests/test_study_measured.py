@@ -122,6 +122,12 @@ def test_measured_study_reads_every_file_as_one_surface(measured_study):
             float(truth.detrend("plane").roughness()["Sq"]), rel=1e-9)
     text = res.report_md.read_text()
     assert "## Measured topographies" in text and "scan_09.npz" in text
+    # full-spectrum surfaces: the maximum is mostly where asperity patches overlap and add up
+    files = sorted(res.out.glob("H*_P20MPa/surface_*.npz"))
+    overlaps = [float(z["max_pressure"]) > 1.01 * float(np.max(z["asperity_peak"]))
+                for z in map(np.load, files)]
+    assert res.analysis[(0, 0)]["summary"]["overlap_fraction"] == pytest.approx(np.mean(overlaps))
+    assert np.mean(overlaps) > 0.1 and "Overlapping asperities: on" in text
     assert "| measured |" in text and "paper: damage" not in text
     assert "Consistency with the paper" not in text
     manifest = json.loads((res.out / "manifest.json").read_text())["campaign"]
