@@ -24,6 +24,7 @@ from .extremes import (
     order_statistic,
 )
 from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
+from .generalized_lambda import GeneralizedLambda
 from .gld import GLD
 from .gof import compare_families, edf_statistics, gof_report
 from .regions import rs_region
@@ -40,6 +41,7 @@ __all__ = [
     "FitError",
     "FitWarning",
     "GLDFit",
+    "GeneralizedLambda",
     "InvalidParameterError",
     "MaximumCountDistribution",
     "MaximumDistribution",
