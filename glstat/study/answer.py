@@ -261,21 +261,44 @@ def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = 
     if bem_analysis:
         items = ([(k, r, ", asperity model") for k, r in analysis.items()]
                  + [(k, r, ", elastic BEM") for k, r in bem_analysis.items()])
+    holm = _holm_across_cases(items)
     for (ih, il), r, label in items:
         for kind in ("asperity", "grid"):
             v = r[kind].validation
             case = case_name(settings, ih) + (
                 f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1 else "") + label
             if v.table is None:
-                rows.append([case, SAMPLE_LABELS[kind], "—", "—", "—", "—",
+                rows.append([case, SAMPLE_LABELS[kind], "—", "—", "—", "—", "—",
                              f"not checked: {v.error or r[kind].note}"])
                 continue
             hits, m = v.damage_hits()
             lo, hi = v.coverage_interval
+            adjusted = holm.get((ih, il, label, kind), math.nan)
             rows.append([case, SAMPLE_LABELS[kind],
                          f"{100 * v.coverage:.0f} % [{100 * lo:.0f}, {100 * hi:.0f}]",
-                         f"{v.t_pvalue:.2g}", f"{hits} of {m}",
-                         f"{v.theta:.2g}" if math.isfinite(v.theta) else "—",
+                         f"{v.t_pvalue:.2g}", f"{adjusted:.2g}" if math.isfinite(adjusted) else "—",
+                         f"{hits} of {m}", f"{v.theta:.2g}" if math.isfinite(v.theta) else "—",
                          "passes" if v.passes(asettings.confidence_level) else "fails"])
     return rows, ["case", "sample", f"coverage of the {lvl} % interval [Wilson 95 %]",
-                  "centring test p", "hardness levels inside", "extremal index θ", "check"]
+                  "centring test p", "centring p, Holm across cases", "hardness levels inside",
+                  "extremal index θ", "check"]
+
+
+def _holm_across_cases(items: list) -> dict:
+    """Holm-adjusted centring-test p-values: one family per (model, sample) across the cases
+    (Hurst exponents and loads), keyed ``(ih, il, model label, sample)``."""
+    from ..gof import adjust_pvalues
+
+    out = {}
+    for label in dict.fromkeys(lab for _, _, lab in items):
+        for kind in ("asperity", "grid"):
+            keys, ps = [], []
+            for (ih, il), r, lab in items:
+                v = r[kind].validation
+                if lab == label and v.table is not None and math.isfinite(v.t_pvalue):
+                    keys.append((ih, il, label, kind))
+                    ps.append(v.t_pvalue)
+            if ps:
+                out.update(zip(keys, np.atleast_1d(adjust_pvalues(np.array(ps))).tolist(),
+                               strict=True))
+    return out
