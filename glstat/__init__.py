@@ -24,7 +24,6 @@ from .extremes import (
     order_statistic,
 )
 from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
-from .generalized_lambda import GeneralizedLambda
 from .gld import GLD
 from .gof import compare_families, edf_statistics, gof_report
 from .regions import rs_region
@@ -67,3 +66,13 @@ __all__ = [
     "order_statistic",
     "rs_region",
 ]
+
+
+def __getattr__(name: str):
+    # scipy's distribution infrastructure costs import time: built on first use
+    if name == "GeneralizedLambda":
+        from .generalized_lambda import GeneralizedLambda
+
+        globals()[name] = GeneralizedLambda
+        return GeneralizedLambda
+    raise AttributeError(f"module 'glstat' has no attribute {name!r}")

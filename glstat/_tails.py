@@ -9,6 +9,7 @@ parent's ``logsf`` takes over where ``sf`` may underflow.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from scipy.stats import rv_continuous
@@ -41,6 +42,17 @@ def _as_fast(dist):
         sign = float(rs_lambda2_sign(lam3, lam4))
         return GLD(loc, sign / scale, lam3, lam4, param="rs")
     return GLD(loc, 1.0 / scale, lam3, lam4, param="fkml")
+
+
+def _is_discrete(dist: Any) -> bool:
+    """Whether ``dist`` is a discrete distribution: scipy's new infrastructure gives both kinds
+    ``pmf`` and ``pdf`` and tells them apart by class; a frozen ``rv_discrete`` has no ``pdf``."""
+    names = {c.__name__ for c in type(dist).__mro__}
+    if "DiscreteDistribution" in names:
+        return True
+    if "ContinuousDistribution" in names:
+        return False
+    return hasattr(dist, "pmf") and not callable(getattr(dist, "pdf", None))
 
 
 class TailAccess:
@@ -79,8 +91,9 @@ class TailAccess:
             for name, f in (("logcdf", self._logcdf), ("logsf", self._logsf), ("isf", self._isf))
             if f is None
         ]
-        if missing or hasattr(dist, "pmf"):
-            what = "is a discrete distribution" if hasattr(dist, "pmf") else (
+        discrete = _is_discrete(dist)
+        if missing or discrete:
+            what = "is a discrete distribution" if discrete else (
                 f"lacks {', '.join(missing)}"
             )
             raise TypeError(

@@ -439,3 +439,18 @@ def test_order_statistic_rank_error_names_a_rank():
     assert "rank" in str(info.value) and "draws" not in str(info.value)
     with pytest.raises(ValueError, match="a number of draws"):
         order_statistic(st.norm(), 1, 0)
+
+
+def test_maximum_accepts_scipy_new_infrastructure_distributions():
+    """scipy's ContinuousDistribution objects have a pmf method too; they are continuous."""
+    from scipy import stats
+
+    x = np.array([3.0, 5.0, 8.0, 9.0, 20.0])
+    new = glstat.maximum(stats.Normal(), 1e6).sf(x)
+    old = glstat.maximum(stats.norm(), 1e6).sf(x)
+    np.testing.assert_allclose(new, old, rtol=1e-14)
+    assert new[-1] > 0  # 1e6 * sf(20) ~ 2.8e-83, no underflow
+    with pytest.raises(TypeError, match="Binomial is a discrete distribution"):
+        glstat.maximum(stats.Binomial(n=10, p=0.3), 5)
+    with pytest.raises(TypeError, match="is a discrete distribution"):
+        glstat.maximum(stats.poisson(3.0), 5)
