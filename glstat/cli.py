@@ -11,6 +11,7 @@ import argparse
 import math
 import sys
 import time
+from typing import TypedDict
 
 __all__ = ["main", "study_main"]
 
@@ -24,9 +25,16 @@ commands:
 
 'glstat COMMAND --help' describes each command; 'glstat --version' prints the version."""
 
+class _StudyDefaults(TypedDict):
+    surfaces: int
+    grid: int
+    bootstrap: int
+    out: str
+
+
 #: The study's defaults, and the ``--quick`` overrides.
-DEFAULTS = {"surfaces": 100, "grid": 1024, "bootstrap": 1000, "out": "glstat-study"}
-QUICK = {"surfaces": 30, "grid": 512, "bootstrap": 300, "out": "glstat-study-quick"}
+DEFAULTS: _StudyDefaults = {"surfaces": 100, "grid": 1024, "bootstrap": 1000, "out": "glstat-study"}
+QUICK: _StudyDefaults = {"surfaces": 30, "grid": 512, "bootstrap": 300, "out": "glstat-study-quick"}
 #: Default Weierstrass truncation (terms per axis), see docs/study.md.
 DEFAULT_N_TERMS = 6
 #: Surfaces per H compared with the elastic BEM by ``--compare-bem`` without a value.

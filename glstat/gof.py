@@ -393,12 +393,16 @@ def _bootstrap_pvalues(model: _Model, observed: dict, n: int, bins, n_resamples:
     valid = dict.fromkeys(_STATS, 0)
     failed = 0
     last_error = ""
+    refit = model.refit
+    if refit is None:
+        raise TypeError(f"{model.name}: an estimated model needs a refit function for the "
+                        "bootstrap p-values")
     for _ in range(n_resamples):
         sim = np.sort(np.asarray(model.dist.rvs(size=n, random_state=rng), dtype=float))
         try:
             # no warning filters here: the default refits do not warn, and this loop may run
             # in a worker thread, where changing the process-wide filters is not safe
-            dist_b = _as_dist(model.refit(sim))
+            dist_b = _as_dist(refit(sim))
             s = _statistics(dist_b, sim, bins)
         except Exception as exc:  # a refit that fails is counted and reported, never hidden
             failed += 1

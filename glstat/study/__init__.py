@@ -324,6 +324,8 @@ def run_study(
     if model != "asperity":
         from .bem import elastic_results
 
+        if bsettings is None:  # set above for every model but "asperity"
+            raise AssertionError(f"model {model!r} without BEM settings")
         eres, left_out = elastic_results(out, settings, bsettings)
         bem_an = analyse(eres, settings, analysis, progress=say, model="bem")
     bem = None

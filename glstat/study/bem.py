@@ -21,7 +21,7 @@ import math
 import os
 import time
 import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -132,7 +132,7 @@ def bem_path(root: str | os.PathLike, settings: CampaignSettings, ih: int, il: i
 
 
 # -- one surface -------------------------------------------------------------------------------
-def contact_record(res: Any) -> dict[str, np.ndarray]:
+def contact_record(res: Any) -> dict[str, np.ndarray | np.generic]:
     """The figures of one contact solution that the comparison uses.
 
     Parameters
@@ -199,7 +199,7 @@ def _solve_both(surface, nominal_pressure, E, nu, cone_factor, counter_face, per
 
 
 def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il: int,
-                 i: int) -> dict[str, np.ndarray]:
+                 i: int) -> dict[str, np.ndarray | np.generic]:
     """Regenerate campaign surface (ih, il, i) and solve it with both models (a task).
 
     Returns
@@ -215,7 +215,7 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
     asp, bem, ta, tb = _solve_both(surf, settings.pressures[il], settings.E, settings.nu,
                                    settings.cone_factor, None, bsettings.periodic, bsettings.tol,
                                    bsettings.max_iter, 1, True)
-    out: dict[str, np.ndarray] = {}
+    out: dict[str, np.ndarray | np.generic] = {}
     for model, res in (("asperity", asp), ("bem", bem)):
         out.update({f"{model}_{k}": v for k, v in contact_record(res).items()})
         if i < settings.n_examples:
@@ -585,7 +585,7 @@ class BEMComparison:
         r = self.ratios()
         rows = []
         for q in QUANTITIES:
-            row = {"quantity": q}
+            row: dict[str, str | float] = {"quantity": q}
             for m in MODELS:
                 v = self.surfaces.loc[self.surfaces["model"] == m, q].to_numpy(dtype=float)
                 row[f"{m}_mean"] = float(np.mean(v))
@@ -618,7 +618,8 @@ class BEMComparison:
         return pd.DataFrame(rows)
 
 
-def _compare(entries: list[tuple[Any, dict[str, dict[str, np.ndarray]]]], a: AnalysisSettings,
+def _compare(entries: Sequence[tuple[Any, Mapping[str, Mapping[str, np.ndarray | np.generic]]]],
+             a: AnalysisSettings,
              key: tuple[int, ...]) -> BEMComparison:
     """Tables, GLD fits and damage of both models from per-surface records."""
     import pandas as pd
@@ -627,13 +628,14 @@ def _compare(entries: list[tuple[Any, dict[str, dict[str, np.ndarray]]]], a: Ana
     for label, rec in entries:
         for m in MODELS:
             r = rec[m]
-            peaks = np.asarray(r["cluster_peaks"], dtype=float)
+            spot_peaks = np.asarray(r["cluster_peaks"], dtype=float)
             rows.append({"surface": label, "model": m,
                          "contact_fraction": float(r["contact_fraction"]),
                          "mean_pressure_MPa": float(r["mean_pressure"]) / 1e6,
                          "max_pressure_MPa": float(r["max_pressure"]) / 1e6,
                          "n_contact": int(r["n_contact"]), "n_clusters": int(r["n_clusters"]),
-                         "mean_peak_MPa": float(peaks.mean()) / 1e6 if peaks.size else math.nan,
+                         "mean_peak_MPa": (float(spot_peaks.mean()) / 1e6 if spot_peaks.size
+                                           else math.nan),
                          "border_load_fraction": float(r["border_load_fraction"]),
                          "force_error": float(r["force_error"]),
                          "converged": bool(r["converged"]), "n_iterations": int(r["n_iterations"])})
@@ -772,20 +774,20 @@ def findings(comparisons: dict[str, BEMComparison]) -> str:
         return ""
     parts = []
     worst = (0.0, "", "", math.nan)
-    means = {q: [] for q in QUANTITIES}
+    means: dict[str, list[float]] = {q: [] for q in QUANTITIES}
     for label, c in comparisons.items():
         r = c.ratios()
         k = len(r)
         txt = []
         for q in QUANTITIES:
             v = r[q].to_numpy(dtype=float)
-            m = float(np.mean(v))
-            means[q].append(m)
+            mean_ratio = float(np.mean(v))
+            means[q].append(mean_ratio)
             rng = f" (range {v.min():.3g}–{v.max():.3g})" if k > 1 else ""
-            txt.append(f"{SHORT_LABELS[q]} {_x(m)}{rng}")
-            err = abs(math.log(m)) if m > 0 and math.isfinite(m) else 0.0
+            txt.append(f"{SHORT_LABELS[q]} {_x(mean_ratio)}{rng}")
+            err = abs(math.log(mean_ratio)) if mean_ratio > 0 and math.isfinite(mean_ratio) else 0.0
             if err > worst[0]:
-                worst = (err, label, q, m)
+                worst = (err, label, q, mean_ratio)
         parts.append(f"{label}: " + ", ".join(txt))
     k = len(next(iter(comparisons.values())).ratios())
     text = [f"Ratios asperity model / BEM, means over the {k} compared surface{'s' if k > 1 else ''} "

@@ -392,7 +392,7 @@ def _describe_holder(path: Path) -> str:
 def _try_lock(fd: int) -> bool:
     """Take the exclusive lock on ``fd`` without waiting; False when another process holds it."""
     try:
-        if os.name == "nt":  # pragma: no cover - Windows
+        if sys.platform == "win32":  # pragma: no cover - Windows
             import msvcrt
 
             msvcrt.locking(fd, msvcrt.LK_NBLCK, 1)
@@ -524,10 +524,12 @@ def _remove_stale_temporaries(root: Path) -> int:
 def write_failure(exc: OSError, path: str | os.PathLike) -> str:
     """A sentence on a failed write: the file, the system's reason, and what to do."""
     reason = exc.strerror or str(exc)
-    hint = {errno.ENOSPC: "free some disk space", errno.EDQUOT: "free some of your disk quota",
-            errno.EROFS: "the file system is read-only; choose another --out",
-            errno.EACCES: "check the directory's permissions",
-            errno.EPERM: "check the directory's permissions"}.get(exc.errno, "check the disk")
+    hints: dict[int | None, str] = {
+        errno.ENOSPC: "free some disk space", errno.EDQUOT: "free some of your disk quota",
+        errno.EROFS: "the file system is read-only; choose another --out",
+        errno.EACCES: "check the directory's permissions",
+        errno.EPERM: "check the directory's permissions"}
+    hint = hints.get(exc.errno, "check the disk")
     return f"cannot write {path} ({reason}): {hint}"
 
 
@@ -774,12 +776,12 @@ def make_executor(workers: int | None = None, scheduler: str | None = None,
     if n < 1:
         raise ValueError(f"workers must be >= 1, got {workers!r}")
     if n == 1:
-        ex = SerialExecutor()
-        return ex, ex.shutdown
+        serial = SerialExecutor()
+        return serial, serial.shutdown
     from concurrent.futures import ProcessPoolExecutor
 
-    ex = ProcessPoolExecutor(n, initializer=_init_worker, initargs=(os.getpid(),))
-    return ex, lambda: ex.shutdown(cancel_futures=True)
+    pool = ProcessPoolExecutor(n, initializer=_init_worker, initargs=(os.getpid(),))
+    return pool, lambda: pool.shutdown(cancel_futures=True)
 
 
 def _init_worker(parent: int) -> None:
@@ -940,7 +942,7 @@ def run_campaign(
     return run
 
 
-def task_stamp(settings: CampaignSettings) -> dict[str, np.ndarray]:
+def task_stamp(settings: CampaignSettings) -> dict[str, np.ndarray | np.generic]:
     """The arrays that tie a stored result to its campaign (besides its ``task_key``).
 
     ``task_seed`` is the campaign's root seed and ``campaign_id`` a digest of
@@ -1086,7 +1088,8 @@ def split_stored(keys: Iterable, path_of: Callable, complete: Callable, run: Any
 def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, run: Any, *,
                      total: int, executor: Executor | None, workers: int | None, limit: int,
                      desc: str, progress: bool,
-                     stamp: dict[str, np.ndarray] | None = None) -> BaseException | None:
+                     stamp: dict[str, np.ndarray | np.generic] | None = None,
+                     ) -> BaseException | None:
     """Compute the results of ``todo`` with :func:`execute_tasks` and write each atomically.
 
     Parameters
@@ -1189,8 +1192,9 @@ def load_results(out: str | os.PathLike, settings: CampaignSettings,
     """
     res = {}
     stamp = task_stamp(settings)
-    for key in settings.tasks() if keys is None else keys:
-        key = tuple(int(v) for v in key)
+    for requested in settings.tasks() if keys is None else keys:
+        ih, il, i = (int(v) for v in requested)
+        key = (ih, il, i)
         path = surface_path(out, settings, *key)
         if not path.is_file():
             raise CampaignError(f"{path} is missing: run the campaign (it resumes) before analysing")

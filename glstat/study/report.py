@@ -318,7 +318,7 @@ def truncation_paragraphs(settings, info: dict) -> list[str]:
     else:
         general = ("**Truncation of the Weierstrass series.** None: the surfaces carry every "
                    "frequency up to the grid's Nyquist limit (docs/method.md §2).")
-    if not rows or not truncation_matches(settings, reference):
+    if not rows or reference is None or not truncation_matches(settings, reference):
         return [general]
     by_h: dict[float, list] = {}
     for r in rows:
@@ -614,8 +614,8 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
               f"Workers: {info.get('workers', '?')}. Command: `{info.get('command', '')}`")
 
     # ---- example surfaces and pressure maps ----------------------------------------------------
-    ex = [(c, results.get((c[0], c[1], 0))) for c in combos]
-    ex = [(c, r) for c, r in ex if r is not None and "heights" in r]
+    stored = [(c, results.get((c[0], c[1], 0))) for c in combos]
+    ex = [(c, r) for c, r in stored if r is not None and "heights" in r]
     if ex:
         rep.heading("Example surfaces")
         fig, axes = plt.subplots(1, len(ex), figsize=(4.6 * len(ex), 3.6), squeeze=False,
@@ -688,9 +688,9 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     rep.heading("Histograms with the fitted GLD densities")
     fig, axes = plt.subplots(2, nc, figsize=(4.2 * nc, 6.8), squeeze=False, layout="constrained")
     for col, ((ih, il), r) in enumerate(analysis.items()):
-        for row, kind in enumerate(("grid", "asperity")):
+        for irow, kind in enumerate(("grid", "asperity")):
             sa = r[kind]
-            ax = axes[row, col]
+            ax = axes[irow, col]
             if sa.data.size:
                 plot_histogram(sa.data, *([sa.boot.fit.dist] if sa.ok else []),
                                names=[f"GLD {sa.param.upper()}"] if sa.ok else None, ax=ax)
