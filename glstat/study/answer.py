@@ -289,7 +289,7 @@ def _holm_across_cases(items: list) -> dict:
     (Hurst exponents and loads), keyed ``(ih, il, model label, sample)``."""
     from ..gof import adjust_pvalues
 
-    out = {}
+    out: dict[tuple[int, int, str, str], float] = {}
     for label in dict.fromkeys(lab for _, _, lab in items):
         for kind in ("asperity", "grid"):
             keys, ps = [], []
