@@ -386,7 +386,7 @@ def _build(version: str = scipy.__version__) -> type:
         return _unavailable_class(version)
     from scipy.stats import make_distribution
 
-    base = make_distribution(_FKMLProtocol())
+    base: Any = make_distribution(_FKMLProtocol())  # a class made at run time
 
     class GeneralizedLambda(base):
         r"""FKML Generalized Lambda Distribution as a ``scipy.stats.ContinuousDistribution``.
@@ -485,7 +485,8 @@ def _build(version: str = scipy.__version__) -> type:
             if any(v.ndim for v in values):
                 raise ValueError(
                     f"to_gld needs scalar parameters; this distribution has shape {self._shape}")
-            return GLD(*(float(v) for v in values), param="fkml")
+            l1, l2, l3, l4 = (float(v) for v in values)
+            return GLD(l1, l2, l3, l4, param="fkml")
 
     GeneralizedLambda.__module__ = __name__
     GeneralizedLambda.__qualname__ = "GeneralizedLambda"
