@@ -8,6 +8,7 @@ GLD (the same as ``python -m glstat``).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import sys
 import time
@@ -22,6 +23,10 @@ commands:
           area, checked on held-out surfaces, with the elastic model beside it (report.html)
   fit     fit a GLD to samples from a CSV, Parquet, NPY or Excel file
   demo    print quantiles and tail probabilities of a GLD (as python -m glstat)
+
+options of every command:
+  -v, --verbose   report what the library does (fits, bootstrap, solvers); -vv for details
+  -q, --quiet     only errors: no warnings, no progress bar
 
 'glstat COMMAND --help' describes each command; 'glstat --version' prints the version."""
 
@@ -426,7 +431,66 @@ def main(argv: list[str] | None = None) -> int:
             from . import __version__ as version
         print(f"glstat {version}")
         return 0
+    argv, verbosity = _verbosity(argv)
+    if not argv:
+        print(USAGE)
+        return 2
     cmd, rest = argv[0], argv[1:]
+    with _logging_at(verbosity):
+        return _dispatch(cmd, rest)
+
+
+#: Command-line flags of the verbosity and their effect on the level (−1 quiet, 1 and 2 verbose).
+VERBOSITY_FLAGS = {"-v": 1, "--verbose": 1, "-vv": 2, "-q": -1, "--quiet": -1}
+
+
+def _verbosity(argv: list[str]) -> tuple[list[str], int]:
+    """``argv`` without the verbosity flags (wherever they stand), and the verbosity: the sum
+    of the flags, −1 with any quiet flag."""
+    flags = [VERBOSITY_FLAGS[a] for a in argv if a in VERBOSITY_FLAGS]
+    level = -1 if -1 in flags else sum(flags)
+    return [a for a in argv if a not in VERBOSITY_FLAGS], level
+
+
+@contextlib.contextmanager
+def _logging_at(verbosity: int):
+    """Log records of ``glstat`` and ``contact`` to stderr at INFO (1) or DEBUG (2 and more),
+    and, quiet (−1), silence warnings and the progress bar; restores everything on exit."""
+    import logging
+    import os
+    import warnings
+
+    if verbosity == 0:
+        yield
+        return
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("%(name)s: %(message)s"))
+    loggers = [logging.getLogger(name) for name in ("glstat", "contact")]
+    saved = [(lg, lg.level) for lg in loggers]
+    level = logging.ERROR if verbosity < 0 else (logging.INFO if verbosity == 1 else logging.DEBUG)
+    for lg in loggers:
+        lg.setLevel(level)
+        lg.addHandler(handler)
+    previous_tqdm = os.environ.get("TQDM_DISABLE")
+    try:
+        with warnings.catch_warnings():
+            if verbosity < 0:
+                warnings.simplefilter("ignore")
+                os.environ["TQDM_DISABLE"] = "1"
+            yield
+    finally:
+        for lg, lv in saved:
+            lg.setLevel(lv)
+            lg.removeHandler(handler)
+        if verbosity < 0:
+            if previous_tqdm is None:
+                os.environ.pop("TQDM_DISABLE", None)
+            else:
+                os.environ["TQDM_DISABLE"] = previous_tqdm
+
+
+def _dispatch(cmd: str, rest: list[str]) -> int:
+    """Run one subcommand."""
     if cmd == "study":
         return study_main(rest)
     if cmd == "fit":
