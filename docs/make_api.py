@@ -58,6 +58,8 @@ def _section(name: str, obj) -> list[str]:
                 continue
             sig = "" if isinstance(member, property) else _signature(target)
             first = (inspect.getdoc(target) or "").split("\n\n")[0].replace("\n", " ")
+            if not first:  # e.g. parameter properties scipy adds to a class when it is first used
+                continue
             lines.append(f"- `{attr}{sig}`{' (property)' if isinstance(member, property) else ''}: {first}")
         lines.append("")
     return lines
