@@ -89,7 +89,9 @@ def test_report_section(study):
         camp = np.load(study / f"H{TINY.hurst[ih]:g}_P20MPa" / "surface_0000.npz")
         assert float(tab[0][1]) == pytest.approx(1 - float(camp["alpha"]), rel=1e-3)
         assert float(tab[0][2]) == pytest.approx(float(z["bem_contact_fraction"]), rel=1e-3)
-        assert float(tab[2][2]) == pytest.approx(float(z["bem_max_pressure"]) / 1e6, rel=1e-3)
+        # the maximum of the spots inside the patch (a spot cut by the border is left out)
+        assert float(tab[2][2]) == pytest.approx(float(z["bem_interior_max_pressure"]) / 1e6,
+                                                 rel=1e-3)
         assert bool(z["bem_converged"])
         # load balance of both models: mean pressure × contact fraction = nominal pressure
         for m in ("asperity", "bem"):
@@ -300,3 +302,25 @@ def test_contact_record_spots_and_border():
     assert sorted(rec["cluster_peaks"].tolist()) == [1.0, 2.0, 5.0]
     assert rec["border_load_fraction"] == pytest.approx(1.0 / 10.0)
     np.testing.assert_array_equal(rec["samples"], [1.0, 2.0, 5.0, 2.0])
+
+
+def test_spots_touching_the_patch_border_are_left_out():
+    """A spot that reaches the outermost rows or columns is cut by the patch border; its
+    pressures (a punch-edge singularity for the isolated BEM) leave the elastic sample."""
+    from types import SimpleNamespace
+
+    from glstat.study.bem import contact_record, interior
+
+    p = np.zeros((8, 8))
+    p[0:2, 3] = [9e9, 5e9]        # touches row 0: a border spot
+    p[4:6, 4:6] = [[1e9, 2e9], [3e9, 4e9]]  # inside
+    p[7, 7] = 8e9                  # a one-point spot in the corner
+    res = SimpleNamespace(pressure=p, max_pressure=p.max(), mean_pressure=p[p > 0].mean(),
+                          contact_fraction=np.mean(p > 0), force_error=0.0, converged=True,
+                          n_iterations=1)
+    rec = contact_record(res)
+    assert rec["n_clusters"] == 3 and rec["cluster_on_border"].tolist() == [True, False, True]
+    inner = interior(rec)
+    assert inner["n_spots"] == 1 and inner["n_border_spots"] == 2
+    assert inner["peaks"].tolist() == [4e9] and inner["max_pressure"] == 4e9
+    assert sorted(inner["samples"].tolist()) == [1e9, 2e9, 3e9, 4e9]

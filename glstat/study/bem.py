@@ -148,7 +148,17 @@ def contact_record(res: Any) -> dict[str, np.ndarray | np.generic]:
         ``n_contact``, ``n_points``, ``n_clusters`` (connected contact spots, 8-neighbour
         connectivity), ``cluster_peaks`` (highest pressure of every spot, Pa),
         ``border_load_fraction`` (share of the force carried by the outermost rows and
-        columns of the grid), ``force_error``, ``converged`` and ``n_iterations``.
+        columns of the grid), ``cluster_on_border`` (whether each spot touches the outermost
+        rows or columns), ``samples_on_border_spot`` (whether each of ``samples`` belongs to
+        such a spot), ``interior_max_pressure`` (Pa, the largest pressure of the other spots,
+        0 when there is none), ``force_error``, ``converged`` and ``n_iterations``.
+
+    Notes
+    -----
+    A spot cut by the border of an isolated patch ends where the surface ends, as at the edge
+    of a punch: the elastic pressure there grows without bound as the grid is refined (about
+    as √n on the default scene, docs/benchmarks.md "spots"). The study's elastic analysis
+    therefore uses the spots inside the patch (:func:`interior`).
     """
     from scipy import ndimage
 
@@ -161,6 +171,11 @@ def contact_record(res: Any) -> dict[str, np.ndarray | np.generic]:
     border[[0, -1], :] = True
     border[:, [0, -1]] = True
     total = float(p.sum())
+    on_border = np.zeros(n + 1, dtype=bool)
+    on_border[np.unique(labels[border])] = True
+    on_border[0] = False
+    in_border_spot = on_border[labels]
+    inside = inc & ~in_border_spot
     return {
         "samples": p[inc],
         "max_pressure": np.float64(res.max_pressure),
@@ -171,6 +186,9 @@ def contact_record(res: Any) -> dict[str, np.ndarray | np.generic]:
         "n_clusters": np.int64(n),
         "cluster_peaks": peaks,
         "border_load_fraction": np.float64(p[border].sum() / total if total > 0 else math.nan),
+        "cluster_on_border": on_border[1:],
+        "samples_on_border_spot": in_border_spot[inc],
+        "interior_max_pressure": np.float64(p[inside].max() if inside.any() else 0.0),
         "force_error": np.float64(res.force_error),
         "converged": np.bool_(res.converged),
         "n_iterations": np.int64(res.n_iterations),
@@ -237,7 +255,27 @@ def _bem_complete(path: Path, key: tuple[int, int, int] | None = None,
     """Whether ``path`` holds the finished comparison of surface ``key`` (files written
     before the key was stored are accepted when no ``stamp`` is given)."""
     expect = None if key is None or stamp is None else {"task_key": key, **stamp}
-    return npz_has(path, ("bem_samples", "asperity_samples"), expect=expect)
+    return npz_has(path, ("bem_samples", "asperity_samples", "bem_cluster_on_border"),
+                   expect=expect)
+
+
+def interior(record: Mapping[str, Any]) -> dict[str, Any]:
+    """The spots of one solution that lie inside the patch (:func:`contact_record`).
+
+    Returns
+    -------
+    dict
+        ``peaks`` (Pa, one per spot not touching the border), ``n_spots``, ``max_pressure``
+        (Pa, their largest pressure, 0 without any), ``samples`` (Pa, their grid pressures)
+        and ``n_border_spots``.
+    """
+    on_border = np.asarray(record["cluster_on_border"], dtype=bool)
+    peaks = np.asarray(record["cluster_peaks"], dtype=float)
+    samples = np.asarray(record["samples"], dtype=float)
+    keep = ~np.asarray(record["samples_on_border_spot"], dtype=bool)
+    return {"peaks": peaks[~on_border], "n_spots": int(np.count_nonzero(~on_border)),
+            "max_pressure": float(record["interior_max_pressure"]), "samples": samples[keep],
+            "n_border_spots": int(np.count_nonzero(on_border))}
 
 
 # -- the study's comparison ------------------------------------------------------------------
@@ -426,10 +464,13 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
                     ) -> tuple[dict[tuple[int, int, int], dict[str, Any]], list[tuple[int, int, int]]]:
     """The stored elastic (BEM) solutions in the form the study's analysis reads.
 
-    Every surface's record holds ``samples`` (non-zero grid pressures, Pa), ``asperity_peak``
-    (the peak pressure of every contact spot, Pa: the elastic analogue of the per-asperity peak),
-    ``n_asperities`` (contact spots), ``n_contact``, ``max_pressure``, ``mean_pressure``,
-    ``alpha`` and ``force_error``. A solve that did not converge within its iteration limit is
+    Every surface's record holds, for the contact spots inside the patch (spots touching its
+    border carry the edge singularity of the isolated patch and are left out, see
+    :func:`contact_record`): ``samples`` (their non-zero grid pressures, Pa), ``asperity_peak``
+    (the peak pressure of every such spot, Pa: the elastic analogue of the per-asperity peak),
+    ``n_asperities`` (their number), ``n_contact`` (their grid points), ``max_pressure``
+    (their largest pressure); and for the whole solution ``mean_pressure``, ``alpha``,
+    ``force_error`` and ``n_border_spots``. A solve that did not converge within its iteration limit is
     left out (never silently used) and listed.
 
     Returns
@@ -444,11 +485,13 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
         if not bool(r["converged"]):
             dropped.append(key)
             continue
-        res[key] = {"samples": np.asarray(r["samples"], dtype=float),
-                    "asperity_peak": np.asarray(r["cluster_peaks"], dtype=float),
-                    "n_asperities": int(r["n_clusters"]), "n_contact": int(r["n_contact"]),
-                    "max_pressure": float(r["max_pressure"]), "mean_pressure": float(r["mean_pressure"]),
-                    "alpha": 1.0 - float(r["contact_fraction"]), "force_error": float(r["force_error"])}
+        inner = interior(r)
+        res[key] = {"samples": inner["samples"], "asperity_peak": inner["peaks"],
+                    "n_asperities": inner["n_spots"], "n_contact": int(inner["samples"].size),
+                    "max_pressure": inner["max_pressure"],
+                    "mean_pressure": float(r["mean_pressure"]),
+                    "alpha": 1.0 - float(r["contact_fraction"]), "force_error": float(r["force_error"]),
+                    "n_border_spots": inner["n_border_spots"]}
     return res, dropped
 
 
@@ -547,8 +590,11 @@ class BEMComparison:
     surfaces : pandas.DataFrame
         Tidy, one row per (surface, model): ``surface``, ``model`` (``"asperity"`` or
         ``"bem"``), ``contact_fraction``, ``mean_pressure_MPa`` (over the points in
-        contact), ``max_pressure_MPa``, ``n_contact``, ``n_clusters`` (connected contact
-        spots), ``mean_peak_MPa`` (mean of the spots' highest pressures),
+        contact), ``max_pressure_MPa`` (the largest pressure of the spots inside the patch),
+        ``n_contact``, ``n_clusters`` (connected contact spots inside the patch),
+        ``n_border_spots`` (spots touching the patch border, left out of the peaks, the
+        maximum and the fits, see :func:`contact_record`), ``mean_peak_MPa`` (mean of the
+        inner spots' highest pressures),
         ``border_load_fraction`` (share of the load on the outermost grid rows and columns),
         ``force_error``, ``converged``, ``n_iterations``.
     fits : dict
@@ -628,12 +674,14 @@ def _compare(entries: Sequence[tuple[Any, Mapping[str, Mapping[str, np.ndarray |
     for label, rec in entries:
         for m in MODELS:
             r = rec[m]
-            spot_peaks = np.asarray(r["cluster_peaks"], dtype=float)
+            inner = interior(r)
+            spot_peaks = inner["peaks"]
             rows.append({"surface": label, "model": m,
                          "contact_fraction": float(r["contact_fraction"]),
                          "mean_pressure_MPa": float(r["mean_pressure"]) / 1e6,
-                         "max_pressure_MPa": float(r["max_pressure"]) / 1e6,
-                         "n_contact": int(r["n_contact"]), "n_clusters": int(r["n_clusters"]),
+                         "max_pressure_MPa": inner["max_pressure"] / 1e6,
+                         "n_contact": int(r["n_contact"]), "n_clusters": inner["n_spots"],
+                         "n_border_spots": inner["n_border_spots"],
                          "mean_peak_MPa": (float(spot_peaks.mean()) / 1e6 if spot_peaks.size
                                            else math.nan),
                          "border_load_fraction": float(r["border_load_fraction"]),
@@ -644,7 +692,7 @@ def _compare(entries: Sequence[tuple[Any, Mapping[str, Mapping[str, np.ndarray |
     for j, m in enumerate(MODELS):
         # the peak pressure of every contact spot, with the spots per surface as a random count:
         # the study's primary predictor applied to each model alike
-        peaks = [np.asarray(rec[m]["cluster_peaks"], dtype=float) / 1e6 for _, rec in entries]
+        peaks = [interior(rec[m])["peaks"] / 1e6 for _, rec in entries]
         data = np.concatenate(peaks)
         labels = np.repeat(np.arange(len(peaks)), [p.size for p in peaks])
         n_ref = max(float(np.mean([p.size for p in peaks])), 1.0)
