@@ -1,6 +1,6 @@
 """The layers of the code: the statistics library imports without the contact package and
 contact without glstat; scipy's private names come through glstat._compat only; no module
-imports another module's private names (beyond the listed fitting internals)."""
+imports another module's private names (beyond the listed ones)."""
 
 from __future__ import annotations
 
@@ -11,17 +11,13 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("glstat", "contact", "_glstat_numba")
-#: Private names still shared inside the fitting package (its equation and data-based paths).
+#: Private names still shared between modules (the table kernels and the plots).
 KNOWN = {
     # the table kernels share the region constants and residual of the exact solver
     ("glstat/_core/_table.py", "glstat._core._gld", "_R3A"),
     ("glstat/_core/_table.py", "glstat._core._gld", "_RMX"),
     ("glstat/_core/_table.py", "glstat._core._gld", "_case"),
     ("glstat/_core/_table.py", "glstat._core._gld", "_residual"),
-    ("glstat/fitting/_data.py", "glstat.fitting.core", "_roots"),
-    ("glstat/fitting/_data.py", "glstat.fitting.core", "_candidate"),
-    ("glstat/fitting/_data.py", "glstat.fitting.core", "_make_fit"),
-    ("glstat/fitting/_data.py", "glstat.fitting.core", "_select"),
     ("glstat/plot.py", "glstat.gof", "_as_float"),
     ("glstat/plot.py", "glstat.gof", "_models"),
 }

@@ -98,8 +98,8 @@ def _matched_theta(fam: int, a: float, b: float) -> np.ndarray | None:
 
 def _equation_shapes(x: np.ndarray, param: str):
     """(lambdas, shapes valid) of every converged root of the percentile and L-moment fits."""
+    from ._equations import equation_roots
     from ._stats import check_lmoment_stats, sample_lmoments, sample_rho
-    from .core import _roots
 
     stats_list = [("percentiles", sample_rho(x, 0.1))]
     lm = sample_lmoments(x)
@@ -111,7 +111,7 @@ def _equation_shapes(x: np.ndarray, param: str):
     out: list[tuple[float, ...]] = []
     for meth, st in stats_list:
         try:
-            roots = _roots(meth, param, st, 0.1)
+            roots = equation_roots(meth, param, st, 0.1)
         except (FitError, ValueError, ZeroDivisionError):
             continue
         out.extend(lams for lams, conv, _ in roots
@@ -151,7 +151,7 @@ def _starting_points(x: np.ndarray, param: str, fam: int, med: float, iqr: float
 
 def _no_start_hint(x: np.ndarray, param: str, med: float, iqr: float, z: np.ndarray) -> str:
     """What can be done when ``param`` has no starting point (computed, not assumed)."""
-    from .core import fit
+    from ._equations import fit_equations
 
     other = "fkml" if param == "rs" else "rs"
     if _starting_points(x, other, RS if other == "rs" else FKML, med, iqr, z):
@@ -159,7 +159,7 @@ def _no_start_hint(x: np.ndarray, param: str, med: float, iqr: float, z: np.ndar
     why = []
     for meth in ("percentiles", "lmoments"):
         try:
-            fit(x, param, meth, warn=False)
+            fit_equations(x, param, meth)
         except FitError as exc:
             why.append(f"{meth}: {exc}")
     hint = f"param='{other}' has none either"
@@ -259,7 +259,7 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     warned: an optimiser that stopped at ``maxiter`` is reported in ``GLDFit.issues``
     (:func:`glstat.fit` emits the issues).
     """
-    from .core import FitIssue, _candidate, _make_fit, _select
+    from ._result import FitIssue, candidate, make_fit, select_candidate
 
     if optimizer not in OPTIMIZERS:
         raise ValueError(f"optimizer must be one of {OPTIMIZERS}, got {optimizer!r}")
@@ -334,12 +334,12 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
         found.append(th)
         lams = _to_lambdas(th, param, med, iqr)
         obj = float(val) + shift
-        rows.append(_candidate(lams, param, math.isfinite(obj) and not abandoned, obj, x))
+        rows.append(candidate(lams, param, math.isfinite(obj) and not abandoned, obj, x))
         logger.debug("%s %s start %d of %d (%s): %s %.10g, %s", method, param, i + 1, len(queue), optimizer,
                      _OBJECTIVE_NAME[method], obj,
                      "abandoned" if abandoned else "converged" if ok else f"stopped at maxiter={maxiter}")
         flags.append(ok)
-    sel = _select(rows, True, by_objective=True)
+    sel = select_candidate(rows, True, by_objective=True)
     if sel < 0:
         raise FitError(f"the {method} optimisation found no valid {param.upper()} GLD covering the data")
     issues = []
@@ -349,7 +349,7 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     options = {"maxiter": maxiter, "starts": starts, "optimizer": optimizer}
     if start is not None:
         options["start"] = tuple(float(v) for v in start)
-    return _make_fit(rows, sel, param, method, n, {_OBJECTIVE_NAME[method]: rows[sel]["objective"]},
+    return make_fit(rows, sel, param, method, n, {_OBJECTIVE_NAME[method]: rows[sel]["objective"]},
                      options, issues)
 
 
@@ -361,14 +361,14 @@ def scipy_fitstart(data, param: str) -> tuple[float, float, float, float] | None
     data point. None when neither fit exists (fewer than 5 finite points, constant data, or
     statistics no GLD of this type matches).
     """
-    from .core import fit as _fit
+    from ._equations import fit_equations
 
     x = np.asarray(data, dtype=float).ravel()
     x = np.sort(x[np.isfinite(x)])
     fam = RS if param == "rs" else FKML
     for method in ("percentiles", "lmoments"):
         try:
-            res = _fit(x, param=param, method=method, warn=False)
+            res = fit_equations(x, param, method)
         except FitError:
             continue
         med = float(np.median(x))

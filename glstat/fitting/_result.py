@@ -1,0 +1,304 @@
+"""The result of a GLD fit (:class:`GLDFit`, its issues and text summary) and the bookkeeping
+of candidate solutions: their validity, cover of the data, KS distance and the selection rule
+shared by the equation and the data-based fits."""
+
+from __future__ import annotations
+
+import math
+import textwrap
+import warnings
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+
+from ..gld import GLD
+from ..regions import rs_region
+from ._eval import gld_evaluate, gld_support, lambdas_valid
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+
+__all__ = ["FitIssue", "GLDFit", "candidate", "covers", "emit_issues", "ks_distance", "make_fit",
+           "nan_fit", "select_candidate"]
+
+
+class FitIssue(NamedTuple):
+    """A warning of a fit: what :func:`fit` warns, or with ``warn=False`` would have warned.
+
+    Attributes
+    ----------
+    category : type
+        The warning class (:class:`glstat.FitWarning`, :class:`glstat.ConvergenceWarning`).
+    message : str
+        The warning text, with the figures behind it.
+    """
+
+    category: type
+    message: str
+
+
+@dataclass(frozen=True)
+class GLDFit:
+    """Result of a GLD fit.
+
+    The selected distribution is ``fit.dist``, a :class:`glstat.GLD` in the lambda (R)
+    order; to rebuild it from ``lambdas`` write ``glstat.GLD(*fit.lambdas, param=fit.param)``.
+    Do not pass ``lambdas`` to ``gld_rs``/``gld_fkml``: scipy's order is
+    ``(lambda3, lambda4, loc=lambda1, scale=1/|lambda2|)``.
+
+    Attributes
+    ----------
+    lambdas : tuple of float
+        Selected (lambda1, lambda2, lambda3, lambda4), in the units of the data for lambda1
+        and of 1/data for lambda2; NaN when ``nan_policy="propagate"`` met a NaN.
+    param : str
+        ``"rs"`` or ``"fkml"``.
+    method : str
+        Fitting method.
+    n : int or None
+        Number of data points used (None for a fit from summary statistics).
+    statistics : dict
+        The matched sample statistics (moments, rho, L-moments) or, for the data-based
+        methods, the value of the objective at the optimum.
+    options : dict
+        Options the fit used (e.g. ``u`` for percentiles).
+    issues : tuple of FitIssue
+        The warnings of the fit (category and message): empty for a fit that covers the
+        data with a Kolmogorov–Smirnov distance within the 1 % critical value and converged.
+        :func:`fit` also emits them unless called with ``warn=False``.
+    dist : GLD or None
+        The selected frozen distribution (None for a NaN fit); built on first access.
+    solutions : pandas.DataFrame
+        Every root or candidate found: ``lambda1..lambda4``, ``region`` (RS), ``valid``,
+        ``converged``, ``objective`` (residual of the equations or value of the objective),
+        ``covers_data``, ``ks`` (Kolmogorov–Smirnov distance to the data), ``selected``;
+        built on first access.
+    """
+
+    lambdas: tuple[float, float, float, float]
+    param: str
+    method: str
+    n: int | None
+    statistics: dict[str, float]
+    options: dict[str, Any] = field(default_factory=dict)
+    issues: tuple[FitIssue, ...] = ()
+    _candidates: tuple[dict, ...] = field(default=(), repr=False, compare=False)
+
+    @cached_property
+    def dist(self) -> GLD | None:
+        """The selected distribution, ``GLD(*lambdas, param=param)`` (None for a NaN fit)."""
+        if not all(math.isfinite(v) for v in self.lambdas):
+            return None
+        return GLD(*self.lambdas, param=self.param)
+
+    @cached_property
+    def solutions(self) -> pd.DataFrame:
+        """Every root or candidate as a table (see the class description)."""
+        return candidates_frame(self._candidates, self.param)
+
+    @property
+    def n_valid(self) -> int:
+        """Number of valid roots or candidates (a distribution each), without building
+        ``solutions``."""
+        return sum(bool(r["valid"]) for r in self._candidates)
+
+    @property
+    def region(self) -> int | None:
+        """RS region of the selected fit (None for FKML or a NaN fit)."""
+        if self.param != "rs" or not all(math.isfinite(v) for v in self.lambdas):
+            return None
+        return int(rs_region(self.lambdas[2], self.lambdas[3]))
+
+    def to_frame(self) -> pd.DataFrame:
+        """Every candidate as a tidy table (a copy of ``solutions``)."""
+        return self.solutions.copy()
+
+    def summary(self) -> pd.DataFrame:
+        """One-row table: method, parameterisation, n, selected lambdas, matched statistics.
+
+        ``print(fit)`` shows the fit as a text block in the style of a statsmodels summary:
+        method, parameterisation, n, the objective at the optimum (the log-likelihood for
+        ``"mle"``), Kolmogorov–Smirnov distance, support, RS region, the lambdas, the
+        matched statistics and the fit's warnings.
+        """
+        import pandas as pd
+
+        row: dict[str, Any] = {"method": self.method, "param": self.param, "n": self.n}
+        for i, v in enumerate(self.lambdas, start=1):
+            row[f"lambda{i}"] = v
+        row["region"] = self.region
+        row["n_solutions"] = len(self._candidates)
+        row.update(self.statistics)
+        return pd.DataFrame([row])
+
+    def __repr__(self) -> str:
+        l1, l2, l3, l4 = self.lambdas
+        return (f"GLDFit(method={self.method!r}, param={self.param!r}, lambdas=({l1:.6g}, {l2:.6g}, "
+                f"{l3:.6g}, {l4:.6g}), n={self.n}, solutions={len(self._candidates)})")
+
+    def __str__(self) -> str:
+        return _summary_text(self)
+
+
+_TEXT_WIDTH = 78
+# (label, sign) of the objective of the data-based methods in the text summary
+_OBJECTIVE_TEXT = {"neg_loglik": ("Log-likelihood", -1.0), "neg_mean_log_spacing": ("Mean log spacing", -1.0),
+                   "anderson_darling": ("Anderson-Darling A2", 1.0)}
+
+
+def _summary_text(f: GLDFit) -> str:
+    """The fit as a statsmodels-style text block (``print(fit)``)."""
+
+    def num(v) -> str:
+        return "n/a" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.6g}"
+
+    sel = next((r for r in f._candidates if r["selected"]), None)
+    ok = f.dist is not None
+    if ok:
+        lo, hi = gld_support(f.param, f.lambdas)
+        support = f"[{lo:.6g}, {hi:.6g}]"
+    else:
+        support = "n/a"
+    covers = None if sel is None else sel["covers_data"]
+    left = [("Method:", f.method), ("Parameterisation:", f.param.upper()),
+            ("No. observations:", "n/a" if f.n is None else str(f.n))]
+    right = [("RS region:", "n/a" if f.region is None else str(f.region)),
+             ("KS distance:", num(None if sel is None else sel["ks"])),
+             ("Covers the data:", "n/a" if covers is None else ("yes" if covers else "no"))]
+    for key, (label, sign) in _OBJECTIVE_TEXT.items():
+        if key in f.statistics:
+            left.append((f"{label}:", num(sign * f.statistics[key])))
+    right.append(("Candidates (valid):", f"{len(f._candidates)} ({f.n_valid})"))
+    while len(left) < len(right):
+        left.append(("", ""))
+    while len(right) < len(left):
+        right.append(("", ""))
+    half = _TEXT_WIDTH // 2
+    rule, thin = "=" * _TEXT_WIDTH, "-" * _TEXT_WIDTH
+    lines = ["GLD fit results".center(_TEXT_WIDTH).rstrip(), rule]
+    for (a, b), (c, d) in zip(left, right, strict=True):
+        lines.append(f"{a:<20}{b:>{half - 22}}  " + f"  {c:<20}{d:>{half - 22}}".rstrip())
+    lines.append(f"{'Support:':<20}{support:>{_TEXT_WIDTH - 20}}")
+    lines += [rule, f"{'':<12}{'value':>16}", thin]
+    for i, v in enumerate(f.lambdas, start=1):
+        lines.append(f"{f'lambda{i}':<12}{num(v):>16}")
+    lines.append(rule)
+    matched = [k for k in f.statistics if k not in _OBJECTIVE_TEXT]
+    if matched:
+        lines.append(textwrap.fill("Matched statistics: " + ", ".join(f"{k} = {num(f.statistics[k])}"
+                                                                       for k in matched),
+                                   _TEXT_WIDTH, subsequent_indent="    "))
+    if f.options:
+        lines.append(textwrap.fill("Options: " + ", ".join(f"{k}={v!r}" for k, v in f.options.items()),
+                                   _TEXT_WIDTH, subsequent_indent="    "))
+    if not ok:
+        lines.append("No fit: the lambdas are NaN (nan_policy='propagate' met a non-finite value).")
+    notes = ["lambda1 in data units, lambda2 in 1/(data unit), lambda3 and lambda4 dimensionless, "
+             "in R's order: glstat.GLD(*fit.lambdas, param=fit.param) is the distribution.",
+             "Standard errors are not part of a fit; glstat.bootstrap(data, ...).summary() gives "
+             "bootstrap standard errors and intervals."]
+    notes += [f"{issue.category.__name__}: {issue.message}" for issue in f.issues]
+    lines.append("")
+    lines.append("Notes:")
+    lines += [textwrap.fill(f"[{k}] {note}", _TEXT_WIDTH, subsequent_indent="    ", break_long_words=False,
+                            break_on_hyphens=False) for k, note in enumerate(notes, start=1)]
+    return "\n".join(lines)
+
+
+def ks_distance(dist, x: np.ndarray) -> float:
+    """Kolmogorov–Smirnov distance between a GLD and the sorted sample ``x``.
+
+    ``dist`` is a :class:`glstat.GLD` or ``(param, lambdas)``. Never warns (safe in worker
+    threads): points where the inversion of Q reached its limit enter with its best estimate.
+    """
+    param, lams = (dist.param, dist.lambdas) if isinstance(dist, GLD) else dist
+    f, _ = gld_evaluate(param, "cdf", x, lams)
+    n = x.size
+    i = np.arange(1, n + 1)
+    return float(max(np.max(i / n - f), np.max(f - (i - 1) / n)))
+
+
+def covers(dist, x: np.ndarray) -> bool:
+    """True when the support of the GLD ``dist`` (or ``(param, lambdas)``) contains every
+    point of the sorted sample ``x``."""
+    param, lams = (dist.param, dist.lambdas) if isinstance(dist, GLD) else dist
+    lo, hi = gld_support(param, lams)
+    return bool(lo <= x[0] and hi >= x[-1])
+
+
+def candidate(lams, param, converged, objective, x) -> dict:
+    """One candidate: its lambdas, validity, and with data its cover and KS distance."""
+    lams = tuple(float(v) for v in lams)
+    row = {"lambdas": lams, "valid": lambdas_valid(param, lams), "converged": bool(converged),
+           "objective": float(objective), "covers_data": None, "ks": math.nan, "selected": False}
+    if x is not None and row["valid"]:
+        row["covers_data"] = covers((param, lams), x)
+        row["ks"] = ks_distance((param, lams), x)
+    return row
+
+
+def select_candidate(rows: list[dict], have_data: bool, by_objective: bool = False) -> int:
+    """Index of the selected candidate (the documented rule), -1 when none qualifies.
+
+    Valid and converged first; with data, a support that covers the data; then the smallest
+    KS distance (data) or objective (``by_objective``); without data, the root with the
+    least extreme shapes, the smallest max(|lambda3|, |lambda4|).
+    """
+    best = -1
+    best_key: tuple = ()
+    key: tuple[float, ...]
+    for i, r in enumerate(rows):
+        if not (r["valid"] and r["converged"]):
+            continue
+        if have_data:
+            key = (0 if r["covers_data"] else 1,
+                   r["objective"] if by_objective else r["ks"], r["objective"])
+        else:
+            key = (max(abs(r["lambdas"][2]), abs(r["lambdas"][3])), r["objective"])
+        if best < 0 or key < best_key:
+            best, best_key = i, key
+    return best
+
+
+CANDIDATE_COLUMNS = ["lambda1", "lambda2", "lambda3", "lambda4", "region", "valid", "converged", "objective",
+            "covers_data", "ks", "selected"]
+
+
+def candidates_frame(rows, param: str):
+    import pandas as pd
+
+    lam = np.array([r["lambdas"] for r in rows], dtype=float).reshape(-1, 4)
+    if param == "rs" and len(rows):
+        region = np.asarray(rs_region(lam[:, 2], lam[:, 3]), dtype=int)
+    else:
+        region = np.zeros(len(rows), dtype=int)
+    data: dict[str, np.ndarray | list[Any]] = {f"lambda{i + 1}": lam[:, i] for i in range(4)}
+    data["region"] = region
+    for c in CANDIDATE_COLUMNS[5:]:
+        data[c] = [r[c] for r in rows]
+    return pd.DataFrame(data, columns=CANDIDATE_COLUMNS)
+
+
+def make_fit(rows, sel, param, method, n, statistics, options, issues=()) -> GLDFit:
+    if sel >= 0:
+        rows[sel]["selected"] = True
+        lams = rows[sel]["lambdas"]
+    else:
+        lams = (math.nan,) * 4
+    l1, l2, l3, l4 = (float(v) for v in lams)
+    return GLDFit(lambdas=(l1, l2, l3, l4), param=param, method=method, n=n,
+                  statistics=statistics, options=options, issues=tuple(issues),
+                  _candidates=tuple(rows))
+
+
+def nan_fit(param, method, n, options) -> GLDFit:
+    return GLDFit(lambdas=(math.nan,) * 4, param=param, method=method, n=n, statistics={},
+                  options=options)
+
+
+def emit_issues(issues, stacklevel: int) -> None:
+    """Warn every issue (in the calling thread)."""
+    for issue in issues:
+        warnings.warn(issue.message, issue.category, stacklevel=stacklevel + 1)
