@@ -33,6 +33,8 @@ from typing import Any
 
 import numpy as np
 
+from .topography import measured_rq, read_topography
+
 __all__ = [
     "CampaignError",
     "CampaignSettings",
@@ -247,18 +249,10 @@ def campaign_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> An
     import contact
 
     if settings.measured:
-        from .measured import read_topography
-
         return read_topography(settings.topographies[i], settings.form, settings.digests[i])
     rng = np.random.default_rng(settings.seed_sequence(ih, il, i))
     return contact.weierstrass((settings.grid, settings.grid), settings.length, settings.hurst[ih],
                                settings.gamma, rq=settings.rq, rng=rng, n_terms=settings.n_terms[ih])
-
-
-def measured_rq(surface: Any) -> float:
-    """RMS height (m) of a surface's measured points about their mean."""
-    h = surface.heights if surface.mask is None else surface.heights[~np.asarray(surface.mask, bool)]
-    return float(np.sqrt(np.mean((h - h.mean()) ** 2)))
 
 
 def simulate_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> dict[str, np.ndarray]:

@@ -17,7 +17,6 @@ changed or swapped file is never mixed with results computed from the old one.
 from __future__ import annotations
 
 import glob
-import hashlib
 import math
 import os
 from collections.abc import Iterable, Sequence
@@ -26,12 +25,11 @@ from typing import Any
 
 import numpy as np
 
-from .campaign import CampaignSettings, measured_rq
+from .campaign import CampaignSettings
+from .topography import FORMS, file_digest, measured_rq, read_topography
 
 __all__ = ["FORMS", "find_topographies", "like_settings", "measured_settings", "read_measured"]
 
-#: Form removal applied to each measured file: the least-squares plane, the mean, or nothing.
-FORMS = ("plane", "mean", "none")
 #: Relative tolerance on the grid spacing shared by all files.
 SPACING_RTOL = 1e-6
 
@@ -89,36 +87,6 @@ def find_topographies(specs: str | os.PathLike | Iterable[str | os.PathLike]) ->
     if not unique:
         raise FileNotFoundError("no topography file given")
     return unique
-
-
-def file_digest(path: str | os.PathLike) -> str:
-    """SHA-256 of a file's bytes (hex), read in blocks."""
-    h = hashlib.sha256()
-    with open(path, "rb") as fh:
-        for block in iter(lambda: fh.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
-
-
-def remove_form(surface: Any, form: str) -> Any:
-    """``surface`` less its least-squares plane (``"plane"``) or mean (``"mean"``), fitted on
-    the measured points, or unchanged (``"none"``)."""
-    if form not in FORMS:
-        raise ValueError(f"form must be one of {', '.join(FORMS)}, got {form!r}")
-    return surface if form == "none" else surface.detrend(form)
-
-
-def read_topography(path: str | os.PathLike, form: str, digest: str | None = None) -> Any:
-    """Read one measured file (:func:`contact.read`) and remove its form; with ``digest``,
-    refuse a file whose content changed since the campaign started."""
-    import contact
-
-    if digest is not None and file_digest(path) != digest:
-        raise ValueError(
-            f"{os.fspath(path)} changed since the campaign in this directory started (its SHA-256 "
-            f"differs); results of the old and new file must not be mixed: restore the file, or "
-            f"start over with --force or another --out")
-    return remove_form(contact.read(path), form)
 
 
 def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane") -> list[Any]:
