@@ -512,7 +512,10 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
               "maxima, the hardness levels at which the predicted damage probability lies inside "
               "the observed Wilson interval, and the extremal index θ (effective over nominal number "
               "of draws). A prediction passes when the coverage interval contains the level, the "
-              "test does not reject at 5 % and ≥ 80 % of the levels are inside.")
+              "test does not reject at 5 % and ≥ 80 % of the levels are inside. The Holm column "
+              "adjusts the centring p-values for testing every case (one family per model and "
+              "sample; statsmodels' multipletests): it answers whether any case is off-centre, "
+              "while each case's check uses its own p.")
     _answer_figures(rep, settings, asettings, analysis)
     left = info.get("bem_left_out") or []
     if left:
