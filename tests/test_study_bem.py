@@ -324,3 +324,22 @@ def test_spots_touching_the_patch_border_are_left_out():
     assert inner["n_spots"] == 1 and inner["n_border_spots"] == 2
     assert inner["peaks"].tolist() == [4e9] and inner["max_pressure"] == 4e9
     assert sorted(inner["samples"].tolist()) == [1e9, 2e9, 3e9, 4e9]
+
+
+def test_a_surface_without_a_spot_inside_the_patch_has_no_maximum_to_compare():
+    """Its maximal pressure is NaN (never 0, which would make the ratio infinite) and the
+    comparison's means are over the other surfaces."""
+    import pandas as pd
+
+    from glstat.study.bem import BEMComparison
+
+    rows = []
+    for surface, bem_max in ((0, 300.0), (1, float("nan")), (2, 600.0)):
+        rows += [{"surface": surface, "model": "asperity", "contact_fraction": 0.02,
+                  "mean_pressure_MPa": 100.0, "max_pressure_MPa": 150.0},
+                 {"surface": surface, "model": "bem", "contact_fraction": 0.01,
+                  "mean_pressure_MPa": 200.0, "max_pressure_MPa": bem_max}]
+    c = BEMComparison(surfaces=pd.DataFrame(rows), fits={}, hardness=2050.0, confidence_level=0.9)
+    row = c.summary().set_index("quantity").loc["max_pressure_MPa"]
+    assert row["ratio_mean"] == pytest.approx((0.5 + 0.25) / 2)
+    assert row["bem_mean"] == pytest.approx(450.0) and row["asperity_mean"] == pytest.approx(150.0)

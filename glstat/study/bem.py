@@ -634,12 +634,15 @@ class BEMComparison:
             row: dict[str, str | float] = {"quantity": q}
             for m in MODELS:
                 v = self.surfaces.loc[self.surfaces["model"] == m, q].to_numpy(dtype=float)
-                row[f"{m}_mean"] = float(np.mean(v))
+                v = v[np.isfinite(v)]  # a surface without a spot inside the patch has no maximum
+                row[f"{m}_mean"] = float(np.mean(v)) if v.size else math.nan
                 row[f"{m}_std"] = float(np.std(v, ddof=1)) if v.size > 1 else math.nan
             v = r[q].to_numpy(dtype=float)
-            row.update(ratio_mean=float(np.mean(v)),
+            v = v[np.isfinite(v)]
+            row.update(ratio_mean=float(np.mean(v)) if v.size else math.nan,
                        ratio_std=float(np.std(v, ddof=1)) if v.size > 1 else math.nan,
-                       ratio_min=float(np.min(v)), ratio_max=float(np.max(v)))
+                       ratio_min=float(np.min(v)) if v.size else math.nan,
+                       ratio_max=float(np.max(v)) if v.size else math.nan)
             rows.append(row)
         return pd.DataFrame(rows)
 
@@ -679,7 +682,9 @@ def _compare(entries: Sequence[tuple[Any, Mapping[str, Mapping[str, np.ndarray |
             rows.append({"surface": label, "model": m,
                          "contact_fraction": float(r["contact_fraction"]),
                          "mean_pressure_MPa": float(r["mean_pressure"]) / 1e6,
-                         "max_pressure_MPa": inner["max_pressure"] / 1e6,
+                         # no spot inside the patch: no maximum to compare (NaN, not 0)
+                         "max_pressure_MPa": (inner["max_pressure"] / 1e6 if inner["n_spots"]
+                                              else math.nan),
                          "n_contact": int(r["n_contact"]), "n_clusters": inner["n_spots"],
                          "n_border_spots": inner["n_border_spots"],
                          "mean_peak_MPa": (float(spot_peaks.mean()) / 1e6 if spot_peaks.size
