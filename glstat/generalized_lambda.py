@@ -20,9 +20,6 @@ Every function of the distribution comes from the same compiled kernels as
 with the logarithmic limits at :math:`\lambda_3 = 0` or :math:`\lambda_4 = 0`; every finite
 (lam3, lam4) with lam2 > 0 is a distribution. Parameters outside that domain (lam2 <= 0,
 infinite or NaN values) give NaN for every method, as for any scipy distribution.
-
-Without scipy >= 1.16 the module still imports, and ``GeneralizedLambda(...)`` raises
-:class:`ImportError` naming the scipy version it needs.
 """
 
 from __future__ import annotations
@@ -33,7 +30,6 @@ from fractions import Fraction
 from typing import Any
 
 import numpy as np
-import scipy
 from numpy.typing import ArrayLike
 from scipy import special
 
@@ -41,10 +37,7 @@ from ._core import _gld, moments
 from .distributions import evaluate, quantile
 from .gld import GLD
 
-__all__ = ["SCIPY_REQUIRED", "GeneralizedLambda"]
-
-#: The scipy release that defines the custom-distribution protocol used here.
-SCIPY_REQUIRED = "1.16"
+__all__ = ["GeneralizedLambda"]
 
 _FAM = _gld.FKML
 _NAMES = ("lam1", "lam2", "lam3", "lam4")
@@ -52,16 +45,6 @@ _LN2 = math.log(2.0)
 # below this a probability exp(logp) is not a normal double: the quantile is formed from
 # log p itself
 _TINY = np.finfo(float).tiny
-
-
-def _scipy_version_ok(version: str) -> bool:
-    """True when ``version`` (a scipy version string) is at least :data:`SCIPY_REQUIRED`."""
-    parts = []
-    for piece in version.split(".")[:2]:
-        digits = "".join(ch for ch in piece if ch.isdigit()) or "0"
-        parts.append(int(digits))
-    want = tuple(int(p) for p in SCIPY_REQUIRED.split("."))
-    return tuple(parts) >= want
 
 
 # ------------------------------------------------------------------------------------------
@@ -363,27 +346,8 @@ class _FKMLProtocol:
         return _entropy_array(params)
 
 
-def _unavailable_class(version: str) -> type:
-    """A stand-in for :class:`GeneralizedLambda` that raises ImportError when used."""
-
-    class GeneralizedLambda:
-        """FKML Generalized Lambda Distribution (needs scipy >= 1.16; see glstat.GLD)."""
-
-        def __init__(self, *args: Any, **kwargs: Any) -> None:
-            raise ImportError(
-                f"glstat.GeneralizedLambda needs scipy >= {SCIPY_REQUIRED} (the custom "
-                f"distributions of scipy.stats.make_distribution); scipy {version} is "
-                "installed. Upgrade scipy, or use glstat.GLD(l1, l2, l3, l4, param='fkml') "
-                "or glstat.gld_fkml, which work with every supported scipy."
-            )
-
-    return GeneralizedLambda
-
-
-def _build(version: str = scipy.__version__) -> type:
-    """The :class:`GeneralizedLambda` class for scipy ``version``."""
-    if not _scipy_version_ok(version):
-        return _unavailable_class(version)
+def _build() -> type:
+    """The :class:`GeneralizedLambda` class (scipy's ``make_distribution`` of the protocol)."""
     from scipy.stats import make_distribution
 
     base: Any = make_distribution(_FKMLProtocol())  # a class made at run time

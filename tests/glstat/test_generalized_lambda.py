@@ -23,22 +23,11 @@ from fractions import Fraction
 import mpmath as mp
 import numpy as np
 import pytest
-import scipy
+from mp_reference import FKML, PARENT_DPS, q_mp, tail_probability
 from numpy.testing import assert_allclose, assert_array_equal
 from scipy import stats
 
 import glstat
-from glstat import generalized_lambda as gl_module
-
-NEW_SCIPY = gl_module._scipy_version_ok(scipy.__version__)
-#: the tests that also run (and check the error) with scipy < 1.16
-ANY_SCIPY = {"test_clear_error_without_scipy_116"}
-
-
-@pytest.fixture(autouse=True)
-def _needs_scipy_116(request):
-    if not NEW_SCIPY and request.node.originalname not in ANY_SCIPY:
-        pytest.skip("GeneralizedLambda needs scipy >= 1.16")
 
 EPS = np.finfo(float).eps
 DPS = 40
@@ -70,44 +59,25 @@ def _gld(lams):
 # mpmath references
 # ------------------------------------------------------------------------------------------
 def _em(lam, log_x):
-    """(x^lam - 1)/lam from log x, with the limit log x at lam = 0."""
+    """(x^lam - 1)/lam from log x (log x at lam = 0): the size of one term of Q."""
     return log_x if lam == 0 else mp.expm1(lam * log_x) / lam
 
 
 def q_ts(lams, t, s):
-    """Q at the u with log u = t and log(1 - u) = s (40 digits)."""
-    l1, l2, l3, l4 = (mp.mpf(v) for v in lams)
-    return l1 + (_em(l3, t) - _em(l4, s)) / l2
+    """Q at the u with log u = t and log(1 - u) = s (mp_reference's standardized FKML Q)."""
+    l1, l2, l3, l4 = lams
+    return mp.mpf(l1) + q_mp(FKML, l3, l4, t, s) / mp.mpf(l2)
 
 
 def log_tails(lams, x):
-    """(log F(x), log(1 - F(x))) by mpmath.findroot on Q(u) = x at 40 digits."""
-    with mp.workdps(DPS):
-        x = mp.mpf(x)
-        half = -mp.log(2)
-        upper = x > q_ts(lams, half, half)
-        if upper:
-            def f(s):
-                return x - q_ts(lams, mp.log1p(-mp.exp(s)), s)
-        else:
-            def f(t):
-                return q_ts(lams, t, mp.log1p(-mp.exp(t))) - x
-        lo, hi = mp.mpf(-5000), half
-        if f(lo) >= 0:
-            root = mp.mpf("-inf")
-        else:
-            for _ in range(40):
-                mid = (lo + hi) / 2
-                if f(mid) < 0:
-                    lo = mid
-                else:
-                    hi = mid
-            root = mp.findroot(f, (lo, hi), solver="anderson", verify=False)
-            width = hi - lo
-            assert lo - width <= root <= hi + width
-            assert abs(f(root)) <= mp.mpf(10) ** (8 - DPS) * (1 + abs(x))
-        other = mp.log1p(-mp.exp(root))
-        return (other, root) if upper else (root, other)
+    """(log F(x), log(1 - F(x))) from mp_reference's root of Q(u) = x at 60 digits: the log
+    of the smaller tail and log1p of its complement, so that neither loses digits."""
+    l1, l2, l3, l4 = lams
+    with mp.workdps(PARENT_DPS):
+        p, upper = tail_probability(FKML, l3, l4, (mp.mpf(x) - mp.mpf(l1)) * mp.mpf(l2),
+                                    dps=PARENT_DPS)
+        small, large = mp.log(p), mp.log1p(-p)
+    return (large, small) if upper else (small, large)
 
 
 def log_pdf_ref(lams, log_f, log_s):
@@ -483,19 +453,9 @@ def test_missing_parameter_and_to_gld():
     assert float(Y.logccdf(50.0)) == float(X.logccdf(50.0))
 
 
-def test_clear_error_without_scipy_116():
-    # the class built for an older scipy raises on use, naming the version it needs
-    assert not gl_module._scipy_version_ok("1.15.3")
-    assert gl_module._scipy_version_ok("1.16.0rc1") and gl_module._scipy_version_ok("2.0.0")
-    Old = gl_module._build("1.15.3")
-    with pytest.raises(ImportError, match=r"scipy >= 1\.16.*scipy 1\.15\.3 is installed"):
-        Old(lam1=0.0, lam2=1.0, lam3=0.0, lam4=0.0)
-    if NEW_SCIPY:
-        X = glstat.GeneralizedLambda(lam1=0.0, lam2=1.0, lam3=0.0, lam4=0.0)
-        assert "ContinuousDistribution" in [c.__name__ for c in type(X).__mro__]
-    else:
-        with pytest.raises(ImportError, match=r"scipy >= 1\.16"):
-            glstat.GeneralizedLambda(lam1=0.0, lam2=1.0, lam3=0.0, lam4=0.0)
+def test_is_a_scipy_continuous_distribution():
+    X = glstat.GeneralizedLambda(lam1=0.0, lam2=1.0, lam3=0.0, lam4=0.0)
+    assert "ContinuousDistribution" in [c.__name__ for c in type(X).__mro__]
 
 
 # ------------------------------------------------------------------------------------------
