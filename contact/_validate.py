@@ -54,13 +54,10 @@ def positive_pressure(value) -> float:
     ValueError
         Not one real number (see :func:`real_scalar`), or not finite and positive.
     """
-    p = real_scalar(value)
-    if p is None or not (math.isfinite(p) and p > 0):
-        raise ValueError(
-            f"nominal_pressure must be a positive finite pressure in pascals, got "
-            f"{value!r}; a compressive load is positive"
-        )
-    return p
+    try:
+        return positive_finite(value, "nominal_pressure", "pressure in pascals")
+    except ValueError as exc:
+        raise ValueError(f"{exc}; a compressive load is positive") from None
 
 
 def positive_finite(value, name: str, what: str) -> float:
