@@ -329,6 +329,7 @@ def study_main(argv: list[str]) -> int:
     print(f"study finished in {time.perf_counter() - t0:.1f} s "
           f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
     from .study.answer import case_name, degenerate_scene, fmt_mpa, fmt_probability, overlap_note
+    from .study.answer import fmt_number as _num
 
     table = res.summary()
     lvl = round(100 * asettings.confidence_level)
@@ -387,33 +388,6 @@ def _measured_scene(args, argv: list[str], settings, surfaces: int):
         raise ValueError("--target-pressure chooses Rq, which --like takes from the measured file")
     like, _ = like_settings(args.like, surfaces, form=args.form, gamma=args.gamma, **scene)
     return dataclasses.replace(like, n_examples=min(1, like.n_surfaces)), surfaces
-
-
-def _num(value, spec: str, factor: float = 1.0, unit: str = "") -> str:
-    """``value * factor`` formatted with ``spec`` and followed by ``unit``; "—" when missing.
-
-    Parameters
-    ----------
-    value : float or None
-        The number; None, NaN and values that are not numbers are missing.
-    spec : str
-        Format specification, e.g. ``".4g"``.
-    factor : float
-        Multiplier applied before formatting (e.g. 100 for a percentage).
-    unit : str
-        Text appended to a formatted number (not to "—").
-
-    Returns
-    -------
-    str
-    """
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        return "—"
-    if math.isnan(v):
-        return "—"
-    return f"{v * factor:{spec}}{unit}"
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -34,6 +34,33 @@ PAPER_VERDICTS = {0.0: "certain", 0.5: "≈ 1 %", 1.0: "impossible"}
 PAPER_MEAN_MPA = {0.0: 1724.0, 0.5: 1369.0, 1.0: 1108.0}
 
 
+def fmt_number(value, spec: str = ".3g", factor: float = 1.0, unit: str = "") -> str:
+    """``value * factor`` formatted with ``spec`` and followed by ``unit``; "—" when missing.
+
+    Parameters
+    ----------
+    value : float or None
+        The number; None, NaN and values that are not numbers are missing.
+    spec : str
+        Format specification, e.g. ``".4g"``.
+    factor : float
+        Multiplier applied before formatting (e.g. 100 for a percentage).
+    unit : str
+        Text appended to a formatted number (not to "—").
+
+    Returns
+    -------
+    str
+    """
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return "—"
+    if math.isnan(v):
+        return "—"
+    return f"{v * factor:{spec}}{unit}"
+
+
 def fmt_mpa(v: float) -> str:
     """A pressure in MPa with three significant digits ('—' when missing)."""
     if v is None or not math.isfinite(v):

@@ -7,6 +7,7 @@ import math
 import os
 from typing import Any
 
+from .answer import fmt_number
 from .campaign import MEASURED_PARAMETERS
 
 __all__ = ["like_section", "measured_section", "scene_sentence", "surface_rows"]
@@ -69,10 +70,6 @@ def surface_rows(settings) -> list[list[Any]]:
     return rows
 
 
-def _num(v: float, scale: float = 1.0, spec: str = ".3g") -> str:
-    return "—" if v is None or not math.isfinite(v) else format(v * scale, spec)
-
-
 def measured_section(rep, settings, results: dict) -> None:
     """"Measured topographies": one row per file with its ISO 25178 parameters and its contact."""
     rep.heading("Measured topographies")
@@ -91,14 +88,14 @@ def measured_section(rep, settings, results: dict) -> None:
         if first is None:
             continue
         row = [os.path.basename(path)]
-        row += [_num(float(first.get(f"iso_{k}", math.nan)), _ISO_DISPLAY[k][1])
+        row += [fmt_number(float(first.get(f"iso_{k}", math.nan)), ".3g", _ISO_DISPLAY[k][1])
                 for k in MEASURED_PARAMETERS]
         row.append(f"{100 * float(first.get('masked_fraction', 0.0)):.2g} %")
         for il in range(len(settings.pressures)):
             r = results.get((0, il, i))
             row.append("—" if r is None else
-                       f"{_num(float(r['mean_pressure']), 1e-6, '.4g')} / "
-                       f"{_num(float(r['max_pressure']), 1e-6, '.4g')}, {int(r['n_asperities'])}")
+                       f"{fmt_number(float(r['mean_pressure']), '.4g', 1e-6)} / "
+                       f"{fmt_number(float(r['max_pressure']), '.4g', 1e-6)}, {int(r['n_asperities'])}")
         rows.append(row)
     rep.table(cols, rows, "One row per measured file.")
     if settings.n_surfaces < 10:
@@ -128,10 +125,10 @@ def like_section(rep, settings, like: dict, plt) -> None:
           f"and spacing.")
     iso = like["iso"]
     n_sim = len(like["simulated"])
-    rows = [[name, _num(r["measured"], 1e6 if r["unit"] == "m" else 1.0, ".4g"),
-             _num(r["simulated_mean"], 1e6 if r["unit"] == "m" else 1.0, ".4g"),
-             _num(r["simulated_std"], 1e6 if r["unit"] == "m" else 1.0, ".2g"),
-             _num(r["z"], 1.0, ".2g"), "µm" if r["unit"] == "m" else r["unit"]]
+    rows = [[name, fmt_number(r["measured"], ".4g", 1e6 if r["unit"] == "m" else 1.0),
+             fmt_number(r["simulated_mean"], ".4g", 1e6 if r["unit"] == "m" else 1.0),
+             fmt_number(r["simulated_std"], ".2g", 1e6 if r["unit"] == "m" else 1.0),
+             fmt_number(r["z"], ".2g", 1.0), "µm" if r["unit"] == "m" else r["unit"]]
             for name, r in iso.iterrows()]
     rep.table(["parameter", "measured", "simulated mean", "simulated sd", "z", "unit"], rows,
               f"ISO 25178-2 parameters (about the least-squares plane) of the measured template and "
@@ -151,9 +148,9 @@ def like_section(rep, settings, like: dict, plt) -> None:
     prow = []
     for _, r in like["pressure"].iterrows():
         scale, spec = ((1e-6, ".4g") if "pressure" in r["quantity"] else (1.0, ".3g"))
-        prow.append([f"{r['pressure_mpa']:g} MPa", r["quantity"], _num(r["measured"], scale, spec),
-                     _num(r["simulated_mean"], scale, spec),
-                     f"{_num(r['simulated_q05'], scale, spec)} – {_num(r['simulated_q95'], scale, spec)}"])
+        low, high = (fmt_number(r[q], spec, scale) for q in ("simulated_q05", "simulated_q95"))
+        prow.append([f"{r['pressure_mpa']:g} MPa", r["quantity"], fmt_number(r["measured"], spec, scale),
+                     fmt_number(r["simulated_mean"], spec, scale), f"{low} – {high}"])
     rep.table(["load", "quantity", "measured template", "simulated mean", "simulated 5–95 %"], prow,
               "The asperity model on the measured template and on the simulated surfaces "
               "(pressures in MPa). A template value outside the simulated range means the "
