@@ -68,6 +68,20 @@ class ContactSpots:
         """Number of spots."""
         return len(self)
 
+    @property
+    def touches_border(self) -> np.ndarray:
+        """Whether each spot reaches the outermost rows or columns of the grid (bool array,
+        shape (n,)); never on a periodic map, whose spots are joined across the edges.
+
+        Such a spot is cut by the border of an isolated patch, where the elastic pressure of
+        :func:`contact.solve_bem` has a punch-edge singularity that grows with the grid.
+        """
+        on = np.zeros(self.n_spots + 1, dtype=bool)
+        if not self.periodic:
+            lab = self.labels
+            on[np.concatenate((lab[[0, -1], :].ravel(), lab[:, [0, -1]].ravel()))] = True
+        return on[1:]
+
     def to_frame(self) -> pd.DataFrame:
         """One row per spot: ``label``, ``peak_pressure`` (Pa), ``i``, ``j`` (peak),
         ``area`` (m²), ``load`` (N), ``n_points``."""

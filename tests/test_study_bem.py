@@ -285,18 +285,15 @@ def test_compare_bem_several_surfaces_and_bad_input():
 
 
 def test_contact_record_spots_and_border():
-    class R:
-        pressure = np.zeros((8, 8))
-        max_pressure = 5.0
-        mean_pressure = 2.5
-        contact_fraction = 4 / 64
-        force_error = 0.0
-        converged = True
-        n_iterations = 3
+    from contact import ContactResult
 
-    R.pressure[0, 3] = 1.0  # on the border
-    R.pressure[4, 4], R.pressure[5, 5] = 5.0, 2.0  # one spot (diagonal neighbours)
-    R.pressure[2, 6] = 2.0
+    p = np.zeros((8, 8))
+    p[0, 3] = 1.0  # on the border
+    p[4, 4], p[5, 5] = 5.0, 2.0  # one spot (diagonal neighbours)
+    p[2, 6] = 2.0
+    R = ContactResult(pressure=p, separation=0.0, force=10.0, target_force=None,
+                      force_error=0.0, nominal_pressure=None, cell_area=1.0, n_iterations=3)
+    assert (R.max_pressure, R.mean_pressure, R.contact_fraction) == (5.0, 2.5, 4 / 64)
     rec = contact_record(R)
     assert rec["n_clusters"] == 3 and rec["n_contact"] == 4
     assert sorted(rec["cluster_peaks"].tolist()) == [1.0, 2.0, 5.0]
@@ -307,17 +304,16 @@ def test_contact_record_spots_and_border():
 def test_spots_touching_the_patch_border_are_left_out():
     """A spot that reaches the outermost rows or columns is cut by the patch border; its
     pressures (a punch-edge singularity for the isolated BEM) leave the elastic sample."""
-    from types import SimpleNamespace
-
+    from contact import ContactResult
     from glstat.study.bem import contact_record, interior
 
     p = np.zeros((8, 8))
     p[0:2, 3] = [9e9, 5e9]        # touches row 0: a border spot
     p[4:6, 4:6] = [[1e9, 2e9], [3e9, 4e9]]  # inside
     p[7, 7] = 8e9                  # a one-point spot in the corner
-    res = SimpleNamespace(pressure=p, max_pressure=p.max(), mean_pressure=p[p > 0].mean(),
-                          contact_fraction=np.mean(p > 0), force_error=0.0, converged=True,
-                          n_iterations=1)
+    res = ContactResult(pressure=p, separation=0.0, force=float(p.sum()) * 1e-12,
+                        target_force=None, force_error=0.0, nominal_pressure=None,
+                        cell_area=1e-12)
     rec = contact_record(res)
     assert rec["n_clusters"] == 3 and rec["cluster_on_border"].tolist() == [True, False, True]
     inner = interior(rec)

@@ -160,21 +160,17 @@ def contact_record(res: Any) -> dict[str, np.ndarray | np.generic]:
     as √n on the default scene, docs/benchmarks.md "spots"). The study's elastic analysis
     therefore uses the spots inside the patch (:func:`interior`).
     """
-    from scipy import ndimage
+    import contact
 
     p = np.asarray(res.pressure, dtype=np.float64)
     inc = p > 0
-    labels, n = ndimage.label(inc, structure=np.ones((3, 3), dtype=bool))
-    peaks = (np.asarray(ndimage.maximum(p, labels, index=np.arange(1, n + 1)), dtype=np.float64)
-             if n else np.empty(0))
+    spots = contact.contact_spots(res)
+    n, peaks = spots.n_spots, spots.peak_pressure
     border = np.zeros(p.shape, dtype=bool)
     border[[0, -1], :] = True
     border[:, [0, -1]] = True
     total = float(p.sum())
-    on_border = np.zeros(n + 1, dtype=bool)
-    on_border[np.unique(labels[border])] = True
-    on_border[0] = False
-    in_border_spot = on_border[labels]
+    in_border_spot = np.concatenate(([False], spots.touches_border))[spots.labels]
     inside = inc & ~in_border_spot
     return {
         "samples": p[inc],
@@ -186,7 +182,7 @@ def contact_record(res: Any) -> dict[str, np.ndarray | np.generic]:
         "n_clusters": np.int64(n),
         "cluster_peaks": peaks,
         "border_load_fraction": np.float64(p[border].sum() / total if total > 0 else math.nan),
-        "cluster_on_border": on_border[1:],
+        "cluster_on_border": spots.touches_border,
         "samples_on_border_spot": in_border_spot[inc],
         "interior_max_pressure": np.float64(p[inside].max() if inside.any() else 0.0),
         "force_error": np.float64(res.force_error),

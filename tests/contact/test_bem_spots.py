@@ -107,3 +107,15 @@ def test_cell_area_contradicting_the_result_is_rejected():
 
 def test_exported_from_the_package():
     assert "contact_spots" in contact.__all__ and contact.contact_spots is contact_spots
+
+
+def test_spots_touching_the_border_are_flagged_unless_the_map_is_periodic():
+    p = np.zeros((6, 6))
+    p[0, 2] = 1e9          # top row
+    p[2:4, 2:4] = 2e9      # inside
+    p[3, 5] = 3e9          # right column
+    spots = contact_spots(p, cell_area=1e-12)
+    assert spots.touches_border.tolist() == [True, False, True]
+    periodic = contact_spots(p, cell_area=1e-12, periodic=True)
+    assert periodic.touches_border.tolist() == [False] * periodic.n_spots
+    assert contact_spots(np.zeros((4, 4)), cell_area=1e-12).touches_border.size == 0
