@@ -233,7 +233,7 @@ def like_comparison(settings: CampaignSettings, results: dict) -> dict[str, Any]
     dict
         ``parameters`` (:class:`contact.WeierstrassParameters` of the template), ``iso``
         (:func:`contact.compare_surfaces` of the template and the first
-        :data:`LIKE_COMPARED` simulated surfaces), ``psd`` (:func:`contact.psd_comparison`),
+        :data:`LIKE_COMPARED` simulated surfaces),
         ``measured`` and ``simulated`` (lists of :class:`contact.Surface`), ``pressure`` (a
         DataFrame, one row per load and quantity: the template's asperity-model value and the
         simulated surfaces' mean, 5 % and 95 % quantiles; pressures in Pa).
@@ -253,7 +253,6 @@ def like_comparison(settings: CampaignSettings, results: dict) -> dict[str, Any]
         sims = [campaign_surface(settings, 0, 0, i) for i in range(min(LIKE_COMPARED,
                                                                        settings.n_surfaces))]
         iso = contact.compare_surfaces(measured, sims)
-    psd = contact.psd_comparison(measured, sims)
     rows = []
     for il, load in enumerate(settings.pressures):
         with warnings.catch_warnings():
@@ -274,5 +273,5 @@ def like_comparison(settings: CampaignSettings, results: dict) -> dict[str, Any]
                          "simulated_q05": float(np.quantile(v, 0.05)) if v.size else math.nan,
                          "simulated_q95": float(np.quantile(v, 0.95)) if v.size else math.nan,
                          "n_simulated": int(v.size)})
-    return {"parameters": params, "iso": iso, "psd": psd, "measured": measured, "simulated": sims,
+    return {"parameters": params, "iso": iso, "measured": measured, "simulated": sims,
             "pressure": pd.DataFrame(rows)}

@@ -134,17 +134,13 @@ def like_section(rep, settings, like: dict, plt) -> None:
               f"ISO 25178-2 parameters (about the least-squares plane) of the measured template and "
               f"of the first {n_sim} simulated surfaces; z = (measured − simulated mean) / "
               f"simulated sd.")
+    import contact
+
     fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
-    psd = like["psd"]
-    ax.fill_between(psd["q"], psd["simulated_low"], psd["simulated_high"], alpha=0.3, color="C1",
-                    label=f"simulated ({n_sim}), 95 % band")
-    ax.loglog(psd["q"], psd["simulated_mean"], "--", color="C1", label="simulated, mean")
-    ax.loglog(psd["q"], psd["measured"], color="C0", label="measured")
-    ax.set_xlabel("wavevector q (rad/m)")
-    ax.set_ylabel("radially averaged PSD (m⁴)")
-    ax.legend()
-    rep.figure("psd_like", fig, "Radially averaged power spectral density of the measured template "
-                                "and of the simulated surfaces.")
+    contact.plot_psd_comparison(like["measured"], like["simulated"], ax=ax)
+    rep.figure("psd_like", fig, "Radially averaged power spectral density of the measured template, "
+                                f"the mean and 95 % band of {n_sim} simulated surfaces, and the "
+                                "power law fitted to the template.")
     prow = []
     for _, r in like["pressure"].iterrows():
         scale, spec = ((1e-6, ".4g") if "pressure" in r["quantity"] else (1.0, ".3g"))
