@@ -11,15 +11,18 @@ from __future__ import annotations
 
 import datetime as _dt
 import hashlib
-import lzma
 import os
 import xml.etree.ElementTree as ET
 import zipfile
-import zlib
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ._zip import DEFLATE_MAX_RATIO as DEFLATE_MAX_RATIO
+from ._zip import READ_ERRORS as READ_ERRORS
+from ._zip import check_zip_member as check_zip_member
+from ._zip import read_zip_member as read_zip_member
 from .errors import TopographyFileError
 
 __all__ = ["read_x3p", "write_x3p"]
@@ -51,94 +54,18 @@ def _text(root: ET.Element, path: str, fname: str, default: str | None = None) -
     return node.text.strip()
 
 
-def _number(root, path, fname, kind=float, default=None):
+def _number(root, path, fname, convert=float, default=None):
     raw = _text(root, path, fname, None if default is None else str(default))
     try:
-        return kind(raw)
+        return convert(raw)
     except ValueError:
         raise TopographyFileError(
             f"{fname}: {path.replace('/', ' > ')} should be a number, got {raw!r}"
         ) from None
 
 
-#: Largest expansion of a Deflate stream (the format's limit is about 1032:1); a member that
-#: declares more is not a valid archive (a "zip bomb" or a corrupt header).
-DEFLATE_MAX_RATIO = 1100
 #: Largest ``main.xml`` read (bytes); inline data lists of up to a few million points fit.
 MAX_XML_BYTES = 64 * 2**20
-_READABLE = {zipfile.ZIP_STORED: "stored", zipfile.ZIP_DEFLATED: "Deflate",
-             zipfile.ZIP_BZIP2: "bzip2", zipfile.ZIP_LZMA: "LZMA"}
-_UNREADABLE = {9: "Deflate64", 6: "Implode", 1: "Shrink", 98: "PPMd", 99: "AES encryption",
-               93: "Zstandard", 95: "XZ"}
-#: What reading a damaged member may raise (zlib, bz2 and lzma errors, numpy's
-#: ``_ArrayMemoryError`` for an absurd header, ...); all are the file's fault.
-READ_ERRORS = (zipfile.BadZipFile, OSError, EOFError, ValueError, RuntimeError,
-               NotImplementedError, MemoryError, zlib.error, lzma.LZMAError)
-
-
-def check_zip_member(info: zipfile.ZipInfo, fname: str, what: str,
-                     limit: int | None = None, exact: int | None = None) -> None:
-    """Refuse a zip member that cannot or must not be read, before reading any of it.
-
-    Parameters
-    ----------
-    info : zipfile.ZipInfo
-        The member.
-    fname : str
-        The archive's name, for messages.
-    what : str
-        What the member is, for messages (e.g. ``"'bindata/data.bin'"``).
-    limit : int, optional
-        Largest acceptable uncompressed size in bytes.
-    exact : int, optional
-        The uncompressed size the member must have (e.g. SizeX x SizeY x item size).
-
-    Raises
-    ------
-    TopographyFileError
-        Encrypted member; a compression method zipfile cannot read (Deflate64, ...); a
-        declared size larger than Deflate can produce from the stored bytes; a declared size
-        above ``limit`` or different from ``exact``.
-    """
-    if info.flag_bits & 0x1:
-        raise TopographyFileError(
-            f"{fname}: {what} is encrypted; save the file again without a password"
-        )
-    if info.compress_type not in _READABLE:
-        method = _UNREADABLE.get(info.compress_type, f"method {info.compress_type}")
-        raise TopographyFileError(
-            f"{fname}: {what} is compressed with {method}, which cannot be read; save the "
-            f"archive again with Deflate (the zip default)"
-        )
-    if (info.compress_type == zipfile.ZIP_DEFLATED
-            and info.file_size > DEFLATE_MAX_RATIO * info.compress_size + 4096):
-        raise TopographyFileError(
-            f"{fname}: {what} declares {info.file_size} bytes from {info.compress_size} "
-            f"compressed bytes, more than Deflate can produce: a corrupt archive or a zip bomb"
-        )
-    if exact is not None and info.file_size != exact:
-        raise TopographyFileError(f"{fname}: {what} holds {info.file_size} bytes, need {exact}")
-    if limit is not None and info.file_size > limit:
-        raise TopographyFileError(
-            f"{fname}: {what} declares {info.file_size} bytes, more than the {limit} bytes "
-            f"it can need"
-        )
-
-
-def read_zip_member(archive: zipfile.ZipFile, info: zipfile.ZipInfo, fname: str, what: str,
-                    limit: int) -> bytes:
-    """The bytes of a checked member, reading at most ``limit`` bytes (a member whose stream
-    is longer than its declared size fails its CRC check instead of filling memory)."""
-    try:
-        with archive.open(info) as f:
-            data = f.read(limit + 1)
-    except READ_ERRORS as exc:
-        raise TopographyFileError(
-            f"{fname}: cannot read {what} from the archive ({type(exc).__name__}: {exc})"
-        ) from None
-    if len(data) > limit:
-        raise TopographyFileError(f"{fname}: {what} is longer than the {limit} bytes declared")
-    return data
 
 
 def _info(archive: zipfile.ZipFile, name: str, fname: str) -> zipfile.ZipInfo:
@@ -189,6 +116,11 @@ def read_x3p(path: str | os.PathLike) -> tuple[np.ndarray, float, float, np.ndar
     TopographyFileError
         The file is not a zip archive, is truncated, fails a checksum, or its ``main.xml``
         is missing, malformed or describes something other than a regular areal grid.
+
+    Notes
+    -----
+    Three steps: :func:`_parse` reads and checks ``main.xml``, :func:`_layout` validates
+    what it declares, :func:`_decode` reads the point data it links.
     """
     fname = os.fspath(path)
     try:
@@ -200,11 +132,32 @@ def read_x3p(path: str | os.PathLike) -> tuple[np.ndarray, float, float, np.ndar
             f"{fname}: not a valid X3P file (not a readable zip archive; truncated?): {exc}"
         ) from None
     with archive:
-        return _read_archive(archive, fname)
+        layout = _layout(_parse(archive, fname), fname)
+        heights, mask = _decode(archive, layout, fname)
+    return heights, layout.dx, layout.dy, mask
 
 
-def _read_archive(archive: zipfile.ZipFile, fname: str):
-    """The body of :func:`read_x3p` for an open archive."""
+def _parse(archive: zipfile.ZipFile, fname: str) -> ET.Element:
+    """The root element of ``main.xml``, checked against its MD5 checksum when one is listed.
+
+    Parameters
+    ----------
+    archive : zipfile.ZipFile
+        The open X3P archive.
+    fname : str
+        The file's name, for messages.
+
+    Returns
+    -------
+    xml.etree.ElementTree.Element
+        The ``ISO5436_2`` root.
+
+    Raises
+    ------
+    TopographyFileError
+        No ``main.xml``, one above :data:`MAX_XML_BYTES`, XML that is not well-formed, or a
+        description that does not match its checksum file.
+    """
     xml_bytes = _member(archive, "main.xml", fname, MAX_XML_BYTES)
     try:
         root = ET.fromstring(xml_bytes)
@@ -215,6 +168,66 @@ def _read_archive(archive: zipfile.ZipFile, fname: str):
         listed = _member(archive, checksum_name, fname, 2**16).decode("ascii", "replace").split()
         if listed and listed[0].lower() != hashlib.md5(xml_bytes).hexdigest():
             raise TopographyFileError(f"{fname}: main.xml does not match its MD5 checksum")
+    return root
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """The grid and point data that ``main.xml`` declares, validated.
+
+    Attributes
+    ----------
+    nx, ny : int
+        Points along x and y.
+    dx, dy : float
+        Grid spacing in metres.
+    z_type : str
+        Stored type of the heights: ``"I"``, ``"L"``, ``"F"`` or ``"D"``.
+    z_increment, z_offset : float
+        Height in metres is ``value * z_increment + z_offset``.
+    data_link, data_md5 : str
+        Archive member of the binary point data and its MD5 (empty: none).
+    valid_link, valid_md5 : str
+        Archive member of the validity bits and its MD5 (empty: none).
+    data_list : xml.etree.ElementTree.Element or None
+        The inline ``DataList`` when no binary point data are linked.
+    """
+
+    nx: int
+    ny: int
+    dx: float
+    dy: float
+    z_type: str
+    z_increment: float
+    z_offset: float
+    data_link: str
+    data_md5: str
+    valid_link: str
+    valid_md5: str
+    data_list: ET.Element | None
+
+
+def _layout(root: ET.Element, fname: str) -> _Layout:
+    """Validate the description in ``main.xml``: an areal surface on a regular grid.
+
+    Parameters
+    ----------
+    root : xml.etree.ElementTree.Element
+        The root of ``main.xml`` (see :func:`_parse`).
+    fname : str
+        The file's name, for messages.
+
+    Returns
+    -------
+    _Layout
+        Grid size and spacing (m), the height type and scale (m), the point data's source.
+
+    Raises
+    ------
+    TopographyFileError
+        A profile or point cloud, irregular axes, an unknown height type, a matrix that is
+        not one areal layer, a missing or non-numeric entry, or no point data.
+    """
     feature = _text(root, "Record1/FeatureType", fname)
     if feature != "SUR":
         raise TopographyFileError(
@@ -222,21 +235,17 @@ def _read_archive(archive: zipfile.ZipFile, fname: str):
             "profiles and point clouds are not supported"
         )
     for axis in ("CX", "CY"):
-        kind = _text(root, f"Record1/Axes/{axis}/AxisType", fname)
-        if kind != "I":
+        axis_type = _text(root, f"Record1/Axes/{axis}/AxisType", fname)
+        if axis_type != "I":
             raise TopographyFileError(
-                f"{fname}: axis {axis} has type {kind!r}; only regular grids (type 'I') "
+                f"{fname}: axis {axis} has type {axis_type!r}; only regular grids (type 'I') "
                 "are supported"
             )
-    dx = _number(root, "Record1/Axes/CX/Increment", fname)
-    dy = _number(root, "Record1/Axes/CY/Increment", fname)
-    ztype = _text(root, "Record1/Axes/CZ/DataType", fname, default="D")
-    if ztype not in _DTYPES:
+    z_type = _text(root, "Record1/Axes/CZ/DataType", fname, default="D")
+    if z_type not in _DTYPES:
         raise TopographyFileError(
-            f"{fname}: unknown z data type {ztype!r}; expected one of {sorted(_DTYPES)}"
+            f"{fname}: unknown z data type {z_type!r}; expected one of {sorted(_DTYPES)}"
         )
-    zinc = _number(root, "Record1/Axes/CZ/Increment", fname, default=1.0)
-    zoff = _number(root, "Record1/Axes/CZ/Offset", fname, default=0.0)
     nx = _number(root, "Record3/MatrixDimension/SizeX", fname, int)
     ny = _number(root, "Record3/MatrixDimension/SizeY", fname, int)
     nz = _number(root, "Record3/MatrixDimension/SizeZ", fname, int, default=1)
@@ -244,61 +253,61 @@ def _read_archive(archive: zipfile.ZipFile, fname: str):
         raise TopographyFileError(
             f"{fname}: matrix dimension {nx} x {ny} x {nz} is not a single areal layer"
         )
-    npts = nx * ny
-    link = _find(root, "Record3/DataLink/PointDataLink")
-    dtype = np.dtype(_DTYPES[ztype])
-    datalist = _find(root, "Record3/DataList")
-    valid = None
-    if link is not None and link.text:
-        need = npts * dtype.itemsize
-        raw = _member(archive, link.text.strip(), fname, need, exact=need, size_error=(
-            f"{fname}: point data hold {{size}} bytes, but {nx} x {ny} points of type "
-            f"{ztype} need {need} (truncated or corrupt file)"))
-        want = _text(root, "Record3/DataLink/MD5ChecksumPointData", fname, default="")
-        if want and want.lower() != hashlib.md5(raw).hexdigest():
-            raise TopographyFileError(
-                f"{fname}: point data fail their MD5 checksum (corrupt file)"
-            )
-        values = np.frombuffer(raw, dtype=dtype).astype(np.float64)
-        vlink = _find(root, "Record3/DataLink/ValidPointsLink")
-        if vlink is not None and vlink.text:
-            bits = _member(archive, vlink.text.strip(), fname, (npts + 7) // 8 + 64)
-            vwant = _text(root, "Record3/DataLink/MD5ChecksumValidPoints", fname, default="")
-            if vwant and vwant.lower() != hashlib.md5(bits).hexdigest():
-                raise TopographyFileError(f"{fname}: validity bits fail their MD5 checksum")
-            if len(bits) * 8 < npts:
-                raise TopographyFileError(
-                    f"{fname}: validity bits cover {len(bits) * 8} points, need {npts}"
-                )
-            valid = np.unpackbits(np.frombuffer(bits, np.uint8), bitorder="little")[:npts]
-            valid = valid.astype(bool)
-    elif datalist is not None:
-        data = [c.text for c in datalist if _local(c.tag) == "Datum"]
-        if len(data) != npts:
-            raise TopographyFileError(
-                f"{fname}: the data list holds {len(data)} values, need {nx} x {ny}"
-            )
-        values = np.empty(npts)
-        valid = np.ones(npts, dtype=bool)
-        for k, t in enumerate(data):
-            if t is None or not t.strip():
-                values[k], valid[k] = np.nan, False
-                continue
-            try:
-                if "_" in t:
-                    raise ValueError(t)
-                values[k] = float(t)
-            except ValueError:
-                raise TopographyFileError(
-                    f"{fname}: data list value {k} is not a number: {t!r}"
-                ) from None
-    else:
+    data_link = _text(root, "Record3/DataLink/PointDataLink", fname, default="")
+    data_list = _find(root, "Record3/DataList")
+    if not data_link and data_list is None:
         raise TopographyFileError(f"{fname}: main.xml links no point data")
-    heights = values * zinc + zoff
+    return _Layout(
+        nx=nx,
+        ny=ny,
+        dx=_number(root, "Record1/Axes/CX/Increment", fname),
+        dy=_number(root, "Record1/Axes/CY/Increment", fname),
+        z_type=z_type,
+        z_increment=_number(root, "Record1/Axes/CZ/Increment", fname, default=1.0),
+        z_offset=_number(root, "Record1/Axes/CZ/Offset", fname, default=0.0),
+        data_link=data_link,
+        data_md5=_text(root, "Record3/DataLink/MD5ChecksumPointData", fname, default=""),
+        valid_link=_text(root, "Record3/DataLink/ValidPointsLink", fname, default=""),
+        valid_md5=_text(root, "Record3/DataLink/MD5ChecksumValidPoints", fname, default=""),
+        data_list=None if data_link else data_list,
+    )
+
+
+def _decode(archive: zipfile.ZipFile, layout: _Layout, fname: str
+            ) -> tuple[np.ndarray, np.ndarray | None]:
+    """The heights the layout describes, read from the archive or the inline data list.
+
+    Parameters
+    ----------
+    archive : zipfile.ZipFile
+        The open X3P archive.
+    layout : _Layout
+        The validated description (see :func:`_layout`).
+    fname : str
+        The file's name, for messages.
+
+    Returns
+    -------
+    heights : ndarray, shape (nx, ny)
+        Heights in metres (axis 0 along x), NaN at invalid points.
+    mask : ndarray of bool or None
+        True at invalid points, None when every point is valid.
+
+    Raises
+    ------
+    TopographyFileError
+        Point data or validity bits of the wrong size or failing their checksum, a data
+        list of the wrong length or holding a non-number, infinite heights.
+    """
+    if layout.data_list is None:
+        values, valid = _binary_values(archive, layout, fname)
+    else:
+        values, valid = _listed_values(layout, fname)
+    heights = values * layout.z_increment + layout.z_offset
     if valid is not None:
         heights[~valid] = np.nan
     # X3P stores x fastest: the flat array is (ny, nx) in C order.
-    heights = heights.reshape(ny, nx).T.copy()
+    heights = heights.reshape(layout.ny, layout.nx).T.copy()
     n_inf = int(np.isinf(heights).sum())
     if n_inf:
         raise TopographyFileError(
@@ -306,7 +315,59 @@ def _read_archive(archive: zipfile.ZipFile, fname: str):
             "not as infinite heights"
         )
     missing = np.isnan(heights)
-    return heights, dx, dy, (missing if missing.any() else None)
+    return heights, (missing if missing.any() else None)
+
+
+def _binary_values(archive: zipfile.ZipFile, layout: _Layout, fname: str
+                   ) -> tuple[np.ndarray, np.ndarray | None]:
+    """Stored values (float64, unscaled) of the linked point data and the validity bits."""
+    npts = layout.nx * layout.ny
+    dtype = np.dtype(_DTYPES[layout.z_type])
+    need = npts * dtype.itemsize
+    raw = _member(archive, layout.data_link, fname, need, exact=need, size_error=(
+        f"{fname}: point data hold {{size}} bytes, but {layout.nx} x {layout.ny} points of "
+        f"type {layout.z_type} need {need} (truncated or corrupt file)"))
+    if layout.data_md5 and layout.data_md5.lower() != hashlib.md5(raw).hexdigest():
+        raise TopographyFileError(f"{fname}: point data fail their MD5 checksum (corrupt file)")
+    values = np.frombuffer(raw, dtype=dtype).astype(np.float64)
+    if not layout.valid_link:
+        return values, None
+    bits = _member(archive, layout.valid_link, fname, (npts + 7) // 8 + 64)
+    if layout.valid_md5 and layout.valid_md5.lower() != hashlib.md5(bits).hexdigest():
+        raise TopographyFileError(f"{fname}: validity bits fail their MD5 checksum")
+    if len(bits) * 8 < npts:
+        raise TopographyFileError(
+            f"{fname}: validity bits cover {len(bits) * 8} points, need {npts}"
+        )
+    valid = np.unpackbits(np.frombuffer(bits, np.uint8), bitorder="little")[:npts]
+    return values, valid.astype(bool)
+
+
+def _listed_values(layout: _Layout, fname: str) -> tuple[np.ndarray, np.ndarray]:
+    """Values (float64, unscaled) of the inline data list; empty entries are invalid."""
+    if layout.data_list is None:
+        raise TopographyFileError(f"{fname}: main.xml links no point data")
+    npts = layout.nx * layout.ny
+    data = [c.text for c in layout.data_list if _local(c.tag) == "Datum"]
+    if len(data) != npts:
+        raise TopographyFileError(
+            f"{fname}: the data list holds {len(data)} values, need {layout.nx} x {layout.ny}"
+        )
+    values = np.empty(npts)
+    valid = np.ones(npts, dtype=bool)
+    for k, t in enumerate(data):
+        if t is None or not t.strip():
+            values[k], valid[k] = np.nan, False
+            continue
+        try:
+            if "_" in t:
+                raise ValueError(t)
+            values[k] = float(t)
+        except ValueError:
+            raise TopographyFileError(
+                f"{fname}: data list value {k} is not a number: {t!r}"
+            ) from None
+    return values, valid
 
 
 def _xml(nx, ny, dx, dy, md5_data, comment):
