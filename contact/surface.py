@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ._validate import real_array, real_scalar
+from ._writers import write
 from .roughness import level_heights, roughness_parameters
 
 if TYPE_CHECKING:
@@ -137,8 +138,6 @@ class Surface:
 
         See :func:`contact.io.write`.
         """
-        from .io import write
-
         write(self, path, format=format)
 
     def plot(self, ax=None, *, unit: str = "µm", cmap: str = "viridis", colorbar: bool = True):

@@ -1,0 +1,50 @@
+"""The topography file formats: extension to format name, and the format of a path."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+__all__ = ["FORMATS", "file_format"]
+
+#: Built-in format of each file extension (lower case, with the dot).
+FORMATS = {
+    ".npy": "npy",
+    ".npz": "npz",
+    ".txt": "text",
+    ".asc": "text",
+    ".dat": "text",
+    ".csv": "text",
+    ".xyz": "xyz",
+    ".x3p": "x3p",
+}
+
+
+def file_format(path: Path, fmt: str | None) -> str:
+    """The format of ``path``: ``fmt`` when given, else the one its extension names.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file.
+    fmt : str or None
+        A format forced by the caller: one of the values of :data:`FORMATS` or
+        ``"surfacetopography"``.
+
+    Returns
+    -------
+    str
+        A value of :data:`FORMATS`, or ``"surfacetopography"`` for any other extension.
+
+    Raises
+    ------
+    ValueError
+        ``fmt`` names no format.
+    """
+    if fmt is not None:
+        if fmt not in set(FORMATS.values()) | {"surfacetopography"}:
+            raise ValueError(
+                f"format must be one of {sorted(set(FORMATS.values()))} or "
+                f"'surfacetopography', got {fmt!r}"
+            )
+        return fmt
+    return FORMATS.get(path.suffix.lower(), "surfacetopography")

@@ -1,0 +1,309 @@
+"""Reading text grids and XYZ point lists, streamed in bounded memory.
+
+A text grid holds one row of heights per x (NaN for missing points) with optional
+``# dx = ...``, ``# dy = ...`` (metres, or with a unit) and ``# shape = nx ny`` header lines;
+an XYZ file one ``x y z`` point per line (metres) with an optional ``# points = N`` line. The
+readers return what the file stores: heights (m), the spacing (m) when stored, no mask.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from collections.abc import Iterator
+
+import numpy as np
+
+from .errors import TopographyFileError
+
+__all__ = ["XYZ_MAX_FILL", "read_text", "read_xyz"]
+
+#: What a reader returns: heights (m), the stored spacing dx, dy (m, None when the file
+#: stores none) and the mask of missing points (None: NaN marks them).
+Stored = tuple[np.ndarray, float | None, float | None, None]
+
+_HEADER = re.compile(r"^\s*#\s*(dx|dy)\s*[=:]\s*(.*?)\s*$", re.IGNORECASE)
+_VALUE = re.compile(r"^(?P<number>.+?)\s*(?P<unit>m|mm|um|µm|μm|nm)?\s*,?$")
+_HEADER_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9}
+_SHAPE = re.compile(r"^\s*#\s*shape\s*[=:]\s*(\d+)[\s,x]+(\d+)\s*,?\s*$", re.IGNORECASE)
+_POINTS = re.compile(r"^\s*#\s*points\s*[=:]\s*(\d+)\s*,?\s*$", re.IGNORECASE)
+
+
+def _text_lines(path: os.PathLike, fname: str) -> Iterator[tuple[int, str]]:
+    """The lines of a text file, one at a time, with their numbers (from 1): UTF-8 (with or
+    without a byte-order mark), else Latin-1, decided line by line.
+
+    Numbers are ASCII in both; the fallback only matters for comments such as ``µm``
+    written by software that uses Latin-1. The file is streamed, never held in memory.
+    """
+    try:
+        fh = open(path, "rb")
+    except OSError as exc:
+        raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
+    with fh:
+        try:
+            for lineno, raw in enumerate(fh, 1):
+                if lineno == 1:
+                    raw = raw.removeprefix(b"\xef\xbb\xbf")
+                try:
+                    line = raw.decode("utf-8")
+                except UnicodeDecodeError:
+                    line = raw.decode("latin-1")
+                yield lineno, line.rstrip("\r\n")
+        except OSError as exc:
+            raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
+
+
+#: Rows parsed at once by the text readers (bounded memory whatever the file's length).
+_BATCH = 8192
+
+
+class _Rows:
+    """Rows of numbers of equal width, gathered in float64 batches (8 bytes per value)."""
+
+    def __init__(self, fname: str, delimiter: str | None, width: int | None = None,
+                 what: str = "rows"):
+        self.fname, self.delimiter, self.width, self.what = fname, delimiter, width, what
+        self.tokens: list[str] = []
+        self.lines: list[tuple[int, str]] = []
+        self.chunks: list[np.ndarray] = []
+        self.count = 0
+
+    def add(self, lineno: int, body: str) -> None:
+        parts = body.split(self.delimiter)
+        if self.width is None:
+            self.width = len(parts)
+        elif len(parts) != self.width:
+            raise TopographyFileError(
+                f"{self.fname}: rows have different lengths {sorted({self.width, len(parts)})} "
+                f"(line {lineno} holds {len(parts)} values, the rows before it "
+                f"{self.width}; truncated or ragged grid)"
+            )
+        self.tokens.extend(parts)
+        self.lines.append((lineno, body))
+        if len(self.lines) >= _BATCH:
+            self.flush()
+
+    def flush(self) -> None:
+        if not self.lines:
+            return
+        bad = next((ln for ln, body in self.lines if "_" in body), None)
+        values = None
+        if bad is None:
+            try:
+                values = np.array(self.tokens, dtype=float)
+            except ValueError:
+                values = None
+        if values is None:
+            for lineno, body in self.lines:
+                try:
+                    if "_" in body:
+                        raise ValueError(body)
+                    [float(t) for t in body.split(self.delimiter)]
+                except ValueError:
+                    raise TopographyFileError(
+                        f"{self.fname}: line {lineno} holds a non-number ({body[:60]!r}); write "
+                        "plain decimal numbers (digits, '.', exponent; no '_' separators)"
+                    ) from None
+            raise TopographyFileError(f"{self.fname}: lines {self.lines[0][0]}-"
+                                      f"{self.lines[-1][0]} hold a non-number")
+        if self.width is None:  # set by the first add(), which every line goes through
+            raise AssertionError("rows buffered without a row width")
+        self.chunks.append(values.reshape(len(self.lines), self.width))
+        self.count += len(self.lines)
+        self.tokens, self.lines = [], []
+
+    def array(self) -> np.ndarray:
+        self.flush()
+        if not self.chunks:
+            return np.empty((0, self.width or 0))
+        out = np.concatenate(self.chunks) if len(self.chunks) > 1 else self.chunks[0]
+        self.chunks = []
+        return out
+
+
+def _header_spacing(name: str, value: str, fname: str, lineno: int) -> float:
+    """A ``# dx = ...`` value in metres: a number, an optional unit (m, mm, um or µm, nm;
+    metres when absent) and an optional trailing comma."""
+    m = _VALUE.match(value)
+    number = None
+    if m:
+        try:
+            number = float(m.group("number"))
+        except ValueError:
+            number = None
+    if m is None or number is None:
+        raise TopographyFileError(
+            f"{fname}: line {lineno}: {name} = {value!r} is not a length; write a number "
+            "in metres, optionally followed by a unit (m, mm, um, µm or nm)"
+        )
+    spacing = number * _HEADER_UNITS[m.group("unit") or "m"]
+    if not (math.isfinite(spacing) and spacing > 0):
+        raise TopographyFileError(
+            f"{fname}: line {lineno}: {name} = {value!r} is not a positive finite spacing"
+        )
+    return spacing
+
+
+def read_text(path: os.PathLike, fname: str) -> Stored:
+    """Heights and spacing of a text grid: one row per x, values split by blanks (commas in
+    ``.csv`` files), ``#`` starting a comment.
+
+    Parameters
+    ----------
+    path : path-like
+        The file (UTF-8, with or without a byte-order mark, or Latin-1).
+    fname : str
+        The file's name, for messages.
+
+    Returns
+    -------
+    heights : ndarray of float64, shape (nx, ny)
+        Heights in metres, NaN at missing points.
+    dx, dy : float or None
+        The spacing of the ``# dx = ...`` and ``# dy = ...`` header lines in metres, None
+        when absent.
+    mask : None
+
+    Raises
+    ------
+    TopographyFileError
+        An unreadable file, no data row, rows of different lengths, a non-number, a bad
+        spacing line, or fewer rows than the ``# shape`` line declares.
+    """
+    found: dict[str, float | None] = {"dx": None, "dy": None}
+    shape = None
+    delimiter = "," if os.fspath(path).lower().endswith(".csv") else None
+    rows = _Rows(fname, delimiter)
+    for lineno, line in _text_lines(path, fname):
+        if "#" in line:
+            m = _HEADER.match(line)
+            if m:
+                name = m.group(1).lower()
+                found[name] = _header_spacing(name, m.group(2), fname, lineno)
+                continue
+            m = _SHAPE.match(line)
+            if m:
+                shape = (int(m.group(1)), int(m.group(2)))
+                continue
+        body = line.split("#", 1)[0].strip()
+        if delimiter and body.endswith(delimiter):
+            body = body[:-1].rstrip()  # spreadsheets end CSV rows with a comma
+        if not body:
+            continue
+        rows.add(lineno, body)
+    h = rows.array()
+    if h.shape[0] == 0:
+        raise TopographyFileError(f"{fname}: holds no data rows")
+    if shape is not None and h.shape != shape:
+        raise TopographyFileError(
+            f"{fname}: holds {h.shape[0]} rows of {h.shape[1]} values, but its header "
+            f"says shape = {shape[0]} {shape[1]} (truncated file?)"
+        )
+    return h, found["dx"], found["dy"], None
+
+
+# Printed coordinates are rounded: ``%g`` keeps 6 significant digits, i.e. a relative
+# error up to 5e-6 of the coordinate. A coordinate is on the grid when its distance to
+# the nearest grid index, in units of the step, is below _INDEX_TOL plus that rounding.
+_INDEX_TOL = 1e-3
+_PRINT_REL = 5e-6
+
+
+def _axis(values: np.ndarray, name: str, fname: str) -> tuple[np.ndarray, float]:
+    """Index of each coordinate on a uniform axis, and the spacing (m).
+
+    The step is the span over the number of distinct values less one; every coordinate
+    must lie within ``_INDEX_TOL + _PRINT_REL * |x| / step`` grid steps of a grid index,
+    so coordinates printed with 6 or more significant digits are accepted and irregular
+    grids are not.
+    """
+    u = np.unique(values)
+    if u.size < 3:
+        raise TopographyFileError(f"{fname}: only {u.size} distinct {name} values; need >= 3")
+    step = (u[-1] - u[0]) / (u.size - 1)
+    position = (u - u[0]) / step
+    index = np.rint(position)
+    deviation = np.abs(position - index)
+    allowed = _INDEX_TOL + _PRINT_REL * np.abs(u) / step
+    if not (deviation <= allowed).all() or np.unique(index).size != u.size:
+        steps = np.diff(u)
+        raise TopographyFileError(
+            f"{fname}: non-uniform spacing along {name}: steps from {steps.min():.6g} to "
+            f"{steps.max():.6g} m; resample onto a regular grid first"
+        )
+    return np.rint((values - u[0]) / step).astype(np.int64), float(step)
+
+
+#: Largest grid an XYZ file may describe, in grid points per point listed: coordinates that
+#: span a much larger grid than the points fill are not a gridded topography (N points on a
+#: diagonal would otherwise make an N x N grid).
+XYZ_MAX_FILL = 10
+
+
+def read_xyz(path: os.PathLike, fname: str) -> Stored:
+    """Heights and spacing of an XYZ point list on a regular grid.
+
+    Parameters
+    ----------
+    path : path-like
+        The file: one ``x y z`` point (metres) per line, ``#`` starting a comment.
+    fname : str
+        The file's name, for messages.
+
+    Returns
+    -------
+    heights : ndarray of float64, shape (nx, ny)
+        Heights in metres on the grid of the coordinates, NaN where no point is listed.
+    dx, dy : float
+        The grid steps of the x and y coordinates in metres.
+    mask : None
+
+    Raises
+    ------
+    TopographyFileError
+        An unreadable file, rows that are not 3 numbers, non-finite coordinates, irregular
+        or too sparse coordinates, two points at one position, or another number of points
+        than the ``# points`` line declares.
+    """
+    rows = _Rows(fname, None)
+    count = None
+    for lineno, line in _text_lines(path, fname):
+        if "#" in line:
+            m = _POINTS.match(line)
+            if m:
+                count = int(m.group(1))
+        body = line.split("#", 1)[0].strip()
+        if not body:
+            continue
+        rows.add(lineno, body)
+        if rows.width != 3:
+            raise TopographyFileError(
+                f"{fname}: expected 3 columns (x y z), got {rows.width} (line {lineno})"
+            )
+    data = rows.array()
+    if data.shape[0] == 0:
+        raise TopographyFileError(f"{fname}: expected 3 columns (x y z), got no point")
+    if not np.isfinite(data[:, :2]).all():
+        raise TopographyFileError(f"{fname}: x or y coordinates contain NaN or inf")
+    if count is not None and data.shape[0] != count:
+        raise TopographyFileError(
+            f"{fname}: holds {data.shape[0]} points, but its header says points = {count} "
+            "(truncated file?)"
+        )
+    ii, sx = _axis(data[:, 0], "x", fname)
+    jj, sy = _axis(data[:, 1], "y", fname)
+    nx, ny = int(ii.max()) + 1, int(jj.max()) + 1
+    if nx * ny > XYZ_MAX_FILL * data.shape[0] + 64:
+        raise TopographyFileError(
+            f"{fname}: the {data.shape[0]} points span a grid of {nx} x {ny} = {nx * ny} "
+            f"points, so more than {100 - 100 // XYZ_MAX_FILL} % of it would be missing: not a "
+            "gridded topography; resample the points onto a regular grid first"
+        )
+    flat = ii * ny + jj
+    if np.unique(flat).size != flat.size:
+        raise TopographyFileError(f"{fname}: several points share the same (x, y) position")
+    h = np.full((nx, ny), np.nan)
+    h[ii, jj] = data[:, 2]
+    return h, sx, sy, None
