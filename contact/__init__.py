@@ -10,6 +10,7 @@ solver (:func:`solve_bem`) as its reference.
 import _glstat_numba  # noqa: F401  (first: numba caches outside the package)
 
 from . import reference  # noqa: F401  (contact.reference: analytic solutions)
+from .asperity import solve, solve_displacement
 from .errors import ContactWarning, TopographyFileError
 from .generators import self_affine, weierstrass
 from .io import read, write
@@ -24,8 +25,8 @@ from .like import (
     weierstrass_like,
     weierstrass_parameters,
 )
+from .material import effective_modulus
 from .result import ContactResult
-from .solver import effective_modulus, solve, solve_displacement
 from .spots import contact_spots
 from .summits import Summits, summits
 from .surface import Surface

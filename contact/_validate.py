@@ -7,7 +7,14 @@ import numbers
 
 import numpy as np
 
-__all__ = ["finite_separation", "positive_finite", "positive_pressure", "real_array", "real_scalar"]
+__all__ = [
+    "elastic_constants",
+    "finite_separation",
+    "positive_finite",
+    "positive_pressure",
+    "real_array",
+    "real_scalar",
+]
 
 
 def real_scalar(value) -> float | None:
@@ -86,6 +93,39 @@ def positive_finite(value, name: str, what: str) -> float:
     if x is None or not (math.isfinite(x) and x > 0):
         raise ValueError(f"{name} must be a positive finite {what}, got {value!r}")
     return x
+
+
+def elastic_constants(E, nu, which: str = "") -> tuple[float, float]:
+    """``(E, nu)`` of one body as floats: a positive finite Young's modulus and a Poisson
+    ratio in (-1, 0.5].
+
+    Parameters
+    ----------
+    E : object
+        Young's modulus in pascals.
+    nu : object
+        Poisson ratio (dimensionless).
+    which : str, optional
+        Suffix of the argument names in messages, e.g. ``"2 (counter_face)"``.
+
+    Returns
+    -------
+    E, nu : float
+        ``float(E)``, ``float(nu)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number each (see :func:`real_scalar`), or outside the ranges.
+    """
+    e = positive_finite(E, f"E{which}", "Young's modulus in pascals")
+    n = real_scalar(nu)
+    if n is None or not (-1.0 < n <= 0.5):
+        raise ValueError(
+            f"nu{which} must be a Poisson ratio in (-1, 0.5], got {nu!r}; "
+            "0.5 is incompressible, typical metals are near 0.3"
+        )
+    return e, n
 
 
 def finite_separation(value) -> float:

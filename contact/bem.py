@@ -4,8 +4,9 @@ Frictionless normal contact of a linear elastic half-space with a rigid rough su
 two elastic bodies, through the contact modulus ``E*``), solved on the grid of the surface by
 the constrained conjugate gradient of Polonsky & Keer (1999) with FFT convolution. Unlike the
 asperity model of :func:`contact.solve`, every point interacts elastically with every other
-one. The numerical core is in :mod:`contact._bem_core` and :mod:`contact._bem_kernel`; this
-module validates input and builds the :class:`~contact.result.ContactResult`.
+one. The numerical core is in :mod:`contact._constrained_cg` (the iteration) and
+:mod:`contact._influence` (the influence coefficients and FFT operators); this module
+validates input and builds the :class:`~contact.result.ContactResult`.
 """
 
 from __future__ import annotations
@@ -18,11 +19,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ._bem_core import PKOutcome, initial_pressure, polonsky_keer
-from ._bem_kernel import NonPeriodicOperator, PeriodicOperator
+from ._constrained_cg import PKOutcome, initial_pressure, polonsky_keer
+from ._influence import NonPeriodicOperator, PeriodicOperator
 from ._validate import finite_separation, positive_pressure
+from .material import effective_modulus
 from .result import ContactResult
-from .solver import effective_modulus
 from .surface import Surface, require_surface
 
 __all__ = ["BEMConvergenceWarning", "solve_bem", "solve_bem_displacement"]

@@ -7,9 +7,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .asperity import solve
 from .bem import solve_bem
 from .result import ContactResult
-from .solver import solve
 from .surface import Surface
 
 if TYPE_CHECKING:

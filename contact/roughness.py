@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from ._kernels import find_summits
+from ._asperity_kernels import find_summits
 from .errors import ContactWarning
 
 if TYPE_CHECKING:

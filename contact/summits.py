@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._kernels import find_summits
+from ._asperity_kernels import find_summits
 from .surface import Surface, require_surface
 
 if TYPE_CHECKING:

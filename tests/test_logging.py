@@ -11,7 +11,7 @@ import contact
 import glstat
 
 LOGGERS = ("glstat.fitting.core", "glstat.fitting._data", "glstat.bootstrap", "contact.bem",
-           "contact._bem_core", "contact.solver")
+           "contact._constrained_cg", "contact.asperity")
 
 
 def _messages(caplog, name):
@@ -47,12 +47,12 @@ def test_contact_solvers_log_their_iterations(caplog):
     with caplog.at_level(logging.DEBUG, logger="contact"):
         r = contact.solve_bem(s, 5e7, 210e9, 0.3)
         contact.solve(s, 5e7, 210e9, 0.3, jump="blend")
-    its = _messages(caplog, "contact._bem_core")
+    its = _messages(caplog, "contact._constrained_cg")
     assert len(its) == r.n_iterations + 1
     assert its[0].startswith("iteration 1: relative pressure change ")
     assert its[-1] == (f"accelerated iteration stopped after {r.n_iterations} iterations and "
                        f"{r.info['n_convolutions']} convolutions: {r.info['reason']}")
     (done,) = _messages(caplog, "contact.bem")
     assert done.startswith(f"bem on 32x32 grid: {r.info['reason']} after {r.n_iterations} iterations")
-    (search,) = _messages(caplog, "contact.solver")
+    (search,) = _messages(caplog, "contact.asperity")
     assert search.startswith("separation search: converged after ")

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from contact import Surface, reference, solve, weierstrass
-from contact._bem_kernel import NonPeriodicOperator, PeriodicOperator, love_coefficients
+from contact._influence import NonPeriodicOperator, PeriodicOperator, love_coefficients
 from contact.bem import BEMConvergenceWarning, solve_bem, solve_bem_displacement
 
 E, NU = 210e9, 0.3

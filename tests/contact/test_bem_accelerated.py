@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from contact import Surface, reference
-from contact._bem_core import initial_pressure, polonsky_keer
-from contact._bem_kernel import NonPeriodicOperator, PeriodicOperator, inverse_stencil
+from contact._constrained_cg import initial_pressure, polonsky_keer
+from contact._influence import NonPeriodicOperator, PeriodicOperator, inverse_stencil
 from contact.bem import BEMConvergenceWarning, solve_bem, solve_bem_displacement
 
 E, NU = 210e9, 0.3

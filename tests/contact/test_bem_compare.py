@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from contact import Surface, self_affine
+from contact.asperity import solve
 from contact.bem import solve_bem
 from contact.bem_compare import compare_models
-from contact.solver import solve
 
 E, NU, P = 210e9, 0.3, 20e6
 

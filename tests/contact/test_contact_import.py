@@ -10,7 +10,7 @@ import pytest
 
 import contact
 
-HEAVY = ("pandas", "matplotlib", "contact.bem", "contact._bem_core", "contact._bem_kernel",
+HEAVY = ("pandas", "matplotlib", "contact.bem", "contact._constrained_cg", "contact._influence",
          "contact.bem_compare")
 
 

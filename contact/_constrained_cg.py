@@ -53,7 +53,7 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ._bem_kernel import LinearOperator2D
+from ._influence import LinearOperator2D
 
 __all__ = ["PKOutcome", "initial_pressure", "polonsky_keer"]
 
