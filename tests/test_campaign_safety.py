@@ -19,7 +19,9 @@ import pytest
 
 from glstat.study import CampaignError, CampaignSettings, SerialExecutor, load_results, run_campaign
 from glstat.study import campaign as campaign_mod
+from glstat.study import runner as runner_mod
 from glstat.study.campaign import LOCK_FILE, lock_directory, surface_path
+from glstat.study.files import create_exclusive
 
 ROOT = Path(__file__).resolve().parents[1]
 TINY = CampaignSettings(n_surfaces=3, grid=32, n_terms=(4,), hurst=(0.5,), n_examples=0)
@@ -87,9 +89,9 @@ def test_lock_is_reentrant_in_its_thread_and_exclusive_across_threads(tmp_path):
 
 def test_manifest_is_created_exclusively(tmp_path):
     path = tmp_path / "m.json"
-    campaign_mod._create_exclusive(path, b"{}")
+    create_exclusive(path, b"{}")
     with pytest.raises(FileExistsError):
-        campaign_mod._create_exclusive(path, b"[]")
+        create_exclusive(path, b"[]")
     assert path.read_bytes() == b"{}" and list(tmp_path.iterdir()) == [path]
 
 
@@ -112,7 +114,7 @@ def test_a_surface_file_copied_over_another_is_detected(tmp_path, capfd):
 
 def test_disk_full_mid_run_is_a_campaign_error_naming_it(tmp_path, monkeypatch):
     out = tmp_path / "run"
-    real = campaign_mod.atomic_write
+    real = runner_mod.atomic_write
     calls = []
 
     def full(path, data):
@@ -122,12 +124,12 @@ def test_disk_full_mid_run_is_a_campaign_error_naming_it(tmp_path, monkeypatch):
                 raise OSError(errno.ENOSPC, "No space left on device", str(path))
         real(path, data)
 
-    monkeypatch.setattr(campaign_mod, "atomic_write", full)
+    monkeypatch.setattr(runner_mod, "atomic_write", full)
     with pytest.raises(CampaignError, match=r"cannot write .*surface_000\d.npz \(No space left on "
                                             r"device\): free some disk space; 1 of 3 surfaces are "
                                             r"saved .*rerun the same command"):
         run_campaign(TINY, out, executor=SerialExecutor(), progress=False)
-    monkeypatch.setattr(campaign_mod, "atomic_write", real)
+    monkeypatch.setattr(runner_mod, "atomic_write", real)
     r = run_campaign(TINY, out, executor=SerialExecutor(), progress=False)
     assert r.skipped == 1 and len(r.computed) == 2
 

@@ -1,0 +1,259 @@
+"""What a campaign computes: :class:`CampaignSettings` (Hurst exponents × loads × surfaces, the
+surfaces and the contact model), the checks of its values, its identity (the settings that
+define the stored results) and the seed of every surface; and the integer checks the study's
+other arguments share."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .topography import FORMS
+
+__all__ = [
+    "FORMAT_VERSION",
+    "CampaignSettings",
+    "check_positive_integer",
+    "is_integer",
+    "nyquist_terms",
+]
+
+#: Version of the on-disk layout; part of the manifest.
+FORMAT_VERSION = 1
+
+
+def is_integer(value: Any) -> bool:
+    """Whether ``value`` is an integer (a Python or NumPy integer, or a float with an integral
+    value; not a bool)."""
+    try:
+        return not isinstance(value, bool | np.bool_) and math.isfinite(value) and int(value) == value
+    except (TypeError, ValueError):
+        return False
+
+
+def check_positive_integer(value: Any, name: str) -> int:
+    """``value`` as an int after checking that it is an integer >= 1 (:func:`is_integer`).
+
+    Parameters
+    ----------
+    value : object
+        The candidate count.
+    name : str
+        The argument's name, for the message.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        Not an integer, or below 1.
+    """
+    if not (is_integer(value) and value >= 1):
+        raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    return int(value)
+
+
+def nyquist_terms(grid: int, length: float, gamma: float) -> int:
+    """Number of Weierstrass terms up to the Nyquist limit ``grid / (2 length)`` (as
+    :func:`contact.weierstrass` computes it)."""
+    return math.floor(math.log(grid / 2) / math.log(gamma) + 1e-12) + 1
+
+
+@dataclass(frozen=True)
+class CampaignSettings:
+    """What a campaign computes; two runs with equal settings give identical files.
+
+    Attributes
+    ----------
+    hurst : tuple of float
+        Hurst exponents H in [0, 1].
+    pressures : tuple of float
+        Nominal pressures in pascals (the loads).
+    n_surfaces : int
+        Independent surfaces per (H, load).
+    grid : int
+        Grid points per side (square grid).
+    length : float
+        Side of the square surface in metres.
+    rq : float
+        RMS roughness in metres.
+    gamma : float
+        Frequency ratio of the Weierstrass series.
+    n_terms : tuple of (int or None)
+        Weierstrass terms per axis for each H (highest frequency ``gamma^(n_terms-1) / length``);
+        None means every frequency up to the grid's Nyquist limit. One value applies to every H
+        (the default, 6, is repeated for as many exponents as ``hurst`` holds).
+    E : float
+        Young's modulus of the rough body in pascals.
+    nu : float
+        Poisson ratio of the rough body.
+    cone_factor : float
+        ``c`` in ``p_m = c E* tan(beta)``.
+    seed : int
+        Root of the :class:`numpy.random.SeedSequence`.
+    n_examples : int
+        Surfaces per (H, load) (the first ones) whose full height and pressure maps are kept.
+    topographies : tuple of str
+        Measured files (absolute paths). Empty (the default): every surface is simulated.
+        Otherwise each file is one surface (surface i is file i, ``hurst`` is one label value
+        and ``grid``, ``length`` and ``rq`` describe the files; see
+        :func:`glstat.study.measured.measured_settings`), or, with ``like``, the one file is
+        the template whose spectrum gave the simulated surfaces' parameters.
+    digests : tuple of str
+        SHA-256 of each file, checked before it is used.
+    form : {"plane", "mean", "none"}
+        Form removed from each measured file.
+    like : bool
+        The measured file is a template; the surfaces are simulated.
+    """
+
+    hurst: tuple[float, ...] = (0.0, 0.5, 1.0)
+    pressures: tuple[float, ...] = (20e6,)
+    n_surfaces: int = 100
+    grid: int = 1024
+    length: float = 1e-3
+    rq: float = 1.6e-6
+    gamma: float = 1.5
+    n_terms: tuple[int | None, ...] = (6,)
+    E: float = 210e9
+    nu: float = 0.3
+    cone_factor: float = 0.2
+    seed: int = 2019
+    n_examples: int = 1
+    topographies: tuple[str, ...] = ()
+    digests: tuple[str, ...] = ()
+    form: str = "plane"
+    like: bool = False
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "topographies", tuple(str(v) for v in self.topographies))
+        object.__setattr__(self, "digests", tuple(str(v) for v in self.digests))
+        _check_measured_files(self)
+        h = tuple(float(v) for v in np.atleast_1d(self.hurst))
+        p = tuple(float(v) for v in np.atleast_1d(self.pressures))
+        nt = self.n_terms if isinstance(self.n_terms, tuple | list) else (self.n_terms,)
+        nt = tuple(None if v is None else int(v) for v in nt)
+        if len(nt) == 1:
+            nt = nt * len(h)
+        object.__setattr__(self, "hurst", h)
+        object.__setattr__(self, "pressures", p)
+        object.__setattr__(self, "n_terms", nt)
+        _check_cases(self)
+        _check_sampling(self)
+        _check_geometry(self)
+        _check_material(self)
+
+    def identity(self) -> dict[str, Any]:
+        """The settings that define the stored results (everything but ``n_surfaces``).
+
+        Surface i of a given (H, load) has the same seed whatever the number of surfaces,
+        so a campaign can be extended with more surfaces in the same directory.
+        """
+        d = dataclasses.asdict(self)
+        d.pop("n_surfaces")
+        if not self.topographies:  # simulated surfaces: the identity of earlier versions
+            for name in ("topographies", "digests", "form", "like"):
+                d.pop(name)
+        d = {k: list(v) if isinstance(v, tuple) else v for k, v in d.items()}
+        d["format_version"] = FORMAT_VERSION
+        return d
+
+    @property
+    def measured(self) -> bool:
+        """Whether the surfaces are measured files (not simulated)."""
+        return bool(self.topographies) and not self.like
+
+    def max_frequency(self, ih: int) -> float:
+        """Highest Weierstrass frequency of Hurst exponent number ``ih``, in 1/m."""
+        nt = self.n_terms[ih]
+        if nt is None:
+            nt = nyquist_terms(self.grid, self.length, self.gamma)
+        return self.gamma ** (nt - 1) / self.length
+
+    def tasks(self) -> list[tuple[int, int, int]]:
+        """Every (H index, load index, surface index) of the campaign."""
+        return [(ih, il, i) for ih in range(len(self.hurst)) for il in range(len(self.pressures))
+                for i in range(self.n_surfaces)]
+
+    def seed_sequence(self, ih: int, il: int, i: int) -> np.random.SeedSequence:
+        """``SeedSequence(seed).spawn(nH)[ih].spawn(nL)[il].spawn(...)[i]`` (spawn key (ih, il, i))."""
+        return np.random.SeedSequence(self.seed, spawn_key=(ih, il, i))
+
+
+def _check_measured_files(s: CampaignSettings) -> None:
+    """The measured files: one digest each, a known form, one template with ``like``, and
+    no more surfaces than files."""
+    if len(s.digests) != len(s.topographies):
+        raise ValueError("digests must hold one SHA-256 per measured file (topographies)")
+    if s.form not in FORMS:
+        raise ValueError(f"form must be one of {', '.join(map(repr, FORMS))}, got {s.form!r}")
+    if s.like and len(s.topographies) != 1:
+        raise ValueError("like=True needs exactly one measured file (topographies)")
+    if s.topographies and not s.like and s.n_surfaces > len(s.topographies):
+        raise ValueError(f"n_surfaces = {s.n_surfaces} exceeds the {len(s.topographies)} "
+                         f"measured files (one surface per file)")
+
+
+def _check_cases(s: CampaignSettings) -> None:
+    """The (H, load) cases: distinct exponents in [0, 1], positive finite loads, one number
+    of Weierstrass terms per exponent."""
+    from contact._validate import positive_finite
+
+    if not s.hurst or any(not (0.0 <= v <= 1.0) for v in s.hurst):
+        raise ValueError(f"hurst must be one or more exponents in [0, 1], got {s.hurst!r}")
+    if len(set(s.hurst)) != len(s.hurst):
+        raise ValueError(f"hurst exponents must be distinct, got {s.hurst!r}")
+    if not s.pressures:
+        raise ValueError("pressures must hold one or more nominal pressures in Pa, got ()")
+    for v in s.pressures:
+        positive_finite(v, "pressures", "nominal pressure in pascals")
+    if len(s.n_terms) != len(s.hurst):
+        raise ValueError(
+            f"n_terms must be one value or one per Hurst exponent ({len(s.hurst)}), got {len(s.n_terms)}"
+        )
+
+
+def _check_sampling(s: CampaignSettings) -> None:
+    """The surfaces per case, the kept examples, the root seed and the grid."""
+    check_positive_integer(s.n_surfaces, "n_surfaces")
+    if not (is_integer(s.n_examples) and 0 <= s.n_examples <= s.n_surfaces):
+        raise ValueError(f"n_examples must be an integer in [0, n_surfaces], got {s.n_examples!r}")
+    if not is_integer(s.seed) or s.seed < 0:
+        raise ValueError(f"seed must be an integer >= 0, got {s.seed!r}")
+    if not is_integer(s.grid) or s.grid < 16:
+        raise ValueError(f"grid must be an integer >= 16 points per side, got {s.grid!r}")
+
+
+def _check_geometry(s: CampaignSettings) -> None:
+    """The surface: its side, RMS roughness, frequency ratio and the truncation of the series
+    (at most the grid's Nyquist limit)."""
+    from contact._validate import positive_finite
+
+    positive_finite(s.length, "length", "side in metres")
+    positive_finite(s.rq, "rq", "RMS roughness in metres")
+    if not (math.isfinite(s.gamma) and s.gamma > 1):
+        raise ValueError(f"gamma must be > 1, got {s.gamma!r}")
+    limit = nyquist_terms(s.grid, s.length, s.gamma)
+    for v in s.n_terms:
+        if v is not None and not (1 <= v <= limit):
+            raise ValueError(
+                f"n_terms must be between 1 and {limit} (the Nyquist limit of a {s.grid}² "
+                f"grid with gamma={s.gamma}), got {v}; use None for the full spectrum"
+            )
+
+
+def _check_material(s: CampaignSettings) -> None:
+    """The rough body's elastic constants and the cone factor of the asperity model."""
+    from contact._validate import positive_finite
+
+    positive_finite(s.E, "E", "Young's modulus in pascals")
+    if not (math.isfinite(s.nu) and -1.0 < s.nu <= 0.5):
+        raise ValueError(f"nu (Poisson ratio) must be in (-1, 0.5], got {s.nu!r}")
+    if not (math.isfinite(s.cone_factor) and s.cone_factor > 0):
+        raise ValueError(f"cone_factor must be positive and finite, got {s.cone_factor!r}")
