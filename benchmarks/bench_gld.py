@@ -30,7 +30,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests", "glsta
 from mp_reference import tail_probability
 
 import glstat
-from glstat._core import _gld
+from glstat._core import quantile_function
 
 N = 1_000_000
 N_BRENTQ = 2000
@@ -104,8 +104,8 @@ def main():
         ex_s = np.empty_like(y)
         st = np.zeros(y.size, dtype=np.int64)
         fam = g._family
-        _gld.invert_kernel(y, np.array([lam[2]]), np.array([lam[3]]), fam, 0, ex_c, st)
-        _gld.invert_kernel(y, np.array([lam[2]]), np.array([lam[3]]), fam, 1, ex_s, st)
+        quantile_function.invert_kernel(y, np.array([lam[2]]), np.array([lam[3]]), fam, 0, ex_c, st)
+        quantile_function.invert_kernel(y, np.array([lam[2]]), np.array([lam[3]]), fam, 1, ex_s, st)
         ex = small_tail(ex_c, ex_s)
         ok = ex > 0
         err_solver = np.max(np.abs(tail - ex)[ok] / ex[ok])

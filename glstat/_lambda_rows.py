@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._core import _gld
+from ._core import quantile_function
 from .counts import RowCounts
 from .distributions import evaluate, gld_fkml, gld_rs, quantile
 
@@ -25,7 +25,7 @@ __all__ = [
 ]
 
 #: Kernel code of each parameterisation.
-FAMILY = {"rs": _gld.RS, "fkml": _gld.FKML}
+FAMILY = {"rs": quantile_function.RS, "fkml": quantile_function.FKML}
 
 
 def col(a):
@@ -78,7 +78,7 @@ def support(lam: np.ndarray, fam: int) -> tuple[np.ndarray, np.ndarray]:
     b = np.ascontiguousarray(lam[:, 3], dtype=float)
     lo = np.empty(a.size)
     hi = np.empty(a.size)
-    _gld.support_kernel(a, b, fam, lo, hi)
+    quantile_function.support_kernel(a, b, fam, lo, hi)
     s = 1.0 / np.abs(lam[:, 1])
     return lam[:, 0] + lo * s, lam[:, 0] + hi * s
 

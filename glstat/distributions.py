@@ -14,7 +14,7 @@ import numpy as np
 from scipy.stats import rv_continuous
 
 from ._compat import ShapeInfo as _ShapeInfo
-from ._core import _gld, _table, moments
+from ._core import inverse_table, moments, quantile_function
 from .errors import ConvergenceWarning
 from .regions import fkml_valid, rs_valid
 
@@ -60,11 +60,11 @@ def evaluate(family: int, what: str, y, lam3, lam4, loc: float = 0.0, inv_scale:
     out = np.empty(yf.shape)
     status = np.zeros(yf.shape, dtype=np.int64)
     if a.size == 1 and b.size == 1 and yf.size >= _TABLE_MIN_POINTS:
-        _table.invert_table_kernel(yf, float(a[0]), float(b[0]), family, _WHAT[what], out, status,
-                                   float(loc), float(inv_scale))
+        inverse_table.invert_table_kernel(yf, float(a[0]), float(b[0]), family, _WHAT[what], out,
+                                          status, float(loc), float(inv_scale))
     else:
-        _gld.invert_kernel(yf, a, b, family, _WHAT[what], out, status, float(loc),
-                           float(inv_scale))
+        quantile_function.invert_kernel(yf, a, b, family, _WHAT[what], out, status, float(loc),
+                                        float(inv_scale))
     failed = int(status.sum())
     if failed:
         warnings.warn(
@@ -83,14 +83,14 @@ def quantile(family: int, u, lam3, lam4, upper: bool = False, loc: float = 0.0,
     uf, lam3, lam4, shape = _broadcast_flat(u, lam3, lam4)
     a, b = _shapes(lam3, lam4)
     out = np.empty(uf.shape)
-    _gld.quantile_kernel(uf, a, b, family, 1 if upper else 0, out, float(loc), float(inv_scale))
+    quantile_function.quantile_kernel(uf, a, b, family, 1 if upper else 0, out, float(loc), float(inv_scale))
     return out.reshape(shape)
 
 
 class _GLDGen(rv_continuous):
     """Common machinery of the RS and FKML GLDs."""
 
-    _family = _gld.RS
+    _family = quantile_function.RS
 
     def _shape_info(self):
         if _ShapeInfo is None:  # pragma: no cover
@@ -107,7 +107,7 @@ class _GLDGen(rv_continuous):
         bf = np.ascontiguousarray(b.ravel())
         lo = np.empty(af.shape)
         hi = np.empty(af.shape)
-        _gld.support_kernel(af, bf, self._family, lo, hi)
+        quantile_function.support_kernel(af, bf, self._family, lo, hi)
         if shape == ():
             return lo[0], hi[0]
         return lo.reshape(shape), hi.reshape(shape)
@@ -177,7 +177,7 @@ class _GLDGen(rv_continuous):
             from .fitting._data import scipy_fitstart
 
             x = data._uncensor() if hasattr(data, "_uncensor") else data
-            start = scipy_fitstart(x, "rs" if self._family == _gld.RS else "fkml")
+            start = scipy_fitstart(x, "rs" if self._family == quantile_function.RS else "fkml")
             if start is not None:
                 return start
             args = (0.1349, 0.1349)
@@ -201,7 +201,7 @@ class _GLDGen(rv_continuous):
         from .fitting._data import scipy_guess
         from .fitting.core import fit as _fit
 
-        param = "rs" if self._family == _gld.RS else "fkml"
+        param = "rs" if self._family == quantile_function.RS else "fkml"
         method = kwds.pop("method", "mle")
         method = {"MLE": "mle", "MM": "moments"}.get(method, method)
         warn = bool(kwds.pop("warn", False))
@@ -271,7 +271,7 @@ class gld_rs_gen(_GLDGen):
     %(example)s
     """
 
-    _family = _gld.RS
+    _family = quantile_function.RS
 
     def _argcheck(self, lam3, lam4):
         return rs_valid(lam3, lam4)
@@ -300,7 +300,7 @@ class gld_fkml_gen(_GLDGen):
     %(example)s
     """
 
-    _family = _gld.FKML
+    _family = quantile_function.FKML
 
     def _argcheck(self, lam3, lam4):
         return fkml_valid(lam3, lam4)

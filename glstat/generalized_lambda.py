@@ -33,13 +33,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy import special
 
-from ._core import _gld, moments
+from ._core import moments, quantile_function
 from .distributions import evaluate, quantile
 from .gld import GLD
 
 __all__ = ["GeneralizedLambda"]
 
-_FAM = _gld.FKML
+_FAM = quantile_function.FKML
 _NAMES = ("lam1", "lam2", "lam3", "lam4")
 _LN2 = math.log(2.0)
 # below this a probability exp(logp) is not a normal double: the quantile is formed from
@@ -120,9 +120,9 @@ def _q_from_log(logp, l1, l2, l3, l4, upper: bool) -> np.ndarray:
             continue
         l1m = -math.exp(t) if t > -math.inf else 0.0  # log1p(-p) = -p to double precision
         if upper:
-            out[i] = l1 - _gld.q_lower(_FAM, l4, l3, t, l1m) / l2
+            out[i] = l1 - quantile_function.q_lower(_FAM, l4, l3, t, l1m) / l2
         else:
-            out[i] = l1 + _gld.q_lower(_FAM, l3, l4, t, l1m) / l2
+            out[i] = l1 + quantile_function.q_lower(_FAM, l3, l4, t, l1m) / l2
     return out
 
 

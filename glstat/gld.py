@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._compat import rv_continuous_frozen
-from ._core import _gld
+from ._core import quantile_function
 from .distributions import evaluate, gld_fkml, gld_rs, quantile
 from .regions import check_lambdas
 
@@ -50,7 +50,7 @@ class GLD(rv_continuous_frozen):
         self._lambdas = (float(l1), float(l2), float(l3), float(l4))
         self._param = param
         self._region = region if param == "rs" else None
-        self._family = _gld.RS if param == "rs" else _gld.FKML
+        self._family = quantile_function.RS if param == "rs" else quantile_function.FKML
         super().__init__(dist, float(l3), float(l4), loc=float(l1), scale=1.0 / abs(float(l2)))
 
     # -- identity -------------------------------------------------------------------------
@@ -138,7 +138,7 @@ class GLD(rv_continuous_frozen):
         also for a subnormal lambda2, whose reciprocal scipy's scale cannot hold).
         """
         l1, l2, l3, l4 = self._lambdas
-        if not _gld.rs_tiny(self._family, l3, l4):
+        if not quantile_function.rs_tiny(self._family, l3, l4):
             return super().stats(moments=moments)
         from ._core import moments as _m
 

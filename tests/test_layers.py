@@ -13,11 +13,6 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("glstat", "contact", "_glstat_numba")
 #: Private names still shared between modules (the table kernels and the plots).
 KNOWN = {
-    # the table kernels share the region constants and residual of the exact solver
-    ("glstat/_core/_table.py", "glstat._core._gld", "_R3A"),
-    ("glstat/_core/_table.py", "glstat._core._gld", "_RMX"),
-    ("glstat/_core/_table.py", "glstat._core._gld", "_case"),
-    ("glstat/_core/_table.py", "glstat._core._gld", "_residual"),
     ("glstat/plot.py", "glstat.gof", "_as_float"),
     ("glstat/plot.py", "glstat.gof", "_models"),
 }
@@ -109,8 +104,6 @@ KNOWN_CYCLES = {
     # scipy's fit of gld_rs / gld_fkml runs glstat.fit, whose result is a glstat.GLD
     frozenset({"glstat.distributions", "glstat.fitting._data", "glstat.fitting._equations",
                "glstat.fitting._result", "glstat.fitting.core", "glstat.gld"}),
-    # Surface.write is contact.write, which writes a Surface
-    frozenset({"contact.io", "contact.surface"}),
 }
 
 

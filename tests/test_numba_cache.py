@@ -110,9 +110,10 @@ def test_cache_dir_order(tmp_path, monkeypatch):
 
 def test_loaded_kernels_are_cached_outside_the_packages():
     """The kernels imported by this test session are located in the cache folder."""
-    from glstat._core import _gld
+    from glstat._core import quantile_function
 
-    kernels = [v for v in vars(_gld).values() if hasattr(v, "_cache") and hasattr(v._cache, "cache_path")]
+    kernels = [v for v in vars(quantile_function).values()
+               if hasattr(v, "_cache") and hasattr(v._cache, "cache_path")]
     assert kernels
     for k in kernels:
         path = os.path.realpath(k._cache.cache_path)

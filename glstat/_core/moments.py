@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._gld import LN2, RS, log_qprime_lower, q_lower, rs_sign, rs_tiny
+from .quantile_function import LN2, RS, log_qprime_lower, q_lower, rs_sign, rs_tiny
 
 # tanh-sinh nodes on (0, 1) in log space
 _H = 1.0 / 32.0

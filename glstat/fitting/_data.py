@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from .._core._gld import FKML, RS, median_std, q_lower, rs_sign
+from .._core.quantile_function import FKML, RS, median_std, q_lower, rs_sign
 from ..errors import ConvergenceWarning, FitError
 from . import _kernels as K
 from . import _likelihood as L

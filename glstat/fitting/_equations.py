@@ -11,7 +11,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from .._core import _gld
+from .._core import quantile_function
 from ..errors import FitError, FitWarning
 from . import _kernels as K
 from . import _stats as S
@@ -23,7 +23,7 @@ __all__ = ["DATA_METHODS", "FAMILY", "KIND", "STAT_NAMES", "check_u", "equation_
 logger = logging.getLogger("glstat.fitting.core")
 
 KIND = {"moments": K.MOMENTS, "percentiles": K.PERCENTILES, "lmoments": K.LMOMENTS}
-FAMILY = {"rs": _gld.RS, "fkml": _gld.FKML}
+FAMILY = {"rs": quantile_function.RS, "fkml": quantile_function.FKML}
 STAT_NAMES = {
     "moments": ("mean", "std", "skew", "kurt"),
     "percentiles": ("rho1", "rho2", "rho3", "rho4"),
@@ -39,7 +39,8 @@ def seed_table(kind: int, fam: int, u: float) -> tuple[np.ndarray, ...]:
     :func:`glstat.fitting._kernels.build_limit_table`.
     """
     logger.debug("building the %s seed table of the %s statistics (u=%g)",
-                 "RS" if fam == _gld.RS else "FKML", {k: m for m, k in KIND.items()}.get(kind), u)
+                 "RS" if fam == quantile_function.RS else "FKML",
+                 {k: m for m, k in KIND.items()}.get(kind), u)
     nodes = K.grid_nodes(kind)
     t1 = np.empty((nodes.size, nodes.size))
     t2 = np.empty_like(t1)

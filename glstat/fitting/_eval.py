@@ -12,12 +12,12 @@ import math
 
 import numpy as np
 
-from .._core import _gld, _table
+from .._core import inverse_table, quantile_function
 from ._kernels import shape_valid
 
 __all__ = ["FAMILY", "gld_evaluate", "gld_support", "lambdas_valid"]
 
-FAMILY = {"rs": _gld.RS, "fkml": _gld.FKML}
+FAMILY = {"rs": quantile_function.RS, "fkml": quantile_function.FKML}
 
 # what = 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf (the kernels' codes)
 _WHAT = {"cdf": 0, "sf": 1, "logcdf": 2, "logsf": 3, "pdf": 4, "logpdf": 5}
@@ -55,10 +55,10 @@ def gld_evaluate(param: str, what: str, x, lambdas) -> tuple[np.ndarray, int]:
     status = np.zeros(y.shape, dtype=np.int64)
     fam = FAMILY[param]
     if y.size >= _TABLE_MIN_POINTS:
-        _table.invert_table_kernel(y, l3, l4, fam, _WHAT[what], out, status, l1, abs(l2))
+        inverse_table.invert_table_kernel(y, l3, l4, fam, _WHAT[what], out, status, l1, abs(l2))
     else:
-        _gld.invert_kernel(y, np.array([l3]), np.array([l4]), fam, _WHAT[what], out, status, l1,
-                           abs(l2))
+        quantile_function.invert_kernel(y, np.array([l3]), np.array([l4]), fam, _WHAT[what], out,
+                                        status, l1, abs(l2))
     return out.reshape(arr.shape), int(status.sum())
 
 
@@ -67,7 +67,7 @@ def gld_support(param: str, lambdas) -> tuple[float, float]:
     l1, l2, l3, l4 = (float(v) for v in lambdas)
     lo = np.empty(1)
     hi = np.empty(1)
-    _gld.support_kernel(np.array([l3]), np.array([l4]), FAMILY[param], lo, hi)
+    quantile_function.support_kernel(np.array([l3]), np.array([l4]), FAMILY[param], lo, hi)
     s = 1.0 / abs(l2)
     return l1 + float(lo[0]) * s, l1 + float(hi[0]) * s
 
@@ -81,5 +81,5 @@ def lambdas_valid(param: str, lambdas) -> bool:
     fam = FAMILY[param]
     if not shape_valid(fam, l3, l4):
         return False
-    need = float(_gld.rs_sign(l3, l4)) if param == "rs" else 1.0
+    need = float(quantile_function.rs_sign(l3, l4)) if param == "rs" else 1.0
     return (l2 > 0.0) == (need > 0.0)

@@ -24,8 +24,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .._core._gld import FKML, RS, q_lower, rs_sign
 from .._core.moments import central_moment, mean_std
+from .._core.quantile_function import FKML, RS, q_lower, rs_sign
 
 MOMENTS = 0
 PERCENTILES = 1

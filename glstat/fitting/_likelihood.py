@@ -23,7 +23,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .._core._gld import RS, log_qprime_lower, q_lower, qprime_lower, rs_sign
+from .._core.quantile_function import RS, log_qprime_lower, q_lower, qprime_lower, rs_sign
 from . import _kernels as K
 
 MLE = 0

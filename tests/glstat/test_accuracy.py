@@ -6,7 +6,7 @@ import pytest
 from mp_reference import central_moment_closed, tail_probability
 
 import glstat
-from glstat._core import _gld, _table, moments
+from glstat._core import inverse_table, moments, quantile_function
 
 RS, FKML = 0, 1
 
@@ -56,8 +56,8 @@ def _grid_points(fam, a, b):
     lo = np.empty_like(u)
     hi = np.empty_like(u)
     one = np.array([a]), np.array([b])
-    _gld.quantile_kernel(u, *one, fam, 0, lo)
-    _gld.quantile_kernel(u, *one, fam, 1, hi)
+    quantile_function.quantile_kernel(u, *one, fam, 0, lo)
+    quantile_function.quantile_kernel(u, *one, fam, 1, hi)
     x = np.concatenate([lo, hi])
     return np.unique(x[np.isfinite(x)])
 
@@ -102,15 +102,15 @@ def test_table_path_against_exact_solver_and_mpmath(fam, a, b):
     tiny = 10.0 ** rng.uniform(-15, -1, 5_000)
     u = np.concatenate([rng.random(30_000), tiny, 1.0 - tiny])
     y = np.empty_like(u)
-    _gld.quantile_kernel(u, np.array([a]), np.array([b]), fam, 0, y)
+    quantile_function.quantile_kernel(u, np.array([a]), np.array([b]), fam, 0, y)
     status = np.zeros(y.size, dtype=np.int64)
     one_a, one_b = np.array([a]), np.array([b])
     exact, exact_sf, fast, fast_sf = (np.empty_like(y) for _ in range(4))
-    _gld.invert_kernel(y, one_a, one_b, fam, 0, exact, status)
-    _gld.invert_kernel(y, one_a, one_b, fam, 1, exact_sf, status)
+    quantile_function.invert_kernel(y, one_a, one_b, fam, 0, exact, status)
+    quantile_function.invert_kernel(y, one_a, one_b, fam, 1, exact_sf, status)
     assert status.sum() == 0
-    _table.invert_table_kernel(y, a, b, fam, 0, fast, status)
-    _table.invert_table_kernel(y, a, b, fam, 1, fast_sf, status)
+    inverse_table.invert_table_kernel(y, a, b, fam, 0, fast, status)
+    inverse_table.invert_table_kernel(y, a, b, fam, 1, fast_sf, status)
     assert status.sum() == 0
     lower = exact <= 0.5
     small = np.where(lower, exact, exact_sf)

@@ -16,7 +16,7 @@ import pytest
 from mp_reference import entropy_reference, q_mp, tail_probability
 
 import glstat
-from glstat._core import _table, moments
+from glstat._core import inverse_table, moments
 from glstat._core import resample as R
 from glstat.fitting import _stats as S
 
@@ -378,7 +378,7 @@ def test_table_path_on_the_new_regimes():
         x = _dist(fam).ppf(u, a, b)
         fast = np.empty_like(x)
         status = np.zeros(x.size, dtype=np.int64)
-        _table.invert_table_kernel(x, a, b, fam, 0, fast, status)
+        inverse_table.invert_table_kernel(x, a, b, fam, 0, fast, status)
         exact = _dist(fam).cdf(x[:2000], a, b)
         np.testing.assert_allclose(fast[:2000], exact, rtol=1e-13)
         np.testing.assert_allclose(fast, u, rtol=1e-9)  # x = ppf(u) rounded

@@ -5,7 +5,7 @@ t (from t = -36, F ~ 2e-16, to the median), with the first and second derivative
 from Q' and Q'', and interpolated by quintic Hermite polynomials. Every interval is checked
 at its midpoint against the exact forward map (the interpolation error of a quintic Hermite
 is largest there); intervals that miss the tolerance, and points outside the table, go to
-the exact per-point solver in :mod:`._gld`.
+the exact per-point solver in :mod:`.quantile_function`.
 """
 
 import math
@@ -13,23 +13,24 @@ import math
 import numpy as np
 from numba import njit
 
-from ._gld import (
-    _R3A,
-    _RMX,
+from .double_double import EPS
+from .quantile_function import (
     FKML,
     LN2,
-    _case,
-    _residual,
+    R3A,
+    RMX,
     emit,
     end_density,
     invert_kernel,
     overflow_point,
     q_lower,
     qprime_lower,
+    residual,
     rs_sign,
     rs_tiny,
     solve_lower,
     standardize,
+    tail_case,
 )
 
 T_MIN = -36.0
@@ -54,10 +55,10 @@ def _qsecond_lower(fam, a, b, t, l1):
 @njit(cache=True, error_model="numpy")
 def _offset(fam, a, b):
     """Finite, exactly representable lower end point to tabulate from (0 if none)."""
-    case = _case(fam, a, b)
-    if case == _R3A and a >= 0.05:
+    case = tail_case(fam, a, b)
+    if case == R3A and a >= 0.05:
         return -1.0, case
-    if case == _RMX:
+    if case == RMX:
         return 1.0, case
     return 0.0, 0
 
@@ -67,7 +68,7 @@ def _value(fam, a, b, t, l1, case):
     """Q(e^t) minus the lower end point when ``case`` is an offset case, else Q(e^t)."""
     if case == 0:
         return q_lower(fam, a, b, t, l1)
-    return _residual(case, a, b, 0.0, 0.0, 0.0, t)[0]
+    return residual(case, a, b, 0.0, 0.0, 0.0, t)[0]
 
 
 @njit(cache=True, error_model="numpy")
@@ -115,7 +116,7 @@ def _interval_ok(fam, a, b, case, t0, y0, d10, d20, t1, y1, d11, d21):
     # the nodes carry a rounding error of eps*|y|, which maps to eps*|y|*|dt/dy| in t;
     # near a finite end point far from 0 that exceeds the tolerance (the exact solver,
     # which works with the offset from the end point, takes those points)
-    cond = 2.220446049250313e-16 * max(abs(y0), abs(y1)) * max(abs(d10), abs(d11))
+    cond = EPS * max(abs(y0), abs(y1)) * max(abs(d10), abs(d11))
     return abs(th - tm) <= tol, cond <= tol
 
 
@@ -214,7 +215,7 @@ def _lookup2(y, y_lo, d_ys, d_pl, o_ys, o_pl, y0):
 
 @njit(cache=True, error_model="numpy")
 def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
-    """Same contract as ``_gld.invert_kernel`` for scalar shapes a, b and many points."""
+    """Same contract as ``quantile_function.invert_kernel`` for scalar shapes a, b and many points."""
     if rs_tiny(fam, a, b):
         # the linear regime of tiny RS shapes has its own per-point solver
         invert_kernel(y, np.array([a]), np.array([b]), fam, what, out, status, loc, inv_scale)

@@ -1,8 +1,9 @@
-"""Error-free transformations and small accurate elementary functions.
+"""Error-free transformations and double-double arithmetic (numba kernels).
 
-Double-double helpers (Dekker/Knuth) used where the GLD tail inversion needs more than
-double precision in an intermediate result, and series for functions whose direct
-evaluation cancels.
+The sum and product of two doubles as an exact pair (Knuth's two-sum, Dekker's product),
+the reciprocal as a double-double and the root ``(s + t) ** (1/a)`` of a double-double:
+used where the GLD tail inversion needs more than double precision in an intermediate
+result.
 """
 
 import math
@@ -105,33 +106,3 @@ def dd_root(s, t, a):
     if base == 0.0 or not math.isfinite(base):
         return math.exp(logv), logv
     return base * math.exp(corr), logv
-
-
-@njit(cache=True, error_model="numpy")
-def expm1mx(x):
-    """expm1(x) - x without cancellation."""
-    if abs(x) < 0.5:
-        term = 0.5 * x * x
-        s = term
-        k = 2.0
-        while abs(term) > 1e-17 * abs(s):
-            k += 1.0
-            term *= x / k
-            s += term
-        return s
-    return math.expm1(x) - x
-
-
-@njit(cache=True, error_model="numpy")
-def log1mp_m(p):
-    """-log1p(-p) - p = p**2/2 + p**3/3 + ... without cancellation, 0 <= p < 1."""
-    if p < 0.125:
-        pk = p * p
-        s = 0.5 * pk
-        k = 2.0
-        while pk > 1e-17 * s * k:
-            k += 1.0
-            pk *= p
-            s += pk / k
-        return s
-    return -math.log1p(-p) - p

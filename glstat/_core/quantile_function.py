@@ -21,22 +21,23 @@ import math
 import numpy as np
 from numba import njit
 
-from ._ef import EPS, dd_root, expm1mx, fast_two_sum, log1mp_m, reciprocal_dd, two_prod, two_sum
+from .double_double import EPS, dd_root, fast_two_sum, reciprocal_dd, two_prod, two_sum
+from .elementary import expm1mx, log1mp_m
 
 RS = 0
 FKML = 1
 
 # lower-tail cases
-_R3A = 1  # RS, s=+1, a>0: finite lower end -1
-_R3Z = 2  # RS, s=+1, a=0, b>0: closed form
-_R4Z = 3  # RS, s=-1, a=0, b<0: closed form
-_RMX = 4  # RS, s=-1, a>0, b<0 (regions 2, 6): finite lower end +1
-_RINF = 5  # RS, s=-1, a<0: infinite lower tail
-_FPOS = 6  # FKML, a>0: finite lower end -1/a
-_FINF = 7  # FKML, a<=0: infinite lower tail
-_R3D = 8  # residual only: RS region 3 in the direct form Q(p) - y
-_FPD = 9  # residual only: FKML a>0 in the direct form Q(p) - y
-_R3U = 10  # residual only: RS region 3 near the upper end point +1, in 1 - Q(p)
+R3A = 1  # RS, s=+1, a>0: finite lower end -1
+R3Z = 2  # RS, s=+1, a=0, b>0: closed form
+R4Z = 3  # RS, s=-1, a=0, b<0: closed form
+RMX = 4  # RS, s=-1, a>0, b<0 (regions 2, 6): finite lower end +1
+RINF = 5  # RS, s=-1, a<0: infinite lower tail
+FPOS = 6  # FKML, a>0: finite lower end -1/a
+FINF = 7  # FKML, a<=0: infinite lower tail
+R3D = 8  # residual only: RS region 3 in the direct form Q(p) - y
+FPD = 9  # residual only: FKML a>0 in the direct form Q(p) - y
+R3U = 10  # residual only: RS region 3 near the upper end point +1, in 1 - Q(p)
 
 MAXIT = 200
 
@@ -54,17 +55,18 @@ def rs_sign(a, b):
 
 
 @njit(cache=True, error_model="numpy")
-def _case(fam, a, b):
+def tail_case(fam, a, b):
+    """The lower-tail case (R3A ... FINF above) of the family ``fam`` with shapes (a, b)."""
     if fam == RS:
         if a >= 0.0 and b >= 0.0:
-            return _R3A if a > 0.0 else _R3Z
+            return R3A if a > 0.0 else R3Z
         if a > 0.0:
-            return _RMX
+            return RMX
         if a == 0.0:
-            return _R4Z
-        return _RINF
+            return R4Z
+        return RINF
     # a subnormal lambda3 puts the lower end point -1/lambda3 beyond the double range
-    return _FPOS if (a > 0.0 and math.isfinite(1.0 / a)) else _FINF
+    return FPOS if (a > 0.0 and math.isfinite(1.0 / a)) else FINF
 
 
 @njit(cache=True, error_model="numpy")
@@ -192,11 +194,11 @@ def log_qprime_lower(fam, a, b, t, l1):
 @njit(cache=True, error_model="numpy")
 def _lower_end_offset(case, a, y):
     """z = y - Q(0) as a double-double; Q(0) is the finite lower end point."""
-    if case == _R3A:
+    if case == R3A:
         return two_sum(y, 1.0)
-    if case == _RMX:
+    if case == RMX:
         return two_sum(y, -1.0)
-    if case == _FPOS:
+    if case == FPOS:
         r_hi, r_lo = reciprocal_dd(a)
         s1, e1 = two_sum(y, r_hi)
         return two_sum(s1, e1 + r_lo)
@@ -264,7 +266,7 @@ def _pow_residual(fam, a, b, y, y_lo, t, p, l1):
 
 
 @njit(cache=True, error_model="numpy")
-def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
+def residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     """Residual R(t) = Q(e^t) - y (offset form), dR/dt, rounding noise of R, contraction.
 
     The contraction is |dS/dt| / |dT/dt| for the split Q = T + S into the dominant term T
@@ -273,7 +275,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     """
     p = math.exp(t)
     l1 = math.log1p(-p)
-    if case == _R3A:
+    if case == R3A:
         pa = math.exp(a * t)
         h = -math.expm1(b * l1) if b != 0.0 else 0.0
         d = pa + h
@@ -282,7 +284,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         da = a * pa
         k = min(dh / da, da / dh)
         return r, da + dh, EPS * (d + abs(z_hi)), k
-    if case == _RMX:
+    if case == RMX:
         c = -b
         pa = math.exp(a * t)
         d = expm1mx(-c * l1) + c * log1mp_m(p) + (c * p - pa)
@@ -290,14 +292,14 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         dt_ = p * c * math.exp(-(c + 1.0) * l1)
         ds = a * pa
         return r, dt_ - ds, EPS * (abs(d) + pa + c * p + abs(z_hi)), ds / dt_
-    if case == _RINF:
+    if case == RINF:
         emb = math.expm1(b * l1)
         ema = math.expm1(a * t)
         r = ((emb - ema) - y) - y_lo
         da = -a * math.exp(a * t)
         db = -b * p * math.exp((b - 1.0) * l1)
         return r, da + db, EPS * (abs(emb) + abs(ema) + abs(y)), abs(db) / da
-    if case == _R3U:
+    if case == R3U:
         # 1 - Q(p) = -expm1(a t) + (1-p)^b, both terms >= 0, against 1 - y (exact here)
         ema = math.expm1(a * t)
         pb = math.exp(b * l1)
@@ -307,7 +309,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         da = a * pa
         k = min(dh / da, da / dh)
         return r, da + dh, EPS * (pb - ema + (1.0 - y)), k
-    if case == _R3D:
+    if case == R3D:
         ema = math.expm1(a * t)
         h = -math.expm1(b * l1) if b != 0.0 else 0.0
         if a * t < -LN2 and b * l1 < -LN2:
@@ -319,9 +321,9 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         da = a * pa
         k = min(dh / da, da / dh)
         return r, da + dh, EPS * (abs(ema) + h + abs(y)), k
-    if (case == _FPD or case == _FPOS) and _fkml_both_small(a, b, t, l1):
+    if (case == FPD or case == FPOS) and _fkml_both_small(a, b, t, l1):
         return _pow_residual(FKML, a, b, y, y_lo, t, p, l1)
-    if case == _FPD:
+    if case == FPD:
         g = _em(a, t)
         h = -_em(b, l1)
         r = ((g + h) - y) - y_lo
@@ -329,7 +331,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         dh = p * math.exp((b - 1.0) * l1)
         k = min(dh / pa, pa / dh)
         return r, pa + dh, EPS * (abs(g) + h + abs(y)), k
-    if case == _FPOS:
+    if case == FPOS:
         pa = math.exp(a * t)
         h = -_em(b, l1)
         d = pa / a + h
@@ -337,7 +339,7 @@ def _residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         dh = p * math.exp((b - 1.0) * l1)
         k = min(dh / pa, pa / dh)
         return r, pa + dh, EPS * (d + abs(z_hi)), k
-    # _FINF
+    # FINF
     g = _em(a, t)
     h = -_em(b, l1)
     r = ((g + h) - y) - y_lo
@@ -373,7 +375,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     """
     p = math.exp(t)
     l1 = math.log1p(-p)
-    if case == _R3A:
+    if case == R3A:
         pa = math.exp(a * t)
         h = -math.expm1(b * l1) if b != 0.0 else 0.0
         # invert the term that carries the dependence on p (the larger derivative)
@@ -402,7 +404,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         else:
             w = (z_hi - pa) + z_lo
         return _from_p(-math.expm1(math.log1p(-w) / b))
-    if case == _R3D:
+    if case == R3D:
         # direct form Q = p^a - (1-p)^b (region 3, far from the lower end point): invert
         # whichever power dominates, with the other moved to the target side
         pa = math.exp(a * t)
@@ -419,12 +421,12 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         if not (w > 0.0 and w < 1.0):
             return math.nan, math.nan
         return _from_p(-math.expm1(math.log(w) / b))
-    if case == _RMX:
+    if case == RMX:
         c = -b
         pa = math.exp(a * t)
         v = z_hi + (z_lo + pa)
         return _from_p(-math.expm1(-math.log1p(v) / c))
-    if case == _RINF:
+    if case == RINF:
         emb = math.expm1(b * l1)
         w_hi, w_lo = two_sum(-y, emb)
         w_lo -= y_lo
@@ -432,7 +434,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         if b_hi <= 0.0:
             return math.nan, math.nan
         return dd_root(b_hi, b_e + w_lo, a)
-    if (case == _FPOS or case == _FPD) and _fkml_both_small(a, b, t, l1):
+    if (case == FPOS or case == FPD) and _fkml_both_small(a, b, t, l1):
         # both powers below 1/2: p^a/a - (1-p)^b/b = w = y - (1/b - 1/a), no 1/a offsets
         w_hi, w_lo = _pow_target(FKML, a, b, y, y_lo)
         if abs(w_hi) < _TINY_TARGET:
@@ -450,11 +452,11 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         if not (v > 0.0 and v < 1.0):
             return math.nan, math.nan
         return _from_p(-math.expm1(math.log(v) / b))
-    if case == _FPOS and z_hi * a >= 0.5:
+    if case == FPOS and z_hi * a >= 0.5:
         # far from the lower end point -1/a: the direct form (the offset z = y + 1/a would
         # drop the digits of y once 1/a is large)
-        case = _FPD
-    if case == _FPD:
+        case = FPD
+    if case == FPD:
         h = -_em(b, l1)
         if math.exp(a * t) >= p * math.exp((b - 1.0) * l1):
             # p^a = 1 + a (y - H), through a double-double 1 + m (exact also for tiny a)
@@ -472,7 +474,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         if b != 0.0:
             return _from_p(-math.expm1(-_l1pd(-b, w)))
         return _from_p(-math.expm1(-w))
-    if case == _FPOS:
+    if case == FPOS:
         pa = math.exp(a * t)
         h = -_em(b, l1)
         if pa >= p * math.exp((b - 1.0) * l1):
@@ -491,7 +493,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         if b != 0.0:
             return _from_p(-math.expm1(-_l1pd(-b, w)))
         return _from_p(-math.expm1(-w))
-    # _FINF
+    # FINF
     h = -_em(b, l1)
     w_hi, w_lo = two_sum(y, -h)
     w_lo += y_lo
@@ -508,12 +510,12 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
 @njit(cache=True, error_model="numpy")
 def _initial_guess(case, a, b, y, z_hi, z_lo):
     t = _fixed_point(case, a, b, y, z_hi, z_lo, -math.inf)[1]
-    if case == _R3A and b > 0.0:
+    if case == R3A and b > 0.0:
         # both terms of D are increasing: each alone gives an upper bound for p
         w = min(z_hi + z_lo, 1.0)
         t2 = math.log(-math.expm1(math.log1p(-w) / b)) if w < 1.0 else 0.0
         t = min(t, t2)
-    elif case == _FPOS:
+    elif case == FPOS:
         # (1-p)^b term alone: log(1-p) = log1p(-b z)/b (the series for tiny or subnormal b)
         zz = z_hi + z_lo
         if b * zz < 1.0:
@@ -564,15 +566,15 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
     iteration limit was reached (the best estimate is returned). y at or below the lower
     end point gives (0, -inf, 0).
     """
-    case = _case(fam, a, b)
+    case = tail_case(fam, a, b)
     z_hi, z_lo = _lower_end_offset(case, a, y)
     z_hi, z_lo = two_sum(z_hi, z_lo + y_lo)
-    if case in (_R3A, _R3Z, _R4Z, _RMX, _FPOS) and z_hi <= 0.0:
+    if case in (R3A, R3Z, R4Z, RMX, FPOS) and z_hi <= 0.0:
         return 0.0, -math.inf, OK
-    if case == _R3Z:
+    if case == R3Z:
         p = -math.expm1(math.log1p(-z_hi) / b)
         return p, math.log(p), OK
-    if case == _R4Z:
+    if case == R4Z:
         p = -math.expm1(math.log1p(z_hi) / b)
         return p, math.log(p), OK
     t_hi = -LN2
@@ -582,10 +584,10 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
     # it (z above half the end point's magnitude) the direct residual Q(p) - y is the
     # accurate one (for tiny lambda3 the end point -1/lambda3 is huge).
     rcase = case
-    if case == _R3A and b > 0.0 and y > 0.5:
-        rcase = _R3U
-    elif case == _R3A and z_hi > 0.5:
-        rcase = _R3D
+    if case == R3A and b > 0.0 and y > 0.5:
+        rcase = R3U
+    elif case == R3A and z_hi > 0.5:
+        rcase = R3D
         # far from the lower end point the two powers bound p directly:
         # y < 0: (1-p)^b >= -y, so p <= 1 - (-y)^(1/b); y > 0: p^a >= y, so p >= y^(1/a)
         if y < 0.0 and b > 0.0:
@@ -596,15 +598,15 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
             t_a = math.log(y) / a
             if t_a < -LN2:
                 t = max(t, t_a)
-    elif case == _FPOS and z_hi * a > 0.5:
-        rcase = _FPD
+    elif case == FPOS and z_hi * a > 0.5:
+        rcase = FPD
     status = NOCONV
     k = 1.0
     t_first = t
     creep = 0
     last_sign = 0.0
     for _ in range(MAXIT):
-        r, dr, noise, k = _residual(rcase, a, b, y, z_hi, z_lo, t, y_lo)
+        r, dr, noise, k = residual(rcase, a, b, y, z_hi, z_lo, t, y_lo)
         if r == 0.0:
             status = OK
             break
@@ -649,7 +651,7 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
     if status == OK and k >= 0.5 and t > -700.0:
         # no contracting closed-form step: resolve p below one ulp of t by a last Newton
         # correction applied to p = e^t itself (the residual used this very p)
-        r, dr, _, _ = _residual(rcase, a, b, y, z_hi, z_lo, t, y_lo)
+        r, dr, _, _ = residual(rcase, a, b, y, z_hi, z_lo, t, y_lo)
         step = r / dr
         if abs(step) < 1e-8:
             p = p * (1.0 - step)
@@ -657,8 +659,8 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
         # the direct-form step only where both powers are below 1/2 (where the offset form
         # cancels); elsewhere the offset form with its double-double end point is accurate
         pcase = case
-        if rcase == _R3D and a * t < -LN2 and b * math.log1p(-p) < -LN2:
-            pcase = _R3D
+        if rcase == R3D and a * t < -LN2 and b * math.log1p(-p) < -LN2:
+            pcase = R3D
         for _ in range(3):
             p_new, t_new = _fixed_point(pcase, a, b, y, z_hi, z_lo, t, y_lo)
             if not (t_new == t_new) or t_new > -LN2 + 1e-12:
@@ -681,8 +683,8 @@ def median_std(fam, a, b):
 def _beyond_lower_end(fam, a, b, y, y_lo):
     """True when y + y_lo is at or below the finite lower end point Q(0) (exact comparison:
     RS ends are +-1, the FKML end -1/a is taken as a double-double)."""
-    case = _case(fam, a, b)
-    if case == _R3A or case == _RMX or case == _FPOS:
+    case = tail_case(fam, a, b)
+    if case == R3A or case == RMX or case == FPOS:
         z_hi, z_lo = _lower_end_offset(case, a, y)
         return z_hi + (z_lo + y_lo) <= 0.0
     return False
