@@ -26,6 +26,7 @@ from .extremes import (
 from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
 from .gld import GLD
 from .gof import compare_families, edf_statistics, gof_report
+from .prediction import MaximumPrediction, predict_maximum
 from .regions import rs_region
 
 __all__ = [
@@ -45,6 +46,7 @@ __all__ = [
     "MaximumCountDistribution",
     "MaximumDistribution",
     "MaximumMixture",
+    "MaximumPrediction",
     "ObservedCounts",
     "OrderStatisticDistribution",
     "PoissonCount",
@@ -64,6 +66,7 @@ __all__ = [
     "integrity_probability",
     "maximum",
     "order_statistic",
+    "predict_maximum",
     "rs_region",
 ]
 

@@ -39,6 +39,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from .bootstrap import BootstrapFit
     from .fitting import GLDFit
+    from .prediction import MaximumPrediction
 
 __all__ = ["FitResults", "InputError", "Sample", "build_parser", "check_output_dir", "main", "read_sample",
            "run"]
@@ -200,6 +201,8 @@ class FitResults:
         The bootstrap (None with ``--bootstrap 0``).
     boot_summary : pandas.DataFrame or None
         Percentile intervals of the lambdas (``BootstrapFit.summary()``).
+    prediction : glstat.prediction.MaximumPrediction or None
+        The bootstrap's maximum and damage (None with ``--bootstrap 0``).
     maximum : dict or None
         Maximum of ``--n-max`` values: ``n``, ``mean``, ``low``, ``high``, the full-sample
         fit's median and interval, and (with a bootstrap) the mixture interval and table.
@@ -227,6 +230,7 @@ class FitResults:
     support: tuple[float, float]
     boot: BootstrapFit | None = None
     boot_summary: Any = None
+    prediction: MaximumPrediction | None = None
     maximum: dict[str, Any] | None = None
     damage: dict[str, Any] | None = None
     notes: list[str] = field(default_factory=list)
@@ -247,9 +251,10 @@ def _indent(text: str, pad: str = "  ") -> str:
     return "\n".join(pad + line for line in text.splitlines())
 
 
-def _collect_warnings(caught: list, notes: list[str]) -> None:
+def _collect_warnings(caught, notes: list[str]) -> None:
+    """Append the messages of ``caught`` (warnings or strings) not yet in ``notes``."""
     for w in caught:
-        msg = str(w.message)
+        msg = w if isinstance(w, str) else str(w.message)
         if msg not in notes:
             notes.append(msg)
 
@@ -315,9 +320,8 @@ def _maximum(res: FitResults, n_max: float, level: float, count=None) -> dict[st
                            "full_fit_median": float(full.median()),
                            "full_fit_low": float(full.ppf(a)), "full_fit_high": float(full.isf(a)),
                            "dist": full}
-    if res.boot is not None:
-        bm = (res.boot.maximum(confidence_level=level, count=count) if count is not None
-              else res.boot.maximum(n_max, level))
+    bm = None if res.prediction is None else res.prediction.maximum
+    if bm is not None:
         lo, hi = bm.interval()
         mlo, mhi = bm.mixture_interval()
         out.update(mean=bm.mean, low=lo, high=hi, mixture_low=mlo, mixture_high=mhi,
@@ -353,8 +357,8 @@ def _damage(res: FitResults, hardness: float, n: float, factors: np.ndarray, lev
                            "points": factors * n, "estimate": est, "integrity": keep,
                            "low": None, "high": None,
                            "confidence_level": level, "reason": reason}
-    if res.boot is not None:
-        bp = res.boot.damage_probability(hardness, nn, factors, level, count=count)
+    bp = None if res.prediction is None else res.prediction.damage
+    if bp is not None and res.boot is not None:
         out["low"], out["high"] = np.asarray(bp.low, dtype=float), np.asarray(bp.high, dtype=float)
         out["boot_values"] = bp.values
         sup = np.array([d.support() for d in res.boot.dists()], dtype=float)
@@ -458,7 +462,6 @@ def _phase(label: str, delay: float = PHASE_NOTICE):
 
 
 def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
-    from .bootstrap import bootstrap
     from .fitting import fit
     from .gof import gof_report
 
@@ -494,23 +497,30 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         bar.close()
     _collect_warnings(caught, notes)
     _print_gof(res, emit)
+    n = args.n_max if args.n_max is not None else float(x.size)
+    factors = np.asarray(args.area_factor if args.area_factor is not None else [1.0], dtype=float)
     if args.bootstrap:
-        with _phase(f"bootstrap ({args.bootstrap} resamples)"), \
-                warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
+        from .prediction import predict_maximum
+
+        with _phase(f"bootstrap ({args.bootstrap} resamples)"):
             # a progress bar (stderr) shows when the resamples are long
-            res.boot = bootstrap(x, args.param, args.method, n_resamples=args.bootstrap,
-                                 confidence_level=args.confidence_level, rng=seed, progress=None)
-            res.boot_summary = res.boot.summary()
-        _collect_warnings(caught, notes)
+            res.prediction = predict_maximum(
+                x, [(args.param, args.method)], n=None if args.count is not None else n,
+                count=args.count, threshold=args.hardness, area_factor=factors,
+                n_resamples=args.bootstrap, confidence_level=args.confidence_level, rng=seed,
+                maximum=args.n_max is not None, progress=None)
+        if res.prediction.boot is None:
+            raise FitError(f"the {args.param.upper()} {args.method} bootstrap has no fit: "
+                           f"{res.prediction.note}")
+        res.boot = res.prediction.boot
+        res.boot_summary = res.boot.summary()
+        _collect_warnings(res.prediction.notes, notes)
         _print_bootstrap(res.boot, res.boot_summary, emit)
     if args.n_max is not None:
         with _phase("distribution of the maximum"):
             res.maximum = _maximum(res, args.n_max, args.confidence_level, args.count)
         _print_maximum(res.maximum, emit)
     if args.hardness is not None:
-        n = args.n_max if args.n_max is not None else float(x.size)
-        factors = np.asarray(args.area_factor if args.area_factor is not None else [1.0], dtype=float)
         with _phase("damage probability"):
             res.damage = _damage(res, args.hardness, n, factors, args.confidence_level, args.count)
         _print_damage(res.damage, args, emit)

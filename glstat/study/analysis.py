@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import FitError
+from ..prediction import MaximumPrediction
 from .campaign import CampaignSettings
 
 __all__ = [
@@ -249,17 +250,14 @@ class SampleAnalysis:
         Mean count per surface (points or asperities in contact).
     counts : ndarray
         The count of every surface.
-    param, method : str
-        The fit used.
     choice : FitChoice or None
         How the fit was chosen (the per-asperity sample).
     note : str
         Why a fallback was used, or why nothing could be fitted.
-    boot : glstat.BootstrapFit or None
-    maximum : glstat.BootstrapMaximum or None
-        Maximal pressure over one analysed area.
-    damage : glstat.BootstrapProbability or None
-        Damage probability at the hardness, one analysed area.
+    prediction : glstat.prediction.MaximumPrediction or None
+        Fit, bootstrap, maximal pressure over one analysed area and damage probability at
+        the hardness on one analysed area (its ``param``, ``method``, ``boot``,
+        ``maximum`` and ``damage`` are also attributes of this analysis).
     integrity : glstat.BootstrapProbability or None
         Integrity probability against the area factors.
     guaranteed : dict
@@ -277,13 +275,9 @@ class SampleAnalysis:
     data: np.ndarray
     n_ref: float
     counts: np.ndarray = field(default_factory=lambda: np.empty(0))
-    param: str = ""
-    method: str = ""
     choice: FitChoice | None = None
     note: str = ""
-    boot: Any = None
-    maximum: Any = None
-    damage: Any = None
+    prediction: MaximumPrediction | None = None
     integrity: Any = None
     guaranteed: dict = field(default_factory=dict)
     upper_end: float = math.nan
@@ -295,6 +289,32 @@ class SampleAnalysis:
     def ok(self) -> bool:
         """Whether a GLD was fitted."""
         return self.boot is not None
+
+    @property
+    def param(self) -> str:
+        """Parameterisation of the fit used ("" without one)."""
+        return "" if self.prediction is None else self.prediction.param
+
+    @property
+    def method(self) -> str:
+        """Method of the fit used ("" without one)."""
+        return "" if self.prediction is None else self.prediction.method
+
+    @property
+    def boot(self) -> Any:
+        """The bootstrap (glstat.BootstrapFit) or None."""
+        return None if self.prediction is None else self.prediction.boot
+
+    @property
+    def maximum(self) -> Any:
+        """Maximal pressure over one analysed area (glstat.BootstrapMaximum) or None."""
+        return None if self.prediction is None else self.prediction.maximum
+
+    @property
+    def damage(self) -> Any:
+        """Damage probability at the hardness, one analysed area
+        (glstat.BootstrapProbability) or None."""
+        return None if self.prediction is None else self.prediction.damage
 
 
 # -- samples of the surfaces -------------------------------------------------------------------
@@ -331,41 +351,28 @@ def sample_rng(a: AnalysisSettings, *key: int) -> np.random.Generator:
     return np.random.default_rng(np.random.SeedSequence(a.seed, spawn_key=(10_000, *key)))
 
 
-def _quiet(func, *args, **kwargs):
-    """Call ``func`` with the warnings it raises collected (returned), never shown."""
-    import warnings
-
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        out = func(*args, **kwargs)
-    return out, [str(w.message) for w in caught]
-
-
-def bootstrap_sample(x: np.ndarray, a: AnalysisSettings, rng, param=None, method=None, groups=None,
-               n_resamples=None, order=None):
-    """Bootstrap ``x`` with the requested fit, falling back along FALLBACKS when none is forced
-    (or along ``order``); returns (BootstrapFit or None, param, method, note). Warnings are
-    collected, not shown (the report states the failures)."""
-    from .. import bootstrap
-
+def fit_order(a: AnalysisSettings, param: str | None = None, method: str | None = None,
+              order: list[tuple[str, str]] | None = None) -> list[tuple[str, str]]:
+    """The fits to try: ``order`` when given; else the requested fit (default the settings'),
+    followed by FALLBACKS unless the fit was forced."""
+    if order is not None:
+        return order
     first = (param or a.param, method or a.method)
-    if order is None:
-        order = [first] + ([] if param is not None else [f for f in FALLBACKS if f != first])
-    notes: list[str] = []
-    state = rng.bit_generator.state
-    for p, m in order:
-        rng.bit_generator.state = state
-        B = n_resamples or a.n_resamples
-        if m in ("mle", "mps", "starship"):
-            B = min(B, MLE_RESAMPLES)
-        try:
-            bf, _ = _quiet(bootstrap, x, param=p, method=m, n_resamples=B,
-                           confidence_level=a.confidence_level, rng=rng, progress=False, groups=groups)
-            note = "" if not notes else "; ".join(notes) + f"; used {p.upper()} {m}"
-            return bf, p, m, note
-        except (FitError, ValueError) as exc:
-            notes.append(f"{p.upper()} {m}: {str(exc).split('. ')[0].splitlines()[0][:120]}")
-    return None, "", "", "; ".join(notes)
+    return [first] + ([] if param is not None else [f for f in FALLBACKS if f != first])
+
+
+def predict_sample(x: np.ndarray, a: AnalysisSettings, rng, fits: list[tuple[str, str]], *,
+                   groups=None, n: float | None = None, n_resamples: int | None = None,
+                   threshold: float | None = None, maximum: bool = False, maximum_rng=None):
+    """:func:`glstat.predict_maximum` with the settings' resamples and level: the first of
+    ``fits`` that has a solution, likelihood fits on at most MLE_RESAMPLES resamples."""
+    from ..prediction import predict_maximum
+
+    return predict_maximum(x, fits, n=n, groups=groups, threshold=threshold,
+                           n_resamples=n_resamples or a.n_resamples,
+                           likelihood_resamples=MLE_RESAMPLES,
+                           confidence_level=a.confidence_level, rng=rng, maximum=maximum,
+                           maximum_rng=maximum_rng)
 
 
 # -- the choice of fit ---------------------------------------------------------------------------
@@ -406,6 +413,8 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
     """
     import glstat
 
+    from ..prediction import collect_warnings
+
     halves = [per[0::2], per[1::2]]
     scores, outside = {}, {}
     for p, m in candidates:
@@ -416,7 +425,7 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
             if x.size < 5 or not test:
                 continue
             try:
-                f, _ = _quiet(glstat.fit, x, p, m)
+                f, _ = collect_warnings(glstat.fit, x, p, m)
             except (FitError, ValueError):
                 out += len(test)
                 s.append(-math.inf)
@@ -470,13 +479,14 @@ def _validate(per: list, kind: str, a: AnalysisSettings, ih: int, il: int, param
             ch = choose_fit([per[i] for i in train])
             p, m, order = ch.param, ch.method, ch.order()
         grouped = kind == "asperity"
-        bf, p, m, note = bootstrap_sample(x, a, sample_rng(a, ih, il, 1 if kind == "grid" else 2, f), p, m,
-                                    groups=labels if grouped else None,
-                                    n_resamples=a.grid_resamples if kind == "grid" else None,
-                                    order=order)
+        pred = predict_sample(x, a, sample_rng(a, ih, il, 1 if kind == "grid" else 2, f),
+                              fit_order(a, p, m, order), groups=labels if grouped else None,
+                              n=None if grouped else max(float(counts.mean()), 1.0),
+                              n_resamples=a.grid_resamples if kind == "grid" else None)
+        bf = pred.boot
         if bf is None:
-            return Validation(error=f"no {p.upper()} {m} fit of a fitting fold: {note}")
-        count_kw = {} if grouped else {"n": max(float(counts.mean()), 1.0)}
+            return Validation(error=f"no {p.upper()} {m} fit of a fitting fold: {pred.note}")
+        count_kw = pred.count_kwargs()
         tested = [i for i in test if per[i][1] >= 1]
         if tested:
             ns = np.array([per[i][1] for i in tested], dtype=float)
@@ -580,25 +590,25 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
     if grouped:
         sa.choice = choose_fit(per)
         param, method, order = sa.choice.param, sa.choice.method, sa.choice.order()
-    rng = sample_rng(a, ih, il, 0 if kind == "grid" else 5)
-    bf, p, m, note = bootstrap_sample(data, a, rng, param, method,
-                                groups=labels if grouped else None,
-                                n_resamples=a.grid_resamples if kind == "grid" else None,
-                                order=order)
-    sa.param, sa.method, sa.note = p, m, note
+    sa.prediction = predict_sample(
+        data, a, sample_rng(a, ih, il, 0 if kind == "grid" else 5),
+        fit_order(a, param, method, order), groups=labels if grouped else None,
+        n=None if grouped else sa.n_ref,
+        n_resamples=a.grid_resamples if kind == "grid" else None, threshold=a.hardness,
+        maximum=True, maximum_rng=sample_rng(a, ih, il, 6))
+    bf, p, m = sa.prediction.boot, sa.prediction.param, sa.prediction.method
+    sa.note = sa.prediction.note
     if bf is None:
         return sa
-    sa.boot = bf
-    count_kw = {} if grouped else {"n": sa.n_ref}
-    sa.maximum = bf.maximum(rng=sample_rng(a, ih, il, 6), **count_kw)
-    sa.damage = bf.damage_probability(a.hardness, **count_kw)
+    count_kw = sa.prediction.count_kwargs()
     sa.integrity = bf.integrity_probability(a.hardness, area_factor=np.asarray(a.area_factors),
                                             **count_kw)
     full_kw = {"count": bf.counts} if grouped else {"n": sa.n_ref}
+    dist = sa.prediction.dist
     for k in (1.0, 10.0, 100.0, 1000.0):
         sa.guaranteed[k] = float(glstat.guaranteed_threshold(
-            bf.fit.dist, probability=a.integrity_level, area_factor=k, **full_kw))
-    sa.upper_end = float(bf.fit.dist.support()[1])
+            dist, probability=a.integrity_level, area_factor=k, **full_kw))
+    sa.upper_end = float(dist.support()[1])
     sa.end_note = _end_note(sa, a.hardness)
     maxima = np.array([q[2] for q in per])
     levels = hardness_levels(maxima, a.hardness, a.n_levels)

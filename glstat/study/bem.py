@@ -29,7 +29,8 @@ from typing import Any
 
 import numpy as np
 
-from .analysis import AnalysisSettings, bootstrap_sample, sample_rng
+from ..prediction import MaximumPrediction
+from .analysis import AnalysisSettings, fit_order, predict_sample, sample_rng
 from .campaign import (
     MANIFEST,
     CampaignError,
@@ -52,7 +53,6 @@ __all__ = [
     "BEMComparison",
     "BEMRun",
     "BEMSettings",
-    "ModelFit",
     "bem_path",
     "compare_bem",
     "compare_study",
@@ -540,44 +540,6 @@ def compare_study(out: str | os.PathLike, settings: CampaignSettings, bsettings:
 
 # -- the comparison itself --------------------------------------------------------------------
 @dataclass
-class ModelFit:
-    """GLD of one model's contact-spot peak pressures and the damage probability predicted from it.
-
-    Attributes
-    ----------
-    model : str
-        ``"asperity"`` or ``"bem"``.
-    data : ndarray
-        The peak pressure of every contact spot (8-connected region of the contact set),
-        pooled over the surfaces (MPa).
-    n_ref : float
-        Contact spots per surface (mean); the damage uses the spots of every surface as a
-        random count (surfaces resampled by the bootstrap).
-    param, method : str
-        The fit used (the requested one, or a fallback as in the study).
-    note : str
-        Why a fallback was used, or why nothing could be fitted.
-    boot : glstat.BootstrapFit or None
-    damage : glstat.BootstrapProbability or None
-        ``1 − E[F(Pd)^N]`` at the hardness Pd with its bootstrap interval.
-    """
-
-    model: str
-    data: np.ndarray
-    n_ref: float
-    param: str = ""
-    method: str = ""
-    note: str = ""
-    boot: Any = None
-    damage: Any = None
-
-    @property
-    def ok(self) -> bool:
-        """Whether a GLD was fitted."""
-        return self.boot is not None
-
-
-@dataclass
 class BEMComparison:
     """The asperity model against the elastic BEM on a set of surfaces at one load.
 
@@ -594,7 +556,9 @@ class BEMComparison:
         ``border_load_fraction`` (share of the load on the outermost grid rows and columns),
         ``force_error``, ``converged``, ``n_iterations``.
     fits : dict
-        ``model -> ModelFit``.
+        ``model -> glstat.prediction.MaximumPrediction``: the GLD of the peak pressure of
+        every contact spot inside the patch (MPa; the spots of a surface are its random
+        count) and the damage probability at the hardness with its bootstrap interval.
     hardness : float
         Pd in MPa.
     confidence_level : float
@@ -653,7 +617,9 @@ class BEMComparison:
             f = self.fits[m]
             lam = f.boot.fit.lambdas if f.ok else (math.nan,) * 4
             d = f.damage
-            rows.append({"model": m, "n": int(f.data.size), "n_ref": f.n_ref,
+            spots = self.surfaces.loc[self.surfaces["model"] == m, "n_clusters"]
+            rows.append({"model": m, "n": int(f.data.size),
+                         "n_ref": max(float(spots.mean()), 1.0) if len(spots) else 1.0,
                          "fit": f"{f.param.upper()} {f.method}" if f.ok else "none",
                          **{f"lambda{j + 1}": float(lam[j]) for j in range(4)},
                          "damage": math.nan if d is None else float(d.estimate),
@@ -697,20 +663,17 @@ def _compare(entries: Sequence[tuple[Any, Mapping[str, Mapping[str, np.ndarray |
         data = np.concatenate(peaks)
         labels = np.repeat(np.arange(len(peaks)), [p.size for p in peaks])
         n_ref = max(float(np.mean([p.size for p in peaks])), 1.0)
-        f = ModelFit(model=m, data=data, n_ref=n_ref)
         if data.size < 5:
-            f.note = f"only {data.size} spot peaks on {len(entries)} surfaces; at least 5 are needed"
+            f = MaximumPrediction(data=data, param="", method="", boot=None, threshold=a.hardness,
+                                  note=f"only {data.size} spot peaks on {len(entries)} surfaces; "
+                                       "at least 5 are needed")
         else:
             # several surfaces: resample them, their spot counts the random count; one surface:
             # resample its spots, with its spot count as n
             several = len(peaks) >= 2
-            bf, p, meth, note = bootstrap_sample(data, a, sample_rng(a, *key, _SEED_SLOT + j),
-                                           groups=labels if several else None)
-            f.param, f.method, f.note = p, meth, note
-            if bf is not None:
-                f.boot = bf
-                f.damage = (bf.damage_probability(a.hardness) if several
-                            else bf.damage_probability(a.hardness, n_ref))
+            f = predict_sample(data, a, sample_rng(a, *key, _SEED_SLOT + j), fit_order(a),
+                               groups=labels if several else None,
+                               n=None if several else n_ref, threshold=a.hardness)
         fits[m] = f
     return BEMComparison(surfaces=surfaces, fits=fits, hardness=a.hardness,
                          confidence_level=a.confidence_level)
