@@ -33,6 +33,7 @@ from glstat.study.paper import (
     printed_lambda_check,
     table1,
 )
+from glstat.study.paper_checks import reading_family
 
 # The GLDs the synthetic tables are built from (MPa): a region-3 GLD per H = 1, 0.5 and a
 # region-4 GLD (lambda2 < 0) for H = 0, the sign pattern of the paper's H = 0 row.
@@ -265,7 +266,7 @@ def test_common_n_really_reproduces_every_claim(consistency, synthetic):
             continue
         n = math.sqrt(r.n_low * r.n_high) if math.isfinite(r.n_high) else 2 * r.n_low
         d = damage_claims(synthetic, n_contact=n)
-        fam = d[d["source"].map(paper._family) == r.family]
+        fam = d[d["source"].map(reading_family) == r.family]
         ok = fam.groupby("hurst")["reproduced"].any()
         assert ok.all(), (r.family, n)
         # just outside the range the claims are not all reproduced by any choice of reading
@@ -273,7 +274,7 @@ def test_common_n_really_reproduces_every_claim(consistency, synthetic):
             if not (math.isfinite(n_out) and n_out >= 1):
                 continue
             d = damage_claims(synthetic, n_contact=n_out)
-            fam = d[d["source"].map(paper._family) == r.family]
+            fam = d[d["source"].map(reading_family) == r.family]
             assert not fam.groupby("hurst")["reproduced"].any().all()
 
 

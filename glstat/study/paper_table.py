@@ -1,0 +1,171 @@
+"""Table 1 of Bigerelle et al. (2019) as data: its rows (:data:`TABLE1`, :class:`Table1Row`),
+the paper's damage claims at the hardness 2050 MPa (:data:`PAPER_CLAIMS`, with the probability
+ranges that count as reproducing them, :data:`CLAIM_RANGES`), the grid points in contact
+measured at the study's default scene (:data:`SCENE_N_CONTACT`), and the table as a DataFrame
+(:func:`table1`) from the stored copy or from a table with the printed values.
+
+Pressures are in MPa, as printed in the paper (columns say so: ``mean_mpa``, ``lambda1_mpa``,
+``lambda2_per_mpa``); skewness and kurtosis (Pearson's, 3 for the normal) are dimensionless.
+
+**What is stored.** :data:`TABLE1` holds the mean contact pressures of Table 1 (1724 / 1369 /
+1108 MPa for H = 0 / 0.5 / 1). Its standard deviations, skewnesses, kurtoses and λ's are not
+stored in this package yet (NaN); every check of :mod:`glstat.study.paper` takes ``table=``
+with the printed values (:func:`table1` lists the columns).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+__all__ = [
+    "CLAIM_RANGES",
+    "COLUMNS",
+    "HARDNESS_MPA",
+    "PAPER_CLAIMS",
+    "SCENE_N_CONTACT",
+    "TABLE1",
+    "TABLE1_SOURCE",
+    "Table1Row",
+    "table1",
+    "table_rows",
+]
+
+#: Where :data:`TABLE1` comes from.
+TABLE1_SOURCE = ("Bigerelle M., Plouraboué F., Robache F., Jourani A., Fabre A., Mechanical "
+                 "Integrity of 3D Rough Surfaces during Contact, Coatings 10(1):15, 2019, Table 1")
+
+#: Hardness of the paper's damage claims, MPa.
+HARDNESS_MPA = 2050.0
+
+_NAN = float("nan")
+
+
+@dataclass(frozen=True)
+class Table1Row:
+    """One row of Table 1 (pressures in MPa; NaN where the value is not stored).
+
+    Attributes
+    ----------
+    hurst : float
+        Hurst exponent H.
+    mean_mpa, sd_mpa : float
+        Mean α1 and standard deviation of the contact-pressure sample, MPa.
+    skewness, kurtosis : float
+        α3 and α4 (Pearson's kurtosis, 3 for the normal), dimensionless.
+    lambda1_mpa, lambda2_per_mpa, lambda3, lambda4 : float
+        The printed RS λ's: λ1 in MPa, λ2 in 1/MPa, λ3 and λ4 dimensionless.
+    """
+
+    hurst: float
+    mean_mpa: float
+    sd_mpa: float = _NAN
+    skewness: float = _NAN
+    kurtosis: float = _NAN
+    lambda1_mpa: float = _NAN
+    lambda2_per_mpa: float = _NAN
+    lambda3: float = _NAN
+    lambda4: float = _NAN
+
+    @property
+    def moments(self) -> tuple[float, float, float, float]:
+        """(mean MPa, sd MPa, skewness, kurtosis)."""
+        return (self.mean_mpa, self.sd_mpa, self.skewness, self.kurtosis)
+
+    @property
+    def lambdas(self) -> tuple[float, float, float, float]:
+        """The printed (λ1 MPa, λ2 1/MPa, λ3, λ4)."""
+        return (self.lambda1_mpa, self.lambda2_per_mpa, self.lambda3, self.lambda4)
+
+    @property
+    def has_moments(self) -> bool:
+        return all(math.isfinite(v) for v in self.moments)
+
+    @property
+    def has_lambdas(self) -> bool:
+        return all(math.isfinite(v) for v in self.lambdas)
+
+
+#: Table 1 of the paper (:data:`TABLE1_SOURCE`), as stored in this package: the mean contact
+#: pressures per H (MPa); the other columns are not stored (NaN) — see the module docstring.
+TABLE1: tuple[Table1Row, ...] = (
+    Table1Row(hurst=0.0, mean_mpa=1724.0),
+    Table1Row(hurst=0.5, mean_mpa=1369.0),
+    Table1Row(hurst=1.0, mean_mpa=1108.0),
+)
+
+#: The paper's damage claims at 2050 MPa, per H.
+PAPER_CLAIMS: dict[float, str] = {0.0: "certain", 0.5: "about 1 %", 1.0: "impossible"}
+
+#: Damage probabilities that count as reproducing each claim: [low, high].
+CLAIM_RANGES: dict[str, tuple[float, float]] = {
+    "impossible": (0.0, 1e-6),
+    "about 1 %": (0.005, 0.02),
+    "certain": (0.99, 1.0),
+}
+
+#: Stored reference measurement, not recomputed: mean number of grid points in contact per
+#: surface, per H, at the study's default scene (``CampaignSettings()``: 1024², 1 mm²,
+#: Rq = 1.6 µm, 6 Weierstrass terms per axis, γ = 1.5, 20 MPa, E = 210 GPa, ν = 0.3, c = 0.2,
+#: seed 2019), surfaces 0–19 of each H at the first load (glstat.study.simulate_surface).
+#: Their mean contact pressures were 1702 / 1546 / 1140 MPa (standard errors 90 / 72 / 83)
+#: with 9.1 / 6.1 / 5.0 asperities in contact. The default n of
+#: :func:`glstat.study.paper.damage_claims`.
+SCENE_N_CONTACT: dict[float, float] = {0.0: 12928.3, 0.5: 14142.65, 1.0: 20099.0}
+
+#: The columns of Table 1 (:class:`Table1Row`'s fields).
+COLUMNS = ("hurst", "mean_mpa", "sd_mpa", "skewness", "kurtosis", "lambda1_mpa",
+           "lambda2_per_mpa", "lambda3", "lambda4")
+
+
+def table_rows(table) -> list[Table1Row]:
+    """Table 1 rows from None (the stored copy), Table1Row objects, mappings or a DataFrame."""
+    if table is None:
+        return list(TABLE1)
+    if hasattr(table, "to_dict") and hasattr(table, "columns"):
+        table = table.to_dict("records")
+    rows = []
+    for r in table:
+        if isinstance(r, Table1Row):
+            rows.append(r)
+            continue
+        if not isinstance(r, Mapping):
+            raise TypeError(f"a Table 1 row must be a Table1Row or a mapping, got {type(r).__name__}")
+        unknown = set(r) - set(COLUMNS)
+        if unknown:
+            raise ValueError(f"unknown Table 1 column(s) {sorted(unknown)}; expected {COLUMNS}")
+        if "hurst" not in r or "mean_mpa" not in r:
+            raise ValueError("every Table 1 row needs 'hurst' and 'mean_mpa'")
+        rows.append(Table1Row(**{k: float(v) for k, v in r.items()}))
+    if not rows:
+        raise ValueError("Table 1 has no rows")
+    return rows
+
+
+def table1(table=None):
+    """Table 1 as a pandas DataFrame (MPa).
+
+    Parameters
+    ----------
+    table : DataFrame, sequence of Table1Row or of mappings, optional
+        The table to use (columns ``hurst, mean_mpa, sd_mpa, skewness, kurtosis, lambda1_mpa,
+        lambda2_per_mpa, lambda3, lambda4``; missing ones are NaN). Default :data:`TABLE1`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per H with those columns and ``source``.
+
+    Examples
+    --------
+    >>> from glstat.study.paper import table1
+    >>> table1()[["hurst", "mean_mpa"]].values.tolist()
+    [[0.0, 1724.0], [0.5, 1369.0], [1.0, 1108.0]]
+    """
+    import pandas as pd
+
+    rows = table_rows(table)
+    df = pd.DataFrame([{c: getattr(r, c) for c in COLUMNS} for r in rows])
+    df["source"] = TABLE1_SOURCE if table is None else "given table"
+    return df
