@@ -32,7 +32,8 @@ _CLOSED_FORM_RTOL = 1e-15
 
 
 @njit(cache=True, error_model="numpy")
-def _lbeta(x, y):
+def log_beta(x, y):
+    """log B(x, y) = lgamma(x) + lgamma(y) - lgamma(x + y), for x, y > 0."""
     return math.lgamma(x) + math.lgamma(y) - math.lgamma(x + y)
 
 
@@ -88,7 +89,7 @@ def _central_closed(fam, a, b, k, m):
                 mag *= abs(c2) ** j
                 if c2 < 0.0 and j % 2 == 1:
                     sign = -sign
-            term = mag * math.exp(coef_log + _lbeta(a * i + 1.0, b * j + 1.0))
+            term = mag * math.exp(coef_log + log_beta(a * i + 1.0, b * j + 1.0))
             total += sign * term
             total_abs += term
     if total == 0.0:

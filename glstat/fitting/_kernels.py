@@ -24,7 +24,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .._core.moments import central_moment, mean_std
+from .._core.moments import central_moment, log_beta, mean_std
 from .._core.quantile_function import FKML, RS, q_lower, rs_sign
 
 MOMENTS = 0
@@ -55,11 +55,6 @@ def digamma(x):
     x2 = 1.0 / (x * x)
     ser = x2 * (1.0 / 12 - x2 * (1.0 / 120 - x2 * (1.0 / 252 - x2 * (1.0 / 240 - x2 / 132))))
     return acc + math.log(x) - 0.5 / x - ser
-
-
-@njit(cache=True)
-def _lbeta(x, y):
-    return math.lgamma(x) + math.lgamma(y) - math.lgamma(x + y)
 
 
 @njit(cache=True)
@@ -112,7 +107,7 @@ def _raw_moments(fam, a, b, m, ma, mb, mabs):
             x = a * (k - j) + 1.0
             y = b * j + 1.0
             c = math.exp(math.lgamma(k + 1.0) - math.lgamma(j + 1.0) - math.lgamma(k - j + 1.0))
-            val = c * math.exp(_lbeta(x, y))
+            val = c * math.exp(log_beta(x, y))
             if j % 2 == 1:
                 val = -val
             if fam == FKML:
