@@ -1,4 +1,9 @@
-"""Validation of scalar arguments shared by the contact package."""
+"""Validation of the arguments of the contact package: every rule in one place.
+
+Scalars (real numbers, pressures, lengths, tolerances, iteration limits, flags, elastic
+constants), grid shapes and height maps. Each check returns the value in the form the
+numerics use, or raises with a message that names the argument and its unit.
+"""
 
 from __future__ import annotations
 
@@ -10,10 +15,16 @@ import numpy as np
 __all__ = [
     "elastic_constants",
     "finite_separation",
+    "flag",
+    "frequency_ratio",
+    "grid_shape",
+    "height_map",
     "positive_finite",
+    "positive_integer",
     "positive_pressure",
     "real_array",
     "real_scalar",
+    "tolerance",
 ]
 
 
@@ -126,6 +137,188 @@ def elastic_constants(E, nu, which: str = "") -> tuple[float, float]:
             "0.5 is incompressible, typical metals are near 0.3"
         )
     return e, n
+
+
+def tolerance(value, name: str, upper: float, hint: str = "") -> float:
+    """``value`` as a relative tolerance: one real number in ``(0, upper)``.
+
+    Parameters
+    ----------
+    value : object
+        The tolerance (dimensionless).
+    name : str
+        The argument's name, for messages.
+    upper : float
+        Exclusive upper bound.
+    hint : str, optional
+        Appended to the message, e.g. ``"; 1e-8 is typical"``.
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`), or outside ``(0, upper)``.
+    """
+    x = real_scalar(value)
+    if x is None or not (0 < x < upper):
+        raise ValueError(
+            f"{name} must be a relative tolerance in (0, {upper:g}), got {value!r}{hint}"
+        )
+    return x
+
+
+def positive_integer(value, name: str, what: str) -> int:
+    """``value`` as a count: a whole number >= 1.
+
+    Parameters
+    ----------
+    value : object
+        A Python or NumPy integer, a 0-d integer array, or a float with an integral value.
+    name : str
+        The argument's name, for messages.
+    what : str
+        What is counted, for messages (e.g. ``"iteration limit"``).
+
+    Returns
+    -------
+    int
+        ``int(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`; booleans are refused), not whole,
+        or below 1.
+    """
+    x = real_scalar(value)
+    if x is None or not (math.isfinite(x) and x >= 1 and x == int(x)):
+        raise ValueError(f"{name} must be a positive integer ({what}), got {value!r}")
+    return int(x)
+
+
+def flag(value, name: str) -> bool:
+    """``value`` as a switch: True or False (NumPy booleans included).
+
+    Parameters
+    ----------
+    value : object
+        The switch.
+    name : str
+        The argument's name, for messages.
+
+    Returns
+    -------
+    bool
+        ``bool(value)``.
+
+    Raises
+    ------
+    TypeError
+        Anything but a Python or NumPy boolean (``1``, ``"yes"``, ``None``, ...).
+    """
+    if not isinstance(value, bool | np.bool_):
+        raise TypeError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def frequency_ratio(value) -> float:
+    """``value`` as the ratio ``gamma`` of successive Weierstrass frequencies: finite, > 1.
+
+    Parameters
+    ----------
+    value : object
+        The ratio (dimensionless).
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`), not finite or not above 1.
+    """
+    g = real_scalar(value)
+    if g is None or not (math.isfinite(g) and g > 1):
+        raise ValueError(f"gamma must be a finite frequency ratio > 1, got {value!r}")
+    return g
+
+
+def grid_shape(shape) -> tuple[int, int]:
+    """``shape`` as a grid ``(nx, ny)``: two integers >= 3.
+
+    Parameters
+    ----------
+    shape : object
+        Number of grid points along x and y.
+
+    Returns
+    -------
+    (int, int)
+        ``(nx, ny)``.
+
+    Raises
+    ------
+    ValueError
+        Not a pair of integers, or a side below 3 points.
+    """
+    try:
+        nx, ny = (int(n) for n in shape)
+    except (TypeError, ValueError):
+        raise ValueError(f"shape must be a pair of integers (nx, ny), got {shape!r}") from None
+    if (nx, ny) != tuple(shape) or nx < 3 or ny < 3:
+        raise ValueError(f"shape must be two integers >= 3, got {shape!r}")
+    return nx, ny
+
+
+def height_map(heights, mask) -> tuple[np.ndarray, np.ndarray]:
+    """Heights and the map of measured points, checked for the numerics.
+
+    The rule every height map of the package obeys (a :class:`contact.Surface` when it is
+    made, and again when a solver or the summit search takes it, since its attributes can
+    be reassigned): the mask has the heights' shape, the measured heights are finite, and
+    at least one point is measured.
+
+    Parameters
+    ----------
+    heights : array_like, shape (nx, ny)
+        Heights in metres.
+    mask : array_like of bool or None
+        True at missing points; None when every point is measured.
+
+    Returns
+    -------
+    h : ndarray of float64, shape (nx, ny)
+        C-contiguous heights in metres (``heights`` itself when it already is such an
+        array: not a copy).
+    valid : ndarray of bool, shape (nx, ny)
+        True at the measured points.
+
+    Raises
+    ------
+    ValueError
+        A mask of another shape, NaN or inf at a measured point, or no measured point.
+    """
+    h = np.ascontiguousarray(heights, dtype=np.float64)
+    if mask is None:
+        valid = np.ones(h.shape, dtype=np.bool_)
+    else:
+        valid = ~np.asarray(mask, dtype=np.bool_)
+        if valid.shape != h.shape:
+            raise ValueError(f"mask shape {valid.shape} does not match heights shape {h.shape}")
+        if not valid.any():
+            raise ValueError("the mask hides every point; nothing is left to analyse")
+    if not np.isfinite(h[valid]).all():
+        raise ValueError(
+            "heights contain NaN or inf at points that are not masked; pass "
+            "mask=~np.isfinite(heights) to mark missing points (surface.mask on a surface)"
+        )
+    return h, valid
 
 
 def finite_separation(value) -> float:

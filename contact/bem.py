@@ -12,7 +12,6 @@ validates input and builds the :class:`~contact.result.ContactResult`.
 from __future__ import annotations
 
 import logging
-import math
 import numbers
 import warnings
 from collections.abc import Sequence
@@ -21,10 +20,10 @@ import numpy as np
 
 from ._constrained_cg import PKOutcome, initial_pressure, polonsky_keer
 from ._influence import NonPeriodicOperator, PeriodicOperator
-from ._validate import finite_separation, positive_pressure
+from ._validate import finite_separation, flag, positive_integer, positive_pressure, tolerance
 from .material import effective_modulus
 from .result import ContactResult
-from .surface import Surface, require_surface
+from .surface import Surface, surface_arrays
 
 __all__ = ["BEMConvergenceWarning", "solve_bem", "solve_bem_displacement"]
 
@@ -36,55 +35,31 @@ class BEMConvergenceWarning(RuntimeWarning):
 
 
 def _check_surface(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
-    require_surface(surface)
+    """Heights (m, masked points set to 0) and measured points of a surface."""
     # read-only below: a copy only where masked points are zeroed (or the dtype differs)
-    h = np.ascontiguousarray(surface.heights, dtype=np.float64)
-    if surface.mask is None:
-        valid = np.ones(h.shape, dtype=np.bool_)
-    else:
-        h = h.copy()
-        valid = ~np.asarray(surface.mask, dtype=np.bool_)
-        if valid.shape != h.shape:
-            raise ValueError(
-                f"mask shape {valid.shape} does not match heights shape {h.shape}"
-            )
-    if not np.isfinite(h[valid]).all():
-        raise ValueError(
-            "surface heights contain NaN or inf at points that are not masked; "
-            "set surface.mask = ~np.isfinite(surface.heights)"
-        )
-    if not valid.any():
-        raise ValueError("the mask hides every point; nothing can carry the load")
+    h, valid = surface_arrays(surface)
     if surface.mask is not None:
+        h = h.copy()
         h[~valid] = 0.0  # never used: masked points carry no pressure
     return h, valid
 
 
-def _check_options(tol: float, max_iter: int, workers: int | None) -> None:
-    if not (isinstance(tol, numbers.Real) and math.isfinite(tol) and 0 < tol < 1):
-        raise ValueError(
-            f"tol must be a relative tolerance in (0, 1), got {tol!r}; 1e-8 is typical"
-        )
-    if isinstance(max_iter, bool) or not isinstance(max_iter, numbers.Integral) or max_iter < 1:
-        raise ValueError(f"max_iter must be a positive integer, got {max_iter!r}")
+def _check_options(tol, max_iter, workers: int | None) -> tuple[float, int]:
+    """``(tol, max_iter)`` checked, and ``workers`` checked."""
+    tol = tolerance(tol, "tol", 1.0, "; 1e-8 is typical")
+    max_iter = positive_integer(max_iter, "max_iter", "iteration limit")
     if workers is not None and (
         isinstance(workers, bool) or not isinstance(workers, numbers.Integral) or workers == 0
     ):
         raise ValueError(
             f"workers must be None or a non-zero integer (scipy.fft convention), got {workers!r}"
         )
-
-
-def _flag(accelerate) -> bool:
-    if not isinstance(accelerate, bool | np.bool_):
-        raise TypeError(f"accelerate must be True or False, got {accelerate!r}")
-    return bool(accelerate)
+    return tol, max_iter
 
 
 def _operator(surface: Surface, e_star: float, periodic: bool, workers: int | None):
-    if not isinstance(periodic, bool | np.bool_):
-        raise TypeError(f"periodic must be True or False, got {periodic!r}")
-    cls = PeriodicOperator if periodic else NonPeriodicOperator
+    """The compliance operator of the surface's grid: periodic or an isolated patch."""
+    cls = PeriodicOperator if flag(periodic, "periodic") else NonPeriodicOperator
     return cls(surface.shape, surface.dx, surface.dy, e_star, workers=workers)
 
 
@@ -259,7 +234,8 @@ def solve_bem(
     nominal_pressure = positive_pressure(nominal_pressure)
     h, valid = _check_surface(surface)
     e_star = effective_modulus(E, nu, counter_face)
-    _check_options(tol, max_iter, workers)
+    tol, max_iter = _check_options(tol, max_iter, workers)
+    accelerate = flag(accelerate, "accelerate")
     op = _operator(surface, e_star, periodic, workers)
     p0 = initial_pressure(h, valid, float(nominal_pressure), e_star, surface.dx, surface.dy)
     out = polonsky_keer(
@@ -267,16 +243,16 @@ def solve_bem(
         h,
         valid,
         total_pressure=float(nominal_pressure) * int(valid.sum()),
-        tol=float(tol),
-        max_iter=int(max_iter),
+        tol=tol,
+        max_iter=max_iter,
         p0=p0,
-        accelerate=_flag(accelerate),
+        accelerate=accelerate,
         overwrite_p0=True,
     )
     return _result(
         out, surface, valid, nominal_pressure, "bem",
-        {"e_star": e_star, "periodic": bool(periodic), "accelerate": bool(accelerate)},
-        int(max_iter), float(tol),
+        {"e_star": e_star, "periodic": bool(periodic), "accelerate": accelerate},
+        max_iter, tol,
     )
 
 
@@ -331,14 +307,15 @@ def solve_bem_displacement(
     separation = finite_separation(separation)
     h, valid = _check_surface(surface)
     e_star = effective_modulus(E, nu, counter_face)
-    _check_options(tol, max_iter, workers)
+    tol, max_iter = _check_options(tol, max_iter, workers)
+    accelerate = flag(accelerate, "accelerate")
     op = _operator(surface, e_star, False, workers)
     out = polonsky_keer(
-        op, h, valid, separation=float(separation), tol=float(tol), max_iter=int(max_iter),
-        accelerate=_flag(accelerate),
+        op, h, valid, separation=float(separation), tol=tol, max_iter=max_iter,
+        accelerate=accelerate,
     )
     return _result(
         out, surface, valid, None, "bem-displacement",
-        {"e_star": e_star, "periodic": False, "accelerate": bool(accelerate)},
-        int(max_iter), float(tol),
+        {"e_star": e_star, "periodic": False, "accelerate": accelerate},
+        max_iter, tol,
     )

@@ -8,33 +8,25 @@ from typing import cast
 
 import numpy as np
 
-from ._validate import real_scalar
+from ._validate import frequency_ratio, grid_shape, positive_finite, real_scalar
 from .surface import Surface
 
 __all__ = ["self_affine", "weierstrass"]
 
 
 def _grid(shape, length) -> tuple[int, int, float, float]:
-    try:
-        nx, ny = (int(n) for n in shape)
-    except (TypeError, ValueError):
-        raise ValueError(f"shape must be a pair of integers (nx, ny), got {shape!r}") from None
-    if (nx, ny) != tuple(shape) or nx < 3 or ny < 3:
-        raise ValueError(f"shape must be two integers >= 3, got {shape!r}")
+    """``(nx, ny, Lx, Ly)``: the grid's points and side lengths (m), checked."""
+    nx, ny = grid_shape(shape)
     lengths = (length, length) if np.ndim(length) == 0 else tuple(length)
     if len(lengths) != 2:
         raise ValueError(f"length must be a number or a pair (Lx, Ly) in metres, got {length!r}")
-    checked = []
-    for name, v in zip(("Lx", "Ly"), lengths, strict=True):
-        x = real_scalar(v)
-        if x is None or not (math.isfinite(x) and x > 0):
-            raise ValueError(f"length {name} must be a positive finite size in metres, got {v!r}")
-        checked.append(x)
-    lx, ly = checked
+    lx, ly = (positive_finite(v, f"length {name}", "size in metres")
+              for name, v in zip(("Lx", "Ly"), lengths, strict=True))
     return nx, ny, lx, ly
 
 
 def _check_hurst(hurst: float) -> float:
+    """The Hurst exponent, in [0, 1]."""
     h = real_scalar(hurst)
     if h is None or not (0 <= h <= 1):
         raise ValueError(f"hurst must be in [0, 1] (fractal dimension 3 - H), got {hurst!r}")
@@ -42,12 +34,10 @@ def _check_hurst(hurst: float) -> float:
 
 
 def _scale(w: np.ndarray, rq: float | None) -> np.ndarray:
+    """``w`` centred and scaled to the RMS height ``rq`` (m); ``w`` itself when ``rq`` is None."""
     if rq is None:
         return w
-    value = real_scalar(rq)
-    if value is None or not (math.isfinite(value) and value > 0):
-        raise ValueError(f"rq must be a positive finite RMS height in metres, got {rq!r}")
-    rq = value
+    rq = positive_finite(rq, "rq", "RMS height in metres")
     w = w - w.mean()
     s = math.sqrt(float(np.mean(w * w)))
     if s == 0:
@@ -113,10 +103,7 @@ def weierstrass(
     """
     nx, ny, lx, ly = _grid(shape, length)
     h = _check_hurst(hurst)
-    g = real_scalar(gamma)
-    if g is None or not (math.isfinite(g) and g > 1):
-        raise ValueError(f"gamma must be a finite frequency ratio > 1, got {gamma!r}")
-    gamma = g
+    gamma = frequency_ratio(gamma)
     if method not in ("matrix", "direct"):
         raise ValueError(f"method must be 'matrix' or 'direct', got {method!r}")
     rng = np.random.default_rng(rng)
@@ -209,9 +196,8 @@ def self_affine(
     qx = 2 * np.pi * np.fft.fftfreq(nx, d=lx / nx)
     qy = 2 * np.pi * np.fft.rfftfreq(ny, d=ly / ny)
     q = np.hypot(qx[:, None], qy[None, :])
-    q0 = 2 * np.pi / max(lx, ly) if rolloff is None else real_scalar(rolloff)
-    if q0 is None or not (math.isfinite(q0) and q0 > 0):
-        raise ValueError(f"rolloff must be a positive wavevector in rad/m, got {rolloff!r}")
+    q0 = (2 * np.pi / max(lx, ly) if rolloff is None
+          else positive_finite(rolloff, "rolloff", "wavevector in rad/m"))
     if cutoff is not None:
         qc = real_scalar(cutoff)
         if qc is None or not (math.isfinite(qc) and qc > q0):

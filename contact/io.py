@@ -23,7 +23,6 @@ Reading is all-or-nothing: a corrupt, truncated or inconsistent file raises
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Callable
 from pathlib import Path
@@ -34,6 +33,7 @@ from ._formats import FORMATS, file_format
 from ._npy_files import Stored, read_npy, read_npz
 from ._text_files import XYZ_MAX_FILL as XYZ_MAX_FILL
 from ._text_files import read_text, read_xyz
+from ._validate import positive_finite
 from ._writers import write
 from .errors import TopographyFileError
 from .surface import Surface
@@ -145,9 +145,10 @@ def read(
     fname = os.fspath(path)
     if not p.is_file():
         raise FileNotFoundError(f"no such topography file: {fname}")
-    for name, v in (("dx", dx), ("dy", dy)):
-        if v is not None and not (math.isfinite(v) and v > 0):
-            raise ValueError(f"{name} must be a positive finite spacing in metres, got {v!r}")
+    if dx is not None:
+        dx = positive_finite(dx, "dx", "spacing in metres")
+    if dy is not None:
+        dy = positive_finite(dy, "dy", "spacing in metres")
     fmt = file_format(p, format)
     stored: Stored = read_x3p(p) if fmt == "x3p" else _READERS[fmt](p, fname)
     h, found_dx, found_dy, mask = stored

@@ -7,13 +7,12 @@ of the per-asperity peaks of the asperity model (:func:`contact.solve`).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._validate import real_scalar
+from ._validate import flag, positive_finite, real_scalar
 from .result import ContactResult
 
 if TYPE_CHECKING:
@@ -193,11 +192,8 @@ def contact_spots(
         p = np.asarray(pressure, dtype=np.float64)
         if periodic is None:
             periodic = False
-    area = real_scalar(cell_area)
-    if area is None or not (math.isfinite(area) and area > 0):
-        raise ValueError(f"cell_area must be a positive area in m², got {cell_area!r}")
-    if not isinstance(periodic, bool | np.bool_):
-        raise TypeError(f"periodic must be True or False, got {periodic!r}")
+    area = positive_finite(cell_area, "cell_area", "area in m²")
+    periodic = flag(periodic, "periodic")
     if p.ndim != 2:
         raise ValueError(f"the pressure map must be 2-D, got shape {p.shape}")
     if not np.isfinite(p).all():

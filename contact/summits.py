@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ._asperity_kernels import find_summits
-from .surface import Surface, require_surface
+from .surface import Surface, surface_arrays
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -68,30 +68,6 @@ def valid_map(surface: Surface) -> np.ndarray:
     if surface.mask is None:
         return np.ones(surface.shape, dtype=np.bool_)
     return ~np.asarray(surface.mask, dtype=np.bool_)
-
-
-def surface_arrays(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
-    """The heights and the measured-point map of a surface, as the kernels take them.
-
-    Parameters
-    ----------
-    surface : Surface
-        The height map.
-
-    Returns
-    -------
-    h : ndarray of float64, shape (nx, ny)
-        C-contiguous heights in metres (the surface's own array when it already is one).
-    valid : ndarray of bool, shape of the mask
-        :func:`valid_map` of the surface.
-
-    Raises
-    ------
-    TypeError
-        ``surface`` is not a :class:`Surface` (see :func:`require_surface`).
-    """
-    require_surface(surface)
-    return np.ascontiguousarray(surface.heights, dtype=np.float64), valid_map(surface)
 
 
 def summits(surface: Surface) -> Summits:

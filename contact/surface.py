@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._validate import real_array, real_scalar
+from ._validate import height_map, positive_finite, real_array
 from ._writers import write
 from .roughness import level_heights, roughness_parameters
 
@@ -50,34 +50,18 @@ class Surface:
             raise ValueError(f"heights must be a 2-D array, got {h.ndim} dimension(s)")
         if min(h.shape) < 3:
             raise ValueError(f"heights must be at least 3 x 3 points, got {h.shape}")
-        dy = dx if dy is None else dy
-        spacing = []
-        for name, value in (("dx", dx), ("dy", dy)):
-            v = real_scalar(value)
-            if v is None or not (np.isfinite(v) and v > 0):
-                raise ValueError(
-                    f"{name} must be a positive finite spacing in metres, got {value!r}"
-                )
-            spacing.append(v)
-        dx, dy = spacing
+        dx = positive_finite(dx, "dx", "spacing in metres")
+        dy = dx if dy is None else positive_finite(dy, "dy", "spacing in metres")
         if mask is not None:
             mask = np.array(mask, dtype=bool, copy=True)
-            if mask.shape != h.shape:
-                raise ValueError(f"mask shape {mask.shape} does not match heights shape {h.shape}")
-        if hidden is not None:
-            mask = hidden if mask is None else (mask | hidden)
-        if mask is not None:
-            if mask.all():
-                raise ValueError("mask hides every point; nothing is left to analyse")
-            if not np.isfinite(h[~mask]).all():
-                raise ValueError("heights contain NaN or inf outside the mask; mask those points")
-        elif not np.isfinite(h).all():
-            raise ValueError(
-                "heights contain NaN or inf; pass mask=~np.isfinite(heights) to mark missing points"
-            )
+            if hidden is not None and mask.shape == hidden.shape:
+                mask |= hidden
+        elif hidden is not None:
+            mask = hidden
+        height_map(h, mask)
         self.heights = h
-        self.dx = float(dx)
-        self.dy = float(dy)
+        self.dx = dx
+        self.dy = dy
         self.mask = mask
 
     @property
@@ -183,6 +167,33 @@ class Surface:
             f"Surface(shape={self.shape}, size=({lx:.4g} m, {ly:.4g} m), "
             f"masked={0 if self.mask is None else int(self.mask.sum())})"
         )
+
+
+def surface_arrays(surface) -> tuple[np.ndarray, np.ndarray]:
+    """The heights and the measured-point map of a surface, checked for the numerics.
+
+    Parameters
+    ----------
+    surface : Surface
+        The height map.
+
+    Returns
+    -------
+    h : ndarray of float64, shape (nx, ny)
+        C-contiguous heights in metres (the surface's own array when it already is one).
+    valid : ndarray of bool, shape (nx, ny)
+        True at the measured points.
+
+    Raises
+    ------
+    TypeError
+        ``surface`` is not a :class:`Surface` (see :func:`require_surface`).
+    ValueError
+        The surface's attributes were changed since it was made and break its rule (see
+        :func:`contact._validate.height_map`).
+    """
+    surface = require_surface(surface)
+    return height_map(surface.heights, surface.mask)
 
 
 def require_surface(obj) -> Surface:
