@@ -14,22 +14,14 @@ from .asperity import solve, solve_displacement
 from .errors import ContactWarning, TopographyFileError
 from .generators import self_affine, weierstrass
 from .io import read, write
-from .like import (
-    SpectrumFit,
-    WeierstrassParameters,
-    compare_surfaces,
-    fit_spectrum,
-    plot_psd_comparison,
-    psd_comparison,
-    self_affine_like,
-    weierstrass_like,
-    weierstrass_parameters,
-)
+from .like import WeierstrassParameters, self_affine_like, weierstrass_like, weierstrass_parameters
 from .material import effective_modulus
 from .result import ContactResult
+from .spectrum import SpectrumFit, fit_spectrum
 from .spots import contact_spots
 from .summits import Summits, summits
 from .surface import Surface
+from .surface_comparison import compare_surfaces, plot_psd_comparison, psd_comparison
 
 __all__ = [
     "BEMConvergenceWarning",

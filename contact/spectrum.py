@@ -1,0 +1,400 @@
+"""The power spectrum of a surface and its self-affine fit.
+
+The radially averaged power spectral density (:func:`radial_psd`: plane-levelled heights,
+Tukey window, quarter-octave rings) and the fit of a self-affine spectrum
+``C(q) ∝ q^(-2(H+1))`` to it over ``q_r <= q <= q_s`` (:func:`fit_spectrum`), which gives the
+RMS roughness Rq, the Hurst exponent H and the range that :mod:`contact.like` reproduces
+(docs/contact.md, "Surfaces like a measurement").
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .surface import Surface, require_surface
+
+__all__ = ["SpectrumFit", "fit_spectrum", "radial_psd"]
+
+#: Smallest number of grid points per side for a spectrum fit.
+MIN_POINTS = 32
+#: Fraction of each side inside the Tukey window's cosine tapers (half at each end).
+TAPER = 0.5
+#: Radial bins per octave of wavevector.
+BINS_PER_OCTAVE = 4
+#: The fit starts at this many times the lowest wavevector 2π/L of the shorter side.
+FIT_START = 3.0
+#: The fit ends at this fraction of the Nyquist wavevector π/d (the last octave is left out).
+FIT_END = 0.5
+#: A drop between neighbouring bins this much steeper than q^-4 (H = 1) marks a cut-off.
+CUTOFF_DROP = 100.0
+#: A roll-off knee is kept when the broken line leaves at most this fraction of the
+#: straight line's weighted residual sum of squares and lowers it by at least KNEE_CHI2.
+KNEE_GAIN = 0.5
+KNEE_CHI2 = 25.0
+
+
+@dataclass(frozen=True)
+class SpectrumFit:
+    """Self-affine description of a surface fitted by :func:`fit_spectrum`.
+
+    Attributes
+    ----------
+    rq : float
+        RMS roughness of the heights about their least-squares plane, in metres.
+    hurst : float
+        Hurst exponent H from the slope ``-2(H+1)`` of the log-log fit of the radially
+        averaged PSD (dimensionless, not restricted to [0, 1]).
+    hurst_se : float
+        Standard error of ``hurst`` from the least-squares fit (half the slope's).
+    q_r : float
+        Roll-off (long-wavelength cut-off) wavevector in rad/m: the detected roll-off knee
+        below which the PSD is flat, or the lowest wavevector ``2π / max(Lx, Ly)`` when
+        none is detected.
+    q_s : float
+        Short-wavelength cut-off wavevector in rad/m: where the PSD drops off a cliff, or the
+        Nyquist wavevector ``π / max(dx, dy)`` when it does not.
+    q_fit_min, q_fit_max : float
+        Range of the radial bins entering the least-squares fit, in rad/m.
+    r2 : float
+        Coefficient of determination of the log-log fit.
+    n_bins : int
+        Number of radial bins in the fit.
+    rolloff_detected, cutoff_detected : bool
+        Whether ``q_r`` and ``q_s`` were detected in the spectrum or are the grid's limits.
+    shape : (int, int)
+        Grid of the fitted surface.
+    dx, dy : float
+        Grid spacing of the fitted surface in metres.
+    """
+
+    rq: float
+    hurst: float
+    hurst_se: float
+    q_r: float
+    q_s: float
+    q_fit_min: float
+    q_fit_max: float
+    r2: float
+    n_bins: int
+    rolloff_detected: bool
+    cutoff_detected: bool
+    shape: tuple[int, int]
+    dx: float
+    dy: float
+
+    @property
+    def fractal_dimension(self) -> float:
+        """Fractal dimension ``3 - H`` of the surface (dimensionless)."""
+        return 3.0 - self.hurst
+
+
+def fully_measured(surface, what: str) -> Surface:
+    """``surface`` when it is a :class:`~contact.surface.Surface` with no missing point.
+
+    Parameters
+    ----------
+    surface : object
+        What the caller passed.
+    what : str
+        The caller's name, for messages.
+
+    Returns
+    -------
+    Surface
+        ``surface``.
+
+    Raises
+    ------
+    TypeError
+        Not a :class:`~contact.surface.Surface`.
+    ValueError
+        Some points are missing (masked).
+    """
+    surface = require_surface(surface)
+    if surface.mask is not None and np.asarray(surface.mask).any():
+        raise ValueError(
+            f"{what} needs a fully measured surface, but {int(np.sum(surface.mask))} of "
+            f"{surface.mask.size} points are missing (masked); crop it to a fully measured "
+            "rectangle or fill the missing points (e.g. by interpolation) and pass "
+            "contact.Surface(filled, dx, dy)"
+        )
+    return surface
+
+
+def _taper(n: int) -> np.ndarray:
+    """Tukey window: a cosine taper over the outer quarter of the points at each end."""
+    x = (np.arange(n) + 0.5) / n
+    edge = np.minimum(x, 1.0 - x)
+    return np.where(edge < TAPER / 2, 0.5 * (1.0 - np.cos(2 * np.pi * edge / TAPER)), 1.0)
+
+
+def spectrum_2d(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
+    """|q| (rad/m) and the 2-D PSD (m^4) of the plane-levelled, tapered heights.
+
+    Parameters
+    ----------
+    surface : Surface
+        A fully measured surface (heights and spacing in metres).
+
+    Returns
+    -------
+    q : ndarray, shape (nx, ny)
+        Magnitude of the wavevector of every FFT coefficient, rad/m.
+    psd : ndarray, shape (nx, ny)
+        ``|FFT(z w)|² dx dy / (nx ny 4π²)`` in m^4 (see :func:`radial_psd`).
+    """
+    nx, ny = surface.shape
+    z = surface.detrend("plane").heights
+    window = np.outer(_taper(nx), _taper(ny))
+    window /= math.sqrt(float(np.mean(window * window)))
+    z_hat = np.fft.fft2(z * window)
+    # Normalised so that sum(C) (2π/Lx)(2π/Ly) = mean(z^2 w^2) ≈ Rq^2.
+    psd = np.abs(z_hat) ** 2 * (surface.dx * surface.dy) / (nx * ny * 4 * math.pi**2)
+    qx = 2 * math.pi * np.fft.fftfreq(nx, d=surface.dx)
+    qy = 2 * math.pi * np.fft.fftfreq(ny, d=surface.dy)
+    q = np.hypot(qx[:, None], qy[None, :])
+    return q, psd
+
+
+def ring_edges(surface: Surface) -> np.ndarray:
+    """Edges (rad/m) of quarter-octave rings from ``2π / max(Lx, Ly)`` to the Nyquist
+    wavevector ``π / max(dx, dy)`` of the surface's grid."""
+    lx, ly = surface.size
+    q_low = 2 * math.pi / max(lx, ly)
+    q_nyq = math.pi / max(surface.dx, surface.dy)
+    n = math.ceil(BINS_PER_OCTAVE * math.log2(q_nyq / q_low))
+    # The first edge sits half a bin below 2π/L so that the lowest wavevector is inside.
+    return q_low * 2.0 ** ((np.arange(n + 1) - 0.5) / BINS_PER_OCTAVE)
+
+
+def ring_means(
+    q: np.ndarray, psd: np.ndarray, edges: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The PSD averaged over rings of wavevector magnitude.
+
+    Parameters
+    ----------
+    q, psd : ndarray
+        Wavevector magnitudes (rad/m) and PSD (m^4) of :func:`spectrum_2d`.
+    edges : ndarray
+        Ring edges in rad/m (:func:`ring_edges`).
+
+    Returns
+    -------
+    q : ndarray
+        Geometric-mean |q| of each ring, rad/m (NaN when empty).
+    psd : ndarray
+        Mean PSD of each ring, m^4 (NaN when empty).
+    counts : ndarray of int
+        Wavevectors in each ring.
+    """
+    idx = np.digitize(q.ravel(), edges) - 1
+    inside = (idx >= 0) & (idx < edges.size - 1)
+    idx, qv, cv = idx[inside], q.ravel()[inside], psd.ravel()[inside]
+    counts = np.bincount(idx, minlength=edges.size - 1)
+    logq = np.bincount(idx, np.log(qv), minlength=edges.size - 1)
+    csum = np.bincount(idx, cv, minlength=edges.size - 1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.exp(logq / counts), csum / counts, counts
+
+
+def radial_psd(surface: Surface, edges: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Radially averaged (isotropic) power spectral density of a surface.
+
+    The heights are levelled by their least-squares plane and multiplied by a separable
+    Tukey window (a cosine taper over the outer quarter of each side at each end,
+    normalised to unit mean square) before the FFT, so that a non-periodic measurement does
+    not leak power from its edges. The 2-D PSD
+    ``C(qx, qy) = |FFT(z w)|² dx dy / (nx ny 4π²)`` (m^4), whose sum times the wavevector
+    cell ``(2π/Lx)(2π/Ly)`` is Rq², is averaged over logarithmic rings of a quarter octave.
+
+    Parameters
+    ----------
+    surface : Surface
+        A fully measured surface (no mask).
+    edges : ndarray, optional
+        Ring edges in rad/m; default: quarter-octave rings from ``2π / max(Lx, Ly)`` to the
+        Nyquist wavevector ``π / max(dx, dy)``.
+
+    Returns
+    -------
+    q : ndarray
+        Geometric mean of the wavevector magnitudes in each non-empty ring, rad/m.
+    psd : ndarray
+        Mean PSD in each ring, m^4.
+
+    Examples
+    --------
+    >>> import contact
+    >>> from contact.spectrum import radial_psd
+    >>> s = contact.self_affine((64, 64), 1e-3, hurst=0.5, rq=1e-6, rng=1)
+    >>> q, c = radial_psd(s)
+    >>> q.shape == c.shape, bool((c > 0).all())
+    (True, True)
+    """
+    surface = fully_measured(surface, "radial_psd")
+    q, psd = spectrum_2d(surface)
+    q, c, counts = ring_means(q, psd, ring_edges(surface) if edges is None else np.asarray(edges, float))
+    return q[counts > 0], c[counts > 0]
+
+
+def _line(x: np.ndarray, y: np.ndarray, w: np.ndarray) -> tuple[float, float, float, float, float]:
+    """Weighted least-squares line: slope, intercept, slope's standard error, R², weighted SSR."""
+    sw = float(w.sum())
+    xm, ym = float(w @ x) / sw, float(w @ y) / sw
+    sxx = float(w @ (x - xm) ** 2)
+    slope = float(w @ ((x - xm) * (y - ym))) / sxx
+    intercept = ym - slope * xm
+    res = y - (intercept + slope * x)
+    ssr = float(w @ (res * res))
+    sst = float(w @ (y - ym) ** 2)
+    se = math.sqrt(ssr / (x.size - 2) / sxx) if x.size > 2 else float("nan")
+    r2 = 1.0 - ssr / sst if sst > 0 else 1.0
+    return slope, intercept, se, r2, ssr
+
+
+def _knee(x: np.ndarray, y: np.ndarray, w: np.ndarray) -> int | None:
+    """Index of a roll-off knee: flat below, straight above; None when a line fits as well."""
+    ssr_line = _line(x, y, w)[4]
+    best, best_ssr = None, ssr_line
+    # The knee leaves at least two rings on the flat part and four on the power law.
+    for k in range(2, x.size - 4):
+        slope, *_, ssr = _line(np.maximum(x, x[k]), y, w)
+        if slope < 0 and ssr < best_ssr:
+            best, best_ssr = k, ssr
+    if best is not None and best_ssr <= KNEE_GAIN * ssr_line and ssr_line - best_ssr > KNEE_CHI2:
+        return best
+    return None
+
+
+def fit_spectrum(surface: Surface, *, q_range: Sequence[float] | None = None) -> SpectrumFit:
+    """Fit a self-affine power spectrum to a measured surface.
+
+    The heights are levelled by their least-squares plane; Rq is their RMS. The radially
+    averaged PSD (:func:`radial_psd`: Tukey window, quarter-octave rings) is fitted by a
+    least-squares line in log-log, ``log C = a - 2(H+1) log q``, over the self-affine
+    range, each ring weighted by its number of wavevectors (the variance of the log of a
+    ring's mean PSD falls as one over that number).
+
+    Parameters
+    ----------
+    surface : Surface
+        A fully measured surface of at least 32 x 32 points (heights and spacing in metres).
+    q_range : (float, float), optional
+        Wavevectors ``(q_min, q_max)`` in rad/m between which the rings are fitted; default:
+        the rule below.
+
+    Returns
+    -------
+    SpectrumFit
+        Rq (m), H with its standard error, the roll-off ``q_r`` and cut-off ``q_s`` (rad/m),
+        the fitted range, R² and the number of rings.
+
+    Raises
+    ------
+    TypeError
+        ``surface`` is not a :class:`contact.Surface`.
+    ValueError
+        A masked surface (crop or fill it first), fewer than 32 points on a side, a flat
+        surface, a ``q_range`` holding fewer than 4 rings.
+
+    Notes
+    -----
+    Default range. ``q_fit_min`` is ``3 · 2π / min(Lx, Ly)`` (the lowest rings hold a few
+    wavevectors and are smeared by the window) and ``q_fit_max`` is half the Nyquist
+    wavevector, ``π / (2 max(dx, dy))`` (the last octave, where the grid and the window
+    distort the spectrum, is left out). Within it:
+
+    * a short-wavelength cut-off ``q_s`` is detected where the PSD falls between two
+      neighbouring rings 100 times more than the steepest self-affine spectrum (``q^-4``,
+      H = 1) would; the fit then ends two rings below it. Otherwise ``q_s`` is the Nyquist
+      wavevector ``π / max(dx, dy)``;
+    * a roll-off knee is looked for among the fitted rings with a broken line, flat below
+      ``q_r`` and a power law above; it is kept when it halves the weighted residual sum of
+      squares of a single line and lowers it by at least 25, and the fit then starts at
+      the knee. Otherwise ``q_r`` is the lowest wavevector ``2π / max(Lx, Ly)``: the power
+      law is taken to hold up to the largest wavelength of the grid.
+
+    With ``q_range`` the rings in it are fitted as given and no knee or cut-off is looked
+    for (``q_r``, ``q_s`` are the grid's limits).
+
+    Examples
+    --------
+    >>> import contact
+    >>> s = contact.self_affine((256, 256), 1e-3, hurst=0.5, rq=2e-6, rng=7)
+    >>> fit = contact.fit_spectrum(s)
+    >>> round(fit.rq / float(s.roughness(level="plane")["Sq"]), 6)
+    1.0
+    >>> round(fit.hurst, 1), fit.rolloff_detected, fit.n_bins
+    (0.5, False, 17)
+    """
+    surface = fully_measured(surface, "fit_spectrum")
+    nx, ny = surface.shape
+    if min(nx, ny) < MIN_POINTS:
+        raise ValueError(
+            f"fit_spectrum needs at least {MIN_POINTS} x {MIN_POINTS} points to resolve a "
+            f"power law over more than an octave, got {surface.shape}"
+        )
+    z = surface.detrend("plane").heights
+    rq = math.sqrt(float(np.mean(z * z)))
+    if rq <= 1e-12 * float(np.max(np.abs(surface.heights))):
+        # zero up to rounding: a plane, or constant heights
+        raise ValueError("the surface is flat (Rq = 0 about its mean plane); it has no spectrum")
+    lx, ly = surface.size
+    q_low = 2 * math.pi / max(lx, ly)
+    q_nyq = math.pi / max(surface.dx, surface.dy)
+    q, c, counts = ring_means(*spectrum_2d(surface), ring_edges(surface))
+    positive = (counts > 0) & (c > 0)
+    q, c, counts = q[positive], c[positive], counts[positive].astype(float)
+    x, y = np.log(q), np.log(c)
+    q_r, q_s, rolloff, cutoff = q_low, q_nyq, False, False
+    if q_range is not None:
+        try:
+            lo, hi = (float(v) for v in q_range)
+        except (TypeError, ValueError):
+            raise ValueError(f"q_range must be a pair (q_min, q_max) in rad/m, got {q_range!r}") from None
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+            raise ValueError(f"q_range must be 0 < q_min < q_max in rad/m, got {q_range!r}")
+        sel = (q >= lo) & (q <= hi)
+    else:
+        lo, hi = FIT_START * 2 * math.pi / min(lx, ly), FIT_END * q_nyq
+        # A cliff between neighbouring rings, far steeper than q^-4: a short-wavelength cut-off.
+        steepest = -4.0 * np.diff(x) - math.log(CUTOFF_DROP)
+        cliff = np.nonzero((np.diff(y) < steepest) & (q[:-1] >= lo))[0]
+        if cliff.size:
+            k = int(cliff[0])
+            q_s, cutoff = float(math.sqrt(q[k] * q[k + 1])), True
+            hi = min(hi, q[max(k - 2, 0)] * (1 + 1e-12))
+        sel = (q >= lo) & (q <= hi)
+        if sel.sum() >= 8:
+            knee = _knee(x[sel], y[sel], counts[sel])
+            if knee is not None:
+                q_r, rolloff = float(q[sel][knee]), True
+                sel &= q >= q_r * (1 - 1e-12)
+    n = int(sel.sum())
+    if n < 4:
+        raise ValueError(
+            f"only {n} radial PSD rings lie in the fitted range {lo:.4g}–{hi:.4g} rad/m; at "
+            "least 4 are needed (use a larger surface or a wider q_range)"
+        )
+    slope, _, se, r2, _ = _line(x[sel], y[sel], counts[sel])
+    return SpectrumFit(
+        rq=rq,
+        hurst=float(-slope / 2 - 1),
+        hurst_se=float(se / 2),
+        q_r=float(q_r),
+        q_s=float(q_s),
+        q_fit_min=float(q[sel].min()),
+        q_fit_max=float(q[sel].max()),
+        r2=float(min(max(r2, 0.0), 1.0)),
+        n_bins=n,
+        rolloff_detected=rolloff,
+        cutoff_detected=cutoff,
+        shape=(nx, ny),
+        dx=surface.dx,
+        dy=surface.dy,
+    )
