@@ -16,12 +16,18 @@ from collections.abc import Sequence
 import numpy as np
 
 from . import _asperity_kernels as kernels
-from ._validate import finite_separation, positive_pressure, real_scalar
+from ._deprecation import renamed_keywords
+from ._validate import (
+    finite_separation,
+    positive_integer,
+    positive_pressure,
+    real_scalar,
+    tolerance,
+)
 from .errors import ContactWarning
 from .material import effective_modulus
 from .result import ContactResult
-from .summits import surface_arrays
-from .surface import Surface
+from .surface import Surface, surface_arrays
 
 __all__ = ["solve", "solve_displacement"]
 
@@ -31,15 +37,9 @@ _COLUMNS = ["i", "j", "x", "y", "height", "delta", "a", "b", "beta", "p_m", "F"]
 
 
 def _check_surface(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
+    """Heights (m) and measured points of a surface that has asperities to carry a load."""
     h, valid = surface_arrays(surface)
-    if h.shape != valid.shape:
-        raise ValueError(f"mask shape {valid.shape} does not match heights shape {h.shape}")
     known = h[valid]
-    if not np.isfinite(known).all():
-        raise ValueError(
-            "surface heights contain NaN or inf at points that are not masked; "
-            "set surface.mask = ~np.isfinite(surface.heights)"
-        )
     span = float(known.max() - known.min())
     if not span > 0:
         raise ValueError(
@@ -161,12 +161,12 @@ class _Model:
         )
 
 
-def _find_separation(model: _Model, target: float, rtol: float, maxiter: int):
+def _find_separation(model: _Model, target: float, tol: float, max_iter: int):
     """Bracket and solve F(d) = target for the plane height d.
 
     Returns ``(d_lo, d_hi, f_lo, f_hi, iterations, converged)`` with
     ``f_lo >= target >= f_hi``; the two ends coincide (``d_lo == d_hi``) when the force
-    matched to ``rtol``, otherwise they bracket a jump of F(d) to machine precision.
+    matched to ``tol``, otherwise they bracket a jump of F(d) to machine precision.
     """
     known = model.h[model.valid]
     zmin = float(known.min())
@@ -193,12 +193,12 @@ def _find_separation(model: _Model, target: float, rtol: float, maxiter: int):
             )
         hi, f_hi = lo, f_lo
         step *= 2.0
-    if abs(f_lo - target) <= rtol * target:
+    if abs(f_lo - target) <= tol * target:
         return lo, lo, f_lo, f_lo, it, True
     # Illinois regula falsi, safeguarded by bisection; F decreases with d.
     g_lo, g_hi = f_lo - target, f_hi - target
     last, stall = 0, 0
-    for _ in range(maxiter):
+    for _ in range(max_iter):
         if hi - lo <= 4.0 * np.finfo(float).eps * max(abs(lo), abs(hi), zmax - zmin):
             return lo, hi, g_lo + target, g_hi + target, it, True
         d = (lo * g_hi - hi * g_lo) / (g_hi - g_lo)
@@ -206,7 +206,7 @@ def _find_separation(model: _Model, target: float, rtol: float, maxiter: int):
             d, stall = 0.5 * (lo + hi), 0
         g = model.force(d) - target
         it += 1
-        if abs(g) <= rtol * target:
+        if abs(g) <= tol * target:
             return d, d, g + target, g + target, it, True
         if g > 0:
             lo, g_lo = d, g
@@ -227,6 +227,7 @@ def _find_separation(model: _Model, target: float, rtol: float, maxiter: int):
     return lo, hi, g_lo + target, g_hi + target, it, False
 
 
+@renamed_keywords(rtol="tol", maxiter="max_iter")
 def solve(
     surface: Surface,
     nominal_pressure: float,
@@ -235,8 +236,8 @@ def solve(
     cone_factor: float = 0.2,
     counter_face: Sequence[float] | None = None,
     *,
-    rtol: float = 1e-10,
-    maxiter: int = 200,
+    tol: float = 1e-10,
+    max_iter: int = 200,
     jump: str = "nearest",
 ) -> ContactResult:
     """Press a flat onto a rough surface until it carries a given nominal pressure.
@@ -256,10 +257,12 @@ def solve(
         Sneddon's elastic cone (Johnson, *Contact Mechanics*, ch. 5).
     counter_face : (E2, nu2) or None
         Elastic constants of the flat (Pa, dimensionless); None for a rigid plane.
-    rtol : float, default 1e-10
-        Relative tolerance on the force balance.
-    maxiter : int, default 200
-        Iteration limit of the root finder on the separation.
+    tol : float, default 1e-10
+        Relative tolerance on the force balance, in (0, 1e-3). ``rtol=`` is a deprecated
+        name of it.
+    max_iter : int, default 200
+        Iteration limit of the root finder on the separation. ``maxiter=`` is a deprecated
+        name of it.
     jump : {"nearest", "deeper", "blend"}, default "nearest"
         What to return when the load falls inside a jump of the force ``F(d)`` (see Notes):
         the state of the model whose force is closest to the load (``"nearest"``; never a
@@ -307,7 +310,7 @@ def solve(
 
     ``F(d)`` is monotone but has jumps: when a summit first touches (its centre point
     carries ``1.5 p_m`` at once) and when a walk passes a valley as the plane descends.
-    The separation is found by bracketing and safeguarded regula falsi to ``rtol``. When
+    The separation is found by bracketing and safeguarded regula falsi to ``tol``. When
     the load falls inside a jump, the bracket shrinks to the jump's separation (to machine
     precision) and no state of the model carries the load: the pressure map, ``samples``
     and ``asperities`` are those of one state (by default the one with the force closest to
@@ -321,25 +324,19 @@ def solve(
     if jump not in ("nearest", "deeper", "blend"):
         raise ValueError(f"jump must be 'nearest', 'deeper' or 'blend', got {jump!r}")
     nominal_pressure = positive_pressure(nominal_pressure)
-    r = real_scalar(rtol)
-    if r is None or not (0 < r < 1e-3):
-        raise ValueError(f"rtol must be in (0, 1e-3), got {rtol!r}")
-    rtol = r
-    m = real_scalar(maxiter)
-    if m is None or not (m >= 1 and m == int(m)):
-        raise ValueError(f"maxiter must be a positive integer, got {maxiter!r}")
-    maxiter = int(m)
+    tol = tolerance(tol, "tol", 1e-3)
+    max_iter = positive_integer(max_iter, "max_iter", "iteration limit")
     model = _Model(surface, E, nu, cone_factor, counter_face)
     target = float(nominal_pressure) * model.nominal_area
-    lo, hi, f_lo, f_hi, it, ok = _find_separation(model, target, rtol, maxiter)
+    lo, hi, f_lo, f_hi, it, ok = _find_separation(model, target, tol, max_iter)
     logger.debug("separation search: %s after %d force evaluations, bracket [%.17g, %.17g] m, forces %.6g N "
                  "and %.6g N for a target of %.6g N", "converged" if ok else "not converged", it, lo, hi,
                  f_lo, f_hi, target)
     if not ok:
         raise RuntimeError(
-            f"the separation search did not converge in maxiter={maxiter} iterations "
+            f"the separation search did not converge in max_iter={max_iter} iterations "
             f"(bracket [{lo:.17g}, {hi:.17g}] m, forces {f_lo:.6g} N and {f_hi:.6g} N for a "
-            f"target of {target:.6g} N); raise maxiter"
+            f"target of {target:.6g} N); raise max_iter"
         )
     if lo == hi:
         return model.result(
@@ -379,7 +376,7 @@ def solve(
         f"(force_error = {(force - target) / target:+.3g}); pass jump='blend' for a "
         "force-balanced mix of the two states that is not a state of the model",
         ContactWarning,
-        stacklevel=2,
+        stacklevel=3,  # the caller of solve, past the renamed_keywords wrapper
     )
     return model.result(
         d, [tab], [1.0], target, float(nominal_pressure), "asperity", n_iterations=it,

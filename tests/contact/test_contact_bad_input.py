@@ -126,8 +126,8 @@ def test_zero_dimensional_arrays_are_scalars():
     s = bump()
     ref = contact.solve(s, 1e7, E, NU, 0.2, (E, NU))
     got = contact.solve(s, np.array(1e7), np.array(E), np.array(NU), np.array(0.2),
-                        (np.array(E), np.array(NU)), rtol=np.array(1e-10),
-                        maxiter=np.array(200))
+                        (np.array(E), np.array(NU)), tol=np.array(1e-10),
+                        max_iter=np.array(200))
     np.testing.assert_array_equal(got.pressure, ref.pressure)
     assert got.nominal_pressure == 1e7 and type(got.nominal_pressure) is float
     assert abs(got.force_error) <= 1e-6
@@ -184,5 +184,5 @@ def test_non_scalar_separation_cone_factor_and_hurst(rough):
         contact.solve(rough, 20e6, E, np.array([0.3]))
     with pytest.raises(ValueError, match=r"hurst must be in \[0, 1\]"):
         contact.weierstrass((16, 16), 1e-3, np.array([0.5]))
-    with pytest.raises(ValueError, match=r"maxiter must be a positive integer"):
-        contact.solve(rough, 20e6, E, NU, maxiter=2.5)
+    with pytest.raises(ValueError, match=r"max_iter must be a positive integer"):
+        contact.solve(rough, 20e6, E, NU, max_iter=2.5)

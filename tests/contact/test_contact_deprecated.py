@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
+import contact
 from contact import asperity, material
 
 
@@ -22,3 +24,46 @@ def test_contact_solver_has_no_other_names():
 
     with pytest.raises(AttributeError, match="has no attribute 'nothing'"):
         contact.solver.nothing
+
+
+def _bump():
+    x = np.linspace(-1.0, 1.0, 33)
+    return contact.Surface(-2e-6 * (x[:, None] ** 2 + x[None, :] ** 2), 1e-5)
+
+
+@pytest.mark.parametrize(("old", "new", "value"), [("rtol", "tol", 1e-6), ("maxiter", "max_iter", 50)])
+def test_solve_takes_the_old_keyword_names_with_a_warning(old, new, value):
+    s = _bump()
+    ref = contact.solve(s, 1e6, 210e9, 0.3, **{new: value})
+    with pytest.warns(DeprecationWarning, match=rf"solve\({old}=\.\.\.\) is deprecated; pass {new}="):
+        got = contact.solve(s, 1e6, 210e9, 0.3, **{old: value})
+    np.testing.assert_array_equal(got.pressure, ref.pressure)
+    assert got.separation == ref.separation
+
+
+def test_solve_refuses_an_old_and_a_new_name_together():
+    with pytest.raises(TypeError, match=r"got both rtol= and tol=; pass tol= only"):
+        contact.solve(_bump(), 1e6, 210e9, 0.3, rtol=1e-6, tol=1e-6)
+
+
+def test_old_keyword_values_are_checked_under_the_new_name():
+    with (pytest.warns(DeprecationWarning),
+          pytest.raises(ValueError, match=r"max_iter must be a positive integer")):
+        contact.solve(_bump(), 1e6, 210e9, 0.3, maxiter=0)
+
+
+def test_solve_and_solve_bem_share_the_names_of_their_stopping_rule():
+    import inspect
+
+    for func in (contact.solve, contact.solve_bem, contact.solve_bem_displacement, contact.compare_models):
+        params = inspect.signature(func).parameters
+        assert {"tol", "max_iter"} <= set(params), func.__name__
+        assert not {"rtol", "maxiter"} & set(params), func.__name__
+
+
+def test_warnings_of_solve_point_at_its_caller():
+    # a load inside the jump of a single summit's first touch
+    s = _bump()
+    with pytest.warns(contact.ContactWarning) as record:
+        contact.solve(s, 1.0, 210e9, 0.3)
+    assert record[0].filename == __file__
