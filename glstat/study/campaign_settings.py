@@ -20,6 +20,7 @@ __all__ = [
     "check_positive_integer",
     "is_integer",
     "nyquist_terms",
+    "terms_of",
 ]
 
 #: Version of the on-disk layout; part of the manifest.
@@ -171,10 +172,7 @@ class CampaignSettings:
 
     def max_frequency(self, ih: int) -> float:
         """Highest Weierstrass frequency of Hurst exponent number ``ih``, in 1/m."""
-        nt = self.n_terms[ih]
-        if nt is None:
-            nt = nyquist_terms(self.grid, self.length, self.gamma)
-        return self.gamma ** (nt - 1) / self.length
+        return self.gamma ** (terms_of(self, ih) - 1) / self.length
 
     def tasks(self) -> list[tuple[int, int, int]]:
         """Every (H index, load index, surface index) of the campaign."""
@@ -184,6 +182,13 @@ class CampaignSettings:
     def seed_sequence(self, ih: int, il: int, i: int) -> np.random.SeedSequence:
         """``SeedSequence(seed).spawn(nH)[ih].spawn(nL)[il].spawn(...)[i]`` (spawn key (ih, il, i))."""
         return np.random.SeedSequence(self.seed, spawn_key=(ih, il, i))
+
+
+def terms_of(settings: CampaignSettings, ih: int) -> int:
+    """Weierstrass terms per axis of Hurst exponent number ``ih`` (its ``n_terms``, or every
+    frequency up to the grid's Nyquist limit for None)."""
+    nt = settings.n_terms[ih]
+    return nyquist_terms(settings.grid, settings.length, settings.gamma) if nt is None else nt
 
 
 def _check_measured_files(s: CampaignSettings) -> None:

@@ -118,7 +118,7 @@ def other_readings(l1: float, l2: float, l3: float,
     return [("λ2 sign changed", (l1, -l2, l3, l4)), ("Q(U), decreasing Q", (l1, -l2, l4, l3))]
 
 
-def valid_gld(lambdas: Sequence[float]) -> GLD | None:
+def valid_gld(lambdas: tuple[float, float, float, float]) -> GLD | None:
     """The RS GLD of ``lambdas``, or None when they are not a valid one."""
     from ..errors import InvalidParameterError
     from ..gld import GLD

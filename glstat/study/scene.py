@@ -22,7 +22,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .campaign import CampaignSettings, nyquist_terms
+from .campaign_settings import CampaignSettings, check_positive_integer, nyquist_terms, terms_of
+from .scene_search import PressureAtRq, search_log_rq
+from .surface_task import solve_asperity, weierstrass_surface
 
 __all__ = ["RqSearch", "rq_for_pressure", "scene_summary"]
 
@@ -90,10 +92,6 @@ class RqSearch:
         })
 
 
-class _Unreachable(Exception):
-    pass
-
-
 def _settings_for(settings: CampaignSettings | None, hurst) -> tuple[CampaignSettings, list[int]]:
     """The settings and the indices of ``hurst`` in them. Exponents of the settings keep their
     index, hence the campaign's seeds and truncation; for others the settings are replaced by
@@ -115,191 +113,6 @@ def _settings_for(settings: CampaignSettings | None, hurst) -> tuple[CampaignSet
         )
     s2 = dataclasses.replace(s, hurst=hs, n_terms=s.n_terms[:1], n_examples=0)
     return s2, list(range(len(hs)))
-
-
-def _solve_one(settings: CampaignSettings, ih: int, il: int, i: int, rq: float, grid: int,
-               load: float):
-    """Mean pressure (Pa), asperities and points in contact of surface i at this Rq and grid;
-    None when the surface cannot carry the load."""
-    import contact
-
-    rng = np.random.default_rng(settings.seed_sequence(ih, il, i))
-    surf = contact.weierstrass((grid, grid), settings.length, settings.hurst[ih], settings.gamma,
-                               rq=rq, rng=rng, n_terms=settings.n_terms[ih])
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", contact.ContactWarning)
-            res = contact.solve(surf, load, settings.E, settings.nu, settings.cone_factor)
-    except ValueError as exc:
-        if "unreachable" in str(exc):
-            return None
-        raise
-    p = res.pressure
-    return float(res.mean_pressure), len(res.asperities), int(np.count_nonzero(p > 0))
-
-
-class _Evaluator:
-    """Mean contact pressure per H at a given Rq (cached), on one grid."""
-
-    def __init__(self, settings, ihs, il, n_seeds, grid, load, record):
-        self.s, self.ihs, self.il, self.n, self.grid, self.load = (settings, ihs, il, n_seeds,
-                                                                   grid, load)
-        self.cache: dict[float, tuple] = {}
-        self.record = record
-
-    def __call__(self, rq: float):
-        if rq in self.cache:
-            return self.cache[rq]
-        p, na, nc, ok = [], [], [], True
-        for ih in self.ihs:
-            out = [_solve_one(self.s, ih, self.il, i, rq, self.grid, self.load)
-                   for i in range(self.n)]
-            if any(o is None for o in out):
-                ok = False
-                p.append(math.nan)
-                na.append(math.nan)
-                nc.append(math.nan)
-                continue
-            p.append(float(np.mean([o[0] for o in out])))
-            na.append(float(np.mean([o[1] for o in out])))
-            nc.append(float(np.mean([o[2] for o in out])))
-        val = (tuple(p), tuple(na), tuple(nc), ok)
-        self.cache[rq] = val
-        self.record.append({"grid": self.grid, "rq": rq, "hurst": tuple(self.s.hurst[i] for i in self.ihs),
-                            "mean_pressure": tuple(p), "feasible": ok})
-        return val
-
-
-def _root(ev: _Evaluator, targets: np.ndarray, x0: float, bounds: tuple[float, float],
-          tol: float, max_eval: int):
-    """Find log Rq with mean_H log(p_H / t_H) = 0 (|.| <= tol) by a safeguarded secant on
-    log Rq (slope 1 to start: p roughly proportional to Rq), then Illinois regula falsi.
-
-    Returns (x, g, converged); raises _Unreachable(side, info) when the target lies outside
-    what ``bounds`` reach.
-    """
-    lo_b, hi_b = math.log(bounds[0]), math.log(bounds[1])
-
-    def g(x):
-        p, _, _, ok = ev(math.exp(x))
-        if not ok:
-            return -math.inf  # the load is not carried: Rq too small
-        return float(np.mean(np.log(np.asarray(p) / targets)))
-
-    n_eval = 0
-    x = min(max(x0, lo_b), hi_b)
-    gx = g(x)
-    n_eval += 1
-    best = (abs(gx), x, gx)
-    if abs(gx) <= tol:
-        return x, gx, True
-    slope = 1.0
-    a = b = None  # bracket: g(a) < 0 < g(b)
-    if gx < 0:
-        a, ga = x, gx
-    else:
-        b, gb = x, gx
-    # expand from x until the root is bracketed
-    while a is None or b is None:
-        if not math.isfinite(gx):
-            step = math.log(10.0)
-        else:
-            step = min(max(-gx / slope, -math.log(30.0)), math.log(30.0))
-        if gx < 0:
-            step = max(step, 0.02)
-        else:
-            step = min(step, -0.02)
-        xn = min(max(x + step, lo_b), hi_b)
-        if xn == x:
-            raise _Unreachable("above" if gx < 0 else "below", x)
-        gn = g(xn)
-        n_eval += 1
-        if math.isfinite(gn) and math.isfinite(gx) and gn != gx:
-            slope = min(max((gn - gx) / (xn - x), 0.2), 5.0)
-        x, gx = xn, gn
-        if abs(gx) < best[0]:
-            best = (abs(gx), x, gx)
-        if abs(gx) <= tol:
-            return x, gx, True
-        if gx < 0:
-            a, ga = x, gx
-        else:
-            b, gb = x, gx
-        if n_eval >= 3 * max_eval:
-            break
-    if a is None or b is None:
-        return best[1], best[2], False
-    # Illinois regula falsi on the bracket (bisection while an end is infeasible)
-    side, n_rf = 0, 0
-    while n_rf < max_eval or not math.isfinite(ga):
-        if abs(b - a) <= 1e-7:
-            break
-        if not math.isfinite(ga) and abs(b - a) < 1e-3:
-            # the root sits at the smallest Rq that carries the load: the target is lower
-            # than any mean pressure the model reaches
-            raise _Unreachable("below", b)
-        if math.isfinite(ga):
-            x = (a * gb - b * ga) / (gb - ga)
-            if not (min(a, b) < x < max(a, b)):
-                x = 0.5 * (a + b)
-        else:
-            x = 0.5 * (a + b)
-        gx = g(x)
-        n_rf += 1
-        if abs(gx) < best[0]:
-            best = (abs(gx), x, gx)
-        if abs(gx) <= tol:
-            return x, gx, True
-        if gx < 0:
-            a, ga = x, gx
-            if side == -1:
-                gb *= 0.5
-            side = -1
-        else:
-            b, gb = x, gx
-            if side == 1 and math.isfinite(ga):
-                ga *= 0.5
-            side = 1
-    return best[1], best[2], False
-
-
-def _unreachable_message(ev: _Evaluator, targets, side: str, rq_end: float,
-                         bounds: tuple[float, float], load: float) -> str:
-    """The error message of an unreachable target: the target and the reachable range."""
-    s = ev.s
-    hs = ", ".join(f"{s.hurst[i]:g}" for i in ev.ihs)
-    tstr = ", ".join(f"{v / 1e6:.6g}" for v in targets)
-    many = len(ev.ihs) > 1
-
-    def pm(rq):
-        p, _, _, ok = ev(rq)
-        return float(np.exp(np.mean(np.log(p)))) if ok else math.nan
-
-    what = (f"{'geometric mean over the H of the ' if many else ''}mean over {ev.n} "
-            f"surface(s), {ev.grid}² grid")
-    p_end = pm(rq_end)
-    if side == "above":
-        low = ev.cache.get(bounds[0])
-        if low is not None and low[3]:
-            start = f"runs from {pm(bounds[0]) / 1e6:.6g} MPa at Rq = {bounds[0]:.3g} m"
-        else:  # not evaluated (solves with nearly the whole surface in contact are slow)
-            start = (f"is never below the nominal {load / 1e6:.6g} MPa (approached as nearly "
-                     "the whole surface comes into contact at small Rq)")
-        return (
-            f"target mean contact pressure {tstr} MPa (H = {hs}) is above the reachable range: "
-            f"with Rq in [{bounds[0]:.3g}, {bounds[1]:.3g}] m the asperity model's mean contact "
-            f"pressure ({what}) {start} and reaches at most {p_end / 1e6:.6g} MPa at "
-            f"Rq = {rq_end:.3g} m; raise rq_bounds[1] or lower the target"
-        )
-    p_top = pm(bounds[1])
-    why = ("smaller Rq cannot carry the load" if rq_end > bounds[0] * (1 + 1e-9)
-           else "the lower end of rq_bounds")
-    return (
-        f"target mean contact pressure {tstr} MPa (H = {hs}) is below the reachable range: the "
-        f"asperity model's mean contact pressure ({what}) runs from {p_end / 1e6:.6g} MPa at "
-        f"Rq = {rq_end:.3g} m ({why}) up to {p_top / 1e6:.6g} MPa at Rq = {bounds[1]:.3g} m; "
-        "lower rq_bounds[0] or raise the target"
-    )
 
 
 def _as_targets(target, n_h: int) -> np.ndarray:
@@ -409,14 +222,10 @@ def rq_for_pressure(
     """
     t0 = time.perf_counter()
     s, idx = _settings_for(settings, hurst)
-    if isinstance(n_seeds, bool) or int(n_seeds) != n_seeds or n_seeds < 1:
-        raise ValueError(f"n_seeds must be a positive integer, got {n_seeds!r}")
-    n_seeds = int(n_seeds)
+    n_seeds = check_positive_integer(n_seeds, "n_seeds")
     if not (isinstance(rtol, int | float) and 0 < rtol < 0.5):
         raise ValueError(f"rtol must be in (0, 0.5), got {rtol!r}")
-    lo_b, hi_b = (float(v) for v in rq_bounds)
-    if not (math.isfinite(lo_b) and math.isfinite(hi_b) and 0 < lo_b < hi_b):
-        raise ValueError(f"rq_bounds must be 0 < low < high (m), got {rq_bounds!r}")
+    bounds = _as_bounds(rq_bounds)
     targets = _as_targets(target_mean_pressure, len(idx))
     load = s.pressures[0]
     if (targets <= load).any():
@@ -430,32 +239,13 @@ def rq_for_pressure(
     record: list = []
     # groups of positions k in idx solved together (one Rq each)
     groups = [[k] for k in range(len(idx))] if per_hurst else [list(range(len(idx)))]
-    coarse_n = None if coarse_grid is None else int(coarse_grid)
-    if coarse_n is not None and not (
-            s.grid >= 2 * coarse_n
-            and all(nt is not None and nt <= nyquist_terms(coarse_n, s.length, s.gamma)
-                    for nt in (s.n_terms[i] for i in idx))):
-        coarse_n = None
+    coarse_n = _coarse_grid(s, idx, coarse_grid)
     n = len(idx)
     rq_out, ach, na, nc = [math.nan] * n, [math.nan] * n, [math.nan] * n, [math.nan] * n
     converged = True
     for ks in groups:
-        ihs = [idx[k] for k in ks]
-        tg = targets[ks]
-        x0 = math.log(min(max(s.rq, lo_b), hi_b))
-        fine = _Evaluator(s, ihs, 0, n_seeds, s.grid, load, record)
-        try:
-            if coarse_n is not None:
-                coarse = _Evaluator(s, ihs, 0, n_seeds, coarse_n, load, record)
-                try:
-                    x0, _, _ = _root(coarse, tg, x0, (lo_b, hi_b), 2 * tol, 3)
-                except _Unreachable:
-                    pass  # decided on the settings' grid
-            x, _, ok = _root(fine, tg, x0, (lo_b, hi_b), tol, max_evaluations)
-        except _Unreachable as exc:
-            side, x_end = exc.args
-            raise ValueError(_unreachable_message(fine, tg, side, math.exp(x_end), (lo_b, hi_b),
-                                                  load)) from None
+        fine = PressureAtRq(s, [idx[k] for k in ks], 0, n_seeds, s.grid, load, record)
+        x, ok = search_log_rq(fine, targets[ks], s.rq, bounds, coarse_n, tol, max_evaluations)
         converged &= ok
         p, a_, c_, _ = fine(math.exp(x))  # cached: the evaluation that gave x
         for j, k in enumerate(ks):
@@ -480,6 +270,27 @@ def rq_for_pressure(
     return out.rq if per_hurst else out.rq[0]
 
 
+def _as_bounds(rq_bounds) -> tuple[float, float]:
+    """``rq_bounds`` as (low, high) floats, 0 < low < high, in metres."""
+    lo_b, hi_b = (float(v) for v in rq_bounds)
+    if not (math.isfinite(lo_b) and math.isfinite(hi_b) and 0 < lo_b < hi_b):
+        raise ValueError(f"rq_bounds must be 0 < low < high (m), got {rq_bounds!r}")
+    return lo_b, hi_b
+
+
+def _coarse_grid(s: CampaignSettings, idx: list[int], coarse_grid: int | None) -> int | None:
+    """The grid of the starting steps: ``coarse_grid`` when the settings' grid is at least
+    twice as fine and the truncation of every searched H fits under its Nyquist limit."""
+    if coarse_grid is None:
+        return None
+    n = int(coarse_grid)
+    if s.grid < 2 * n:
+        return None
+    limit = nyquist_terms(n, s.length, s.gamma)
+    terms = [s.n_terms[i] for i in idx]
+    return n if all(nt is not None and nt <= limit for nt in terms) else None
+
+
 def _convergence_warning():
     from ..errors import ConvergenceWarning
 
@@ -489,10 +300,7 @@ def _convergence_warning():
 def _expected_slope_ratio(settings: CampaignSettings, ih: int) -> float:
     """Expected rms gradient over rms height of the truncated Weierstrass series (random
     N(0,1) amplitudes and uniform phases), 1/m."""
-    nt = settings.n_terms[ih]
-    if nt is None:
-        nt = nyquist_terms(settings.grid, settings.length, settings.gamma)
-    k = settings.gamma ** np.arange(nt)
+    k = settings.gamma ** np.arange(terms_of(settings, ih))
     h = settings.hurst[ih]
     amp2 = np.outer(k, k) / (k[:, None] ** 2 + k[None, :] ** 2) ** (h + 1)
     grad2 = (2 * math.pi / settings.length) ** 2 * (k[:, None] ** 2 + k[None, :] ** 2)
@@ -544,48 +352,50 @@ def scene_summary(settings: CampaignSettings | None = None, *, n_seeds: int = 3,
     import contact
 
     s = settings if settings is not None else CampaignSettings()
-    if isinstance(n_seeds, bool) or int(n_seeds) != n_seeds or n_seeds < 1:
-        raise ValueError(f"n_seeds must be a positive integer, got {n_seeds!r}")
+    n_seeds = check_positive_integer(n_seeds, "n_seeds")
     if paper_pressures is None:
-        from .paper import TABLE1
+        from .paper_table import TABLE1
 
         paper_pressures = {r.hurst: r.mean_mpa * 1e6 for r in TABLE1}
     e_star = contact.effective_modulus(s.E, s.nu)
     ce = s.cone_factor * e_star
+    nan = math.nan
     rows = []
     for ih, h in enumerate(s.hurst):
-        slopes, mp, tb, na, nc = [], [], [], [], []
-        for i in range(int(n_seeds)):
-            rng = np.random.default_rng(s.seed_sequence(ih, 0, i))
-            surf = contact.weierstrass((s.grid, s.grid), s.length, h, s.gamma, rq=s.rq, rng=rng,
-                                       n_terms=s.n_terms[ih])
-            gx, gy = np.gradient(surf.heights, surf.dx, surf.dy)
-            slopes.append(math.sqrt(float(np.mean(gx * gx + gy * gy))))
-            if solve:
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore", contact.ContactWarning)
-                    res = contact.solve(surf, s.pressures[0], s.E, s.nu, s.cone_factor)
-                mp.append(res.mean_pressure)
-                tb.append(float(np.mean(np.tan(res.asperities["beta"].to_numpy(float)))))
-                na.append(len(res.asperities))
-                nc.append(int(np.count_nonzero(res.pressure > 0)))
-        nt = s.n_terms[ih]
-        if nt is None:
-            nt = nyquist_terms(s.grid, s.length, s.gamma)
+        m = _measure_scene(s, ih, n_seeds, solve)
         pp = paper_pressures.get(float(h), math.nan)
         row = {
-            "hurst": h, "rq_m": s.rq, "n_terms": nt,
+            "hurst": h, "rq_m": s.rq, "n_terms": terms_of(s, ih),
             "shortest_wavelength_m": 1.0 / s.max_frequency(ih),
-            "rms_slope": float(np.mean(slopes)),
+            "rms_slope": float(np.mean(m["slope"])),
             "rms_slope_expected": s.rq * _expected_slope_ratio(s, ih),
             "e_star_pa": e_star, "cone_factor": s.cone_factor,
-            "mean_pressure_pa": float(np.mean(mp)) if solve else math.nan,
-            "tan_beta_implied": float(np.mean(mp)) / ce if solve else math.nan,
-            "tan_beta_asperities": float(np.mean(tb)) if solve else math.nan,
-            "n_asperities": float(np.mean(na)) if solve else math.nan,
-            "n_contact": float(np.mean(nc)) if solve else math.nan,
+            "mean_pressure_pa": float(np.mean(m["mean_pressure"])) if solve else nan,
+            "tan_beta_implied": float(np.mean(m["mean_pressure"])) / ce if solve else nan,
+            "tan_beta_asperities": float(np.mean(m["tan_beta"])) if solve else nan,
+            "n_asperities": float(np.mean(m["n_asperities"])) if solve else nan,
+            "n_contact": float(np.mean(m["n_contact"])) if solve else nan,
             "paper_mean_pressure_pa": pp, "paper_tan_beta": pp / ce,
         }
         row["rms_slope_over_paper_tan_beta"] = row["rms_slope"] / row["paper_tan_beta"]
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _measure_scene(s: CampaignSettings, ih: int, n_seeds: int, solve: bool) -> dict[str, list]:
+    """Per campaign surface 0 .. n_seeds-1 of Hurst exponent number ``ih`` at the first load:
+    the rms slope of its heights on the grid and, with ``solve``, its mean contact pressure
+    (Pa), mean tan β of the asperities in contact, asperities and grid points in contact."""
+    out: dict[str, list] = {"slope": [], "mean_pressure": [], "tan_beta": [], "n_asperities": [],
+                            "n_contact": []}
+    for i in range(n_seeds):
+        surf = weierstrass_surface(s, ih, 0, i)
+        gx, gy = np.gradient(surf.heights, surf.dx, surf.dy)
+        out["slope"].append(math.sqrt(float(np.mean(gx * gx + gy * gy))))
+        if solve:
+            res = solve_asperity(s, surf, s.pressures[0])
+            out["mean_pressure"].append(res.mean_pressure)
+            out["tan_beta"].append(float(np.mean(np.tan(res.asperities["beta"].to_numpy(float)))))
+            out["n_asperities"].append(len(res.asperities))
+            out["n_contact"].append(int(np.count_nonzero(res.pressure > 0)))
+    return out
