@@ -105,17 +105,15 @@ class Surface:
         contact.ContactWarning
             The Hurst fit is outside [0, 1] or has R² below ``hurst_min_r2``.
         """
-        valid = None if self.mask is None else ~np.asarray(self.mask, dtype=bool)
-        return roughness_parameters(
-            self.heights, self.dx, self.dy, valid, level=level, hurst_min_r2=hurst_min_r2
-        )
+        h, valid = height_map(self.heights, self.mask)
+        return roughness_parameters(h, self.dx, self.dy, valid, level=level, hurst_min_r2=hurst_min_r2)
 
     def detrend(self, level: str = "plane") -> Surface:
         """A new surface with the mean (``"mean"``) or least-squares plane (``"plane"``)
         subtracted, fitted on the measured points; spacing and mask are kept."""
-        valid = np.ones(self.shape, bool) if self.mask is None else ~np.asarray(self.mask, bool)
-        h = level_heights(self.heights, valid, self.dx, self.dy, level)
-        return Surface(h, self.dx, self.dy, mask=self.mask)
+        h, valid = height_map(self.heights, self.mask)
+        return Surface(level_heights(h, valid, self.dx, self.dy, level), self.dx, self.dy,
+                       mask=self.mask)
 
     def write(self, path: str | os.PathLike, *, format: str | None = None) -> None:
         """Write the surface to ``path`` (.npz, .npy, text grid, .xyz or .x3p).

@@ -43,6 +43,7 @@ def test_summits_refuse_a_surface_changed_after_it_was_made():
         contact.summits(s)
 
 
+@pytest.mark.filterwarnings("ignore::contact.ContactWarning")  # a load inside a force jump
 @pytest.mark.parametrize("solve", SOLVERS)
 def test_iteration_limits_follow_one_rule(solve):
     s = _rough()
