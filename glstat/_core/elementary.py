@@ -1,6 +1,7 @@
 """Elementary functions written without cancellation (numba kernels).
 
-``expm1(x) - x`` and ``-log1p(-p) - p`` by their series where the direct forms cancel.
+``expm1(x) - x`` and ``-log1p(-p) - p`` by their series where the direct forms cancel;
+``log(exp(x) + exp(y))`` and ``log(1 + exp(x))`` without overflow.
 """
 
 import math
@@ -37,3 +38,17 @@ def log1mp_m(p):
         return s
     return -math.log1p(-p) - p
 
+
+@njit(cache=True, error_model="numpy")
+def log_add_exp(x, y):
+    """log(exp(x) + exp(y)) without over- or underflow of the exponentials."""
+    hi = max(x, y)
+    return hi + math.log1p(math.exp(min(x, y) - hi))
+
+
+@njit(cache=True, error_model="numpy")
+def softplus(x):
+    """log(1 + e^x) without overflow."""
+    if x > 0.0:
+        return x + math.log1p(math.exp(-x))
+    return math.log1p(math.exp(x))

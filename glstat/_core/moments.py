@@ -17,6 +17,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .double_double import EPS
+from .elementary import softplus
 from .quantile_function import LN2, RS, log_qprime_lower, q_lower, rs_sign, rs_tiny
 
 # tanh-sinh nodes on (0, 1) in log space
@@ -94,7 +96,7 @@ def _central_closed(fam, a, b, k, m):
             total_abs += term
     if total == 0.0:
         return 0.0, math.inf
-    return total, 4.0 * 2.220446049250313e-16 * total_abs / abs(total)
+    return total, 4.0 * EPS * total_abs / abs(total)
 
 
 @njit(cache=True, error_model="numpy")
@@ -275,14 +277,6 @@ def lmoments_kernel(fam, a, b, rmax, out):
 
 
 @njit(cache=True, error_model="numpy")
-def _softplus(x):
-    """log(1 + e^x) without overflow."""
-    if x > 0.0:
-        return x + math.log1p(math.exp(-x))
-    return math.log1p(math.exp(x))
-
-
-@njit(cache=True, error_model="numpy")
 def _gap(ca, am1, cb, bm1, lu, l1):
     """g = log(A) - log(B) for the terms A = e^ca u^(a-1), B = e^cb (1-u)^(b-1) of Q'."""
     return (ca - cb) + am1 * lu - bm1 * l1
@@ -292,12 +286,12 @@ def _gap(ca, am1, cb, bm1, lu, l1):
 def _gap_root(ca, am1, cb, bm1, s_lo, s_hi):
     """Root in the logit s = log(u/(1-u)) of g on [s_lo, s_hi] (g of opposite signs at the
     ends), by bisection to the last bit."""
-    g_lo = _gap(ca, am1, cb, bm1, -_softplus(-s_lo), -_softplus(s_lo))
+    g_lo = _gap(ca, am1, cb, bm1, -softplus(-s_lo), -softplus(s_lo))
     for _ in range(2200):
         mid = 0.5 * (s_lo + s_hi)
         if mid <= s_lo or mid >= s_hi:
             break
-        g = _gap(ca, am1, cb, bm1, -_softplus(-mid), -_softplus(mid))
+        g = _gap(ca, am1, cb, bm1, -softplus(-mid), -softplus(mid))
         if g == 0.0:
             return mid
         if (g > 0.0) == (g_lo > 0.0):
@@ -377,8 +371,8 @@ def _entropy_sum(ca, am1, cb, bm1):
     for k in range(ne - 1):
         s_lo = ends[k]
         s_hi = ends[k + 1]
-        g_lo = _gap(ca, am1, cb, bm1, -_softplus(-s_lo), -_softplus(s_lo))
-        g_hi = _gap(ca, am1, cb, bm1, -_softplus(-s_hi), -_softplus(s_hi))
+        g_lo = _gap(ca, am1, cb, bm1, -softplus(-s_lo), -softplus(s_lo))
+        g_hi = _gap(ca, am1, cb, bm1, -softplus(-s_hi), -softplus(s_hi))
         if (g_lo > 0.0) != (g_hi > 0.0) and g_lo != 0.0 and g_hi != 0.0:
             brk[nb] = _gap_root(ca, am1, cb, bm1, s_lo, s_hi)
             nb += 1
@@ -392,14 +386,14 @@ def _entropy_sum(ca, am1, cb, bm1):
         if s0 == -math.inf:
             u0, lu0, c0, lc0 = 0.0, -math.inf, 1.0, 0.0
         else:
-            lu0 = -_softplus(-s0)
-            lc0 = -_softplus(s0)
+            lu0 = -softplus(-s0)
+            lc0 = -softplus(s0)
             u0, c0 = math.exp(lu0), math.exp(lc0)
         if s1 == math.inf:
             u1, lu1, c1, lc1 = 1.0, 0.0, 0.0, -math.inf
         else:
-            lu1 = -_softplus(-s1)
-            lc1 = -_softplus(s1)
+            lu1 = -softplus(-s1)
+            lc1 = -softplus(s1)
             u1, c1 = math.exp(lu1), math.exp(lc1)
         length = u1 - u0 if u1 <= 0.5 else c0 - c1
         if not length > 0.0:
@@ -425,7 +419,7 @@ def _entropy_sum(ca, am1, cb, bm1):
             lu = dl if u0 == 0.0 else math.log(u0 + math.exp(dl))
             l1 = dr if c1 == 0.0 else math.log(c1 + math.exp(dr))
             g = _gap(ca, am1, cb, bm1, lu, l1)
-            rem += math.exp(lw) * _softplus(-sg * g)
+            rem += math.exp(lw) * softplus(-sg * g)
         total += rem
     return total
 

@@ -22,7 +22,7 @@ import numpy as np
 from numba import njit
 
 from .double_double import EPS, dd_root, fast_two_sum, reciprocal_dd, two_prod, two_sum
-from .elementary import expm1mx, log1mp_m
+from .elementary import expm1mx, log1mp_m, log_add_exp
 
 RS = 0
 FKML = 1
@@ -186,9 +186,7 @@ def log_qprime_lower(fam, a, b, t, l1):
             if la > 600.0:
                 return la + math.log1p(-math.exp(lb - la))
             return math.log(qprime_lower(fam, a, b, t, l1))
-    hi = max(la, lb)
-    lo = min(la, lb)
-    return hi + math.log1p(math.exp(lo - hi))
+    return log_add_exp(la, lb)
 
 
 @njit(cache=True, error_model="numpy")
@@ -234,13 +232,11 @@ def _pow_logres(fam, a, b, w, t, p, l1):
     db = b * p / (1.0 - p)
     if w > 0.0:
         lw = math.log(w)
-        hi = max(lw, lb)
-        m = hi + math.log1p(math.exp(min(lw, lb) - hi))
+        m = log_add_exp(lw, lb)
         return la - m, a + math.exp(lb - m) * db, EPS * (abs(la) + abs(m))
     if w < 0.0:
         lw = math.log(-w)
-        hi = max(lw, la)
-        m = hi + math.log1p(math.exp(min(lw, la) - hi))
+        m = log_add_exp(lw, la)
         return m - lb, math.exp(la - m) * a + db, EPS * (abs(lb) + abs(m))
     return la - lb, a + db, EPS * (abs(la) + abs(lb))
 
