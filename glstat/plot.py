@@ -11,6 +11,8 @@ from typing import Any
 
 import numpy as np
 
+from ._gof_inputs import as_float_array, named_distributions
+
 __all__ = [
     "plot_histogram",
     "plot_integrity_vs_area",
@@ -122,20 +124,11 @@ def plot_integrity_vs_area(dist, threshold: float, n: float | None, area_factors
 # fitted distributions against data
 # ---------------------------------------------------------------------------------------------
 def _sample(data) -> np.ndarray:
-    from .gof import _as_float
-
-    x = _as_float(data)
+    x = as_float_array(data)
     x = x[np.isfinite(x)]
     if x.size < 2:
         raise ValueError(f"a plot of the data needs at least 2 finite points, got {x.size}")
     return np.sort(x)
-
-
-def _named_dists(fits_or_dists, names) -> list[tuple[str, Any]]:
-    from .gof import _models
-
-    models = _models(fits_or_dists, names, False, None, None)
-    return [(m.name, m.dist) for m in models]
 
 
 def plot_histogram(data, *fits_or_dists, bins: str | int | Any = "auto", names=None, ax=None) -> Any:
@@ -161,7 +154,7 @@ def plot_histogram(data, *fits_or_dists, bins: str | int | Any = "auto", names=N
         one line per model, in the order given, evaluated on 400 points spanning the data.
     """
     x = _sample(data)
-    models = _named_dists(fits_or_dists, names)
+    models = named_distributions(fits_or_dists, names)
     ax = _axes(ax)
     ax.hist(x, bins=bins, density=True, color="0.75", edgecolor="0.4", label="data")
     pad = 0.05 * (x[-1] - x[0])
@@ -215,7 +208,7 @@ def _probability_plots(caller: str, data, fits_or_dists, names, ax):
     if not fits_or_dists:
         raise ValueError(f"{caller} needs at least one fit or distribution")
     x = _sample(data)
-    models = _named_dists(fits_or_dists, names)
+    models = named_distributions(fits_or_dists, names)
     return [(name, ProbPlot(x, dist=dist, fit=False, a=_HAZEN_A)) for name, dist in models], _axes(ax)
 
 
