@@ -6,7 +6,12 @@ import numbers
 
 import numpy as np
 
-__all__ = ["check_level", "check_n_resamples"]
+__all__ = ["FIT_METHODS", "PARAMS", "check_level", "check_method", "check_n_resamples", "check_param"]
+
+#: The parameterisations of the GLD.
+PARAMS = ("rs", "fkml")
+#: The fitting methods of :func:`glstat.fit`.
+FIT_METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
 
 
 def check_n_resamples(n_resamples) -> int:
@@ -26,3 +31,18 @@ def check_level(confidence_level) -> float:
     if not 0.0 < c < 1.0:
         raise ValueError(f"confidence_level must be strictly between 0 and 1, got {c}")
     return c
+
+
+def check_param(param) -> str:
+    """A parameterisation, ``"rs"`` or ``"fkml"`` in any case; returned in lower case."""
+    p = str(param).lower()
+    if p not in PARAMS:
+        raise ValueError(f"param must be 'rs' or 'fkml', got {param!r}")
+    return p
+
+
+def check_method(method) -> str:
+    """A fitting method: one of :data:`FIT_METHODS`."""
+    if method not in FIT_METHODS:
+        raise ValueError(f"method must be one of {FIT_METHODS}, got {method!r}")
+    return method

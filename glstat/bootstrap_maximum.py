@@ -13,17 +13,26 @@ import numpy as np
 from scipy import optimize, special
 from scipy.stats import rv_continuous
 
-from ._lambda_rows import FAMILY, count_max_moments, log_tails, max_raw_moments, quantiles, support
+from ._lambda_rows import (
+    FAMILY,
+    count_max_moments,
+    log_tails,
+    max_quantiles,
+    max_raw_moments,
+    quantiles,
+    support,
+)
 from ._tails import log1mexp
 from ._validate import check_level
 from .counts import RowCounts, TabulatedCount
-from .extremes import MaximumDistribution, maximum
+from .extremes import MaximumCountDistribution, MaximumDistribution, maximum
 from .gld import GLD
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-__all__ = ["BootstrapMaximum", "BootstrapProbability", "MaximumMixture"]
+__all__ = ["BootstrapMaximum", "BootstrapProbability", "MaximumMixture", "resample_count_maximum",
+           "resample_maximum", "resample_probability"]
 
 
 class MaximumMixture(rv_continuous):
@@ -366,3 +375,67 @@ class BootstrapProbability:
         k = np.broadcast_to(self.area_factor, np.shape(self.estimate))
         return pd.DataFrame({"area_factor": np.ravel(k), "estimate": np.ravel(self.estimate),
                              "low": np.ravel(self.low), "high": np.ravel(self.high)})
+
+
+# ---------------------------------------------------------------------------------------------
+# the results from the lambdas of the successful resamples
+# ---------------------------------------------------------------------------------------------
+def resample_maximum(lam: np.ndarray, param: str, full: MaximumDistribution, level: float,
+                     g: np.random.Generator) -> BootstrapMaximum:
+    """The maximum of ``full.n`` draws for every row of ``lam`` (shape (B_ok, 4)): one random
+    draw each from ``g``, the medians, the means and the pooled mixture."""
+    fam = FAMILY[param]
+    n = full.n
+    v = g.random(lam.shape[0])
+    draws = max_quantiles(lam, fam, n, np.log(v)[:, None])[:, 0]
+    medians = max_quantiles(lam, fam, n, np.array([[math.log(0.5)]]))[:, 0]
+    means = max_raw_moments(lam, fam, n, 1)
+    return BootstrapMaximum(n=n, draws=draws, medians=medians, confidence_level=level,
+                            mixture=MaximumMixture(lam, param, n), full=full,
+                            _lam=lam, _param=param, _means=means)
+
+
+def resample_count_maximum(lam: np.ndarray, param: str, full: MaximumCountDistribution, count,
+                           cond: RowCounts, level: float, g: np.random.Generator) -> BootstrapMaximum:
+    """The maximum of a random number of draws for every row of ``lam``: ``count`` is the
+    count of the full-sample maximum ``full``, row b of ``cond`` the count of row b given at
+    least one draw. One count and one maximum drawn from ``g`` per row, the medians and the
+    pooled mixture."""
+    fam = FAMILY[param]
+    counts = cond.sample(g)
+    v = g.random(lam.shape[0])
+    draws = max_quantiles(lam, fam, counts[:, None], np.log(v)[:, None])[:, 0]
+    lf = cond.log_f_for(math.log(0.5))
+    with np.errstate(invalid="ignore"):
+        medians = quantiles(lam, fam, np.exp(lf)[:, None], (-np.expm1(lf))[:, None])[:, 0]
+    return BootstrapMaximum(n=float(count.mean), draws=draws, medians=medians,
+                            confidence_level=level,
+                            mixture=MaximumMixture(lam, param, 1.0, counts=cond), full=full,
+                            _lam=lam, _param=param, _counts=cond, count=count)
+
+
+def resample_probability(lam: np.ndarray, param: str, what: str, threshold: float, n, k: np.ndarray,
+                         estimate: np.ndarray, level: float, count=None,
+                         rows: RowCounts | None = None) -> BootstrapProbability:
+    """The probability of integrity (``what="integrity"``) or damage at ``threshold`` for every
+    row of ``lam`` and its percentile interval.
+
+    The number of points is ``n``, or the random ``count`` (full sample) with ``rows`` (its
+    distribution per row of ``lam``); ``k`` holds the area factors and ``estimate`` the
+    full-sample probabilities.
+    """
+    logf = log_tails(lam, FAMILY[param], np.array([threshold]))[0][:, 0]
+    logf = logf.reshape((-1,) + (1,) * k.ndim)  # one row per resample
+    if rows is None:
+        y = (logf * k) * float(n)  # k n log F
+        vals = np.exp(y) if what == "integrity" else -np.expm1(y)
+    elif what == "integrity":
+        vals = np.exp(k * rows.log_pgf(logf))
+    else:
+        vals = rows.damage(logf, k)
+    alpha = 1.0 - level
+    q = np.quantile(vals, [alpha / 2, 1 - alpha / 2], axis=0)
+    return BootstrapProbability(what=what, threshold=threshold,
+                                n=float(n) if count is None else float(count.mean),
+                                area_factor=k, estimate=estimate, low=q[0], high=q[1], values=vals,
+                                confidence_level=level, count=count)

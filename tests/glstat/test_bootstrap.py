@@ -163,7 +163,7 @@ def test_failed_fits_are_counted_and_listed():
 
 def test_all_failed_raises(sample, monkeypatch):
     """When no resample has a root the bootstrap raises, naming the reason."""
-    gb = importlib.import_module("glstat.bootstrap")  # the package attribute is the function
+    gb = importlib.import_module("glstat._bootstrap_resample")  # where the bootstrap calls fit_batch
 
     def no_roots(stats, *args, **kwargs):
         zero = np.zeros(len(stats), dtype=np.int64)
