@@ -41,9 +41,9 @@ import numbers
 
 import numpy as np
 from scipy import special
-from scipy.stats import rv_continuous
 
-from ._compat import rv_continuous_frozen
+from ._extreme_base import ExtremeFrozen, ExtremeGen, flat
+from ._incomplete_beta import betainccinv, betaincinv
 from ._tails import SF_TINY as _TINY
 from ._tails import TailAccess
 from ._tails import log1mexp as _log1mexp
@@ -55,30 +55,6 @@ __all__ = [
     "maximum",
     "order_statistic",
 ]
-
-
-# nodes of the moment quadrature in z = logit(v)
-_QUAD_H = 0.25
-_QUAD_Z = np.arange(-2800, 2801) * _QUAD_H
-_QUAD_LOGV = -np.logaddexp(0.0, -_QUAD_Z)
-_QUAD_LOG1MV = -np.logaddexp(0.0, _QUAD_Z)
-_QUAD_W = np.exp(_QUAD_LOGV + _QUAD_LOG1MV) * _QUAD_H
-
-
-# ------------------------------------------------------------------------------------------
-# parent distributions
-# ------------------------------------------------------------------------------------------
-def _flat(method):
-    """Run ``method`` on a 1-D float copy of its argument and restore the argument's shape."""
-
-    def wrapper(self, x):
-        x = np.asarray(x, dtype=float)
-        out = np.asarray(method(self, x.reshape(-1)), dtype=float)
-        return out.reshape(x.shape)
-
-    wrapper.__name__ = method.__name__
-    wrapper.__doc__ = method.__doc__
-    return wrapper
 
 
 def _check_n(n, name="n", what="a number of draws") -> float:
@@ -95,309 +71,23 @@ def _check_n(n, name="n", what="a number of draws") -> float:
     return value
 
 
-def _scalar_out(out):
-    return out[()] if out.ndim == 0 else out
-
-
-def _log_betainc_small(a, b, x):
-    """log I_x(a, b) for small x, from ``x^a (1-x)^b 2F1(a+b, 1; a+1; x) / (a B(a, b))``.
-
-    The hypergeometric factor is summed as its power series ``sum_j c_j x^j`` with
-    ``c_(j+1) / c_j = (a+b+j) / (a+1+j)``; where that series converges slowly
-    (``x (a+b) / (a+1) > 1/2``) the log of ``scipy.special.betainc`` is used instead.
-    """
-    x = np.asarray(x, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
-        term = np.ones_like(x)
-        series = np.ones_like(x)
-        for j in range(60):
-            term = term * x * ((a + b + j) / (a + 1.0 + j))
-            series = series + term
-        out = (
-            a * np.log(x) + b * np.log1p(-x) - math.log(a) - special.betaln(a, b)
-            + np.log(series)
-        )
-        slow = x * (a + b) / (a + 1.0) > 0.5
-        if slow.any():
-            out[slow] = np.log(special.betainc(a, b, x[slow]))
-    return out
-
-
-def _betaincinv_tail(a, b, logp):
-    """x with ``I_x(a, b) = exp(logp)`` in the deep lower tail (``exp(logp)`` tiny).
-
-    Starts from the leading term ``I_x ~ x^a / (a B(a, b))``, i.e.
-    ``x0 = exp((log p + log a + B(a, b)) / a)`` with ``B = betaln``, and refines it by Newton's
-    method on ``log I_x(a, b) - log p`` in ``y = log x``, whose derivative is
-    ``x f(x) / I_x = x^a (1-x)^(b-1) / (B(a, b) I_x)``.
-    """
-    logp = np.asarray(logp, dtype=float)
-    lbeta = special.betaln(a, b)
-    y0 = np.minimum((logp + math.log(a) + lbeta) / a, 0.0)
-    y = y0
-    with np.errstate(over="ignore", under="ignore", invalid="ignore", divide="ignore"):
-        for _ in range(8):
-            x = np.exp(y)
-            logi = _log_betainc_small(a, b, x)
-            slope = np.exp(a * y + (b - 1.0) * np.log1p(-x) - lbeta - logi)
-            step = (logi - logp) / slope
-            y = np.minimum(y - step, 0.0)
-        # where x underflows (or Newton has nothing to work on) the leading term stands
-        y = np.where(np.isfinite(y), y, y0)
-        return np.exp(y)
-
-
-def _betaincinv(a, b, p, logp):
-    """x with ``I_x(a, b) = p`` (``logp = log p``), finite down to the smallest p.
-
-    ``scipy.special.betaincinv`` returns NaN (or 0) below p ~ 1e-100 for some (a, b); there
-    the deep-tail inverse :func:`_betaincinv_tail` is used.
-    """
-    p, logp = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(logp, dtype=float))
-    with np.errstate(invalid="ignore"):
-        x = np.asarray(special.betaincinv(a, b, p), dtype=float)
-    bad = (p > 0) & (p < 1e-20) & (~np.isfinite(x) | (x <= 0))
-    bad |= np.isnan(x) & ~np.isnan(p) & (p > 0) & (p <= 0.5)
-    if bad.any():
-        x = np.array(x, copy=True)
-        x[bad] = _betaincinv_tail(a, b, logp[bad])
-    return x
-
-
-def _betainccinv(a, b, q, logq):
-    """x with ``1 - I_x(a, b) = q`` (``logq = log q``), finite down to the smallest q."""
-    q, logq = np.broadcast_arrays(np.asarray(q, dtype=float), np.asarray(logq, dtype=float))
-    with np.errstate(invalid="ignore"):
-        x = np.asarray(special.betainccinv(a, b, q), dtype=float)
-    bad = (q > 0) & (q <= 0.5) & (~np.isfinite(x) | (x >= 1))
-    if bad.any():
-        x = np.array(x, copy=True)
-        x[bad] = 1.0 - _betaincinv(b, a, q[bad], logq[bad])
-    return x
-
-
-def _valid_range(g):
-    """Largest index range ``[lo, hi)`` around the middle node where g is usable.
-
-    g holds quantiles at increasing probabilities; the range grows outwards from the middle
-    while the values are finite and non-decreasing up to a relative 1e-10.
-    """
-    mid = g.size // 2
-    if not np.isfinite(g[mid]):
-        return mid, mid
-    with np.errstate(invalid="ignore", over="ignore"):
-        tol = 1e-10 * np.maximum(np.abs(g[1:]), np.abs(g[:-1]))
-        step_ok = np.isfinite(g[1:]) & np.isfinite(g[:-1]) & (g[1:] >= g[:-1] - tol)
-    # step_ok[i] refers to the pair (i, i + 1)
-    up = np.flatnonzero(~step_ok[mid:])
-    hi = g.size if up.size == 0 else mid + int(up[0]) + 1
-    down = np.flatnonzero(~step_ok[:mid])
-    lo = 0 if down.size == 0 else int(down[-1]) + 1
-    return lo, hi
-
-
-# ------------------------------------------------------------------------------------------
-# common generator and frozen machinery
-# ------------------------------------------------------------------------------------------
-class _ExtremeGen(rv_continuous):
-    """Shape-free ``rv_continuous`` whose functions come from a parent distribution."""
-
-    def __init__(self, parent=None, order=None, **kwargs):
-        if parent is None or order is None:
-            raise TypeError("the parent distribution and the order parameters are required")
-        self._parent = parent
-        self._order = order
-        kwargs.setdefault("a", parent.a)
-        kwargs.setdefault("b", parent.b)
-        super().__init__(**kwargs)
-        self._moment_cache = None
-
-    def _updated_ctor_param(self):
-        dct = super()._updated_ctor_param()
-        dct["parent"] = self._parent
-        dct["order"] = self._order
-        return dct
-
-    # functions of v and of its complement, both accurate -------------------------------
-    # Subclasses define ``_quantile_vq(v, q, logv, logq)``: the quantile at probability v with
-    # complement q (and their logs), all accurate; the methods below are written in terms of it.
-
-    @_flat
-    def _ppf(self, v):
-        v = np.asarray(v, dtype=float)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out = self._quantile_vq(v, 1.0 - v, np.log(v), np.log1p(-v))
-        return np.where((v >= 0) & (v <= 1), out, np.nan)
-
-    @_flat
-    def _isf(self, q):
-        q = np.asarray(q, dtype=float)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out = self._quantile_vq(1.0 - q, q, np.log1p(-q), np.log(q))
-        return np.where((q >= 0) & (q <= 1), out, np.nan)
-
-    @_flat
-    def _cdf(self, x):
-        return np.exp(self._logcdf(x))
-
-    @_flat
-    def _pdf(self, x):
-        return np.exp(self._logpdf(x))
-
-    def _rvs(self, size=None, random_state=None):
-        v = random_state.uniform(size=size)
-        return self._ppf(v)
-
-    # moments by quadrature over the order statistic's own uniform variable ------------------
-    def _quad_values(self):
-        """Quantiles at the quadrature nodes and the range ``[lo, hi)`` where they are valid.
-
-        Parents evaluated at tail probabilities near ``exp(-700)`` may return values that
-        are infinite, NaN, of the wrong sign or saturated (scipy's ``t.ppf(1e-300)`` is
-        ``+inf``). Starting from the median node, the range extends outwards while the
-        quantiles are finite and non-decreasing (to a relative 1e-10, which allows rounding
-        noise), so every node outside it is dropped. Whether the dropped tails matter is
-        decided by :meth:`_quad_expect`.
-        """
-        if self._moment_cache is None:
-            g = np.asarray(
-                self._quantile_vq(
-                    np.exp(_QUAD_LOGV), np.exp(_QUAD_LOG1MV), _QUAD_LOGV, _QUAD_LOG1MV
-                ),
-                dtype=float,
-            )
-            self._moment_cache = (g, *_valid_range(g))
-        return self._moment_cache
-
-    def _quad_expect(self, h):
-        """``E[h(X)]`` by the trapezoidal rule in ``z = logit(v)``; NaN if it does not exist.
-
-        The sum runs over the valid nodes (:meth:`_quad_values`). It is accepted only when
-        the terms at both ends of that range are below 1e-15 of the sum of magnitudes, so
-        that the neglected tails (whose weight falls geometrically beyond the ends) do not
-        change the result: a moment that does not exist has terms that do not decay, and
-        gives NaN.
-        """
-        g, lo, hi = self._quad_values()
-        if hi - lo < 32:
-            return np.nan
-        with np.errstate(over="ignore", invalid="ignore"):
-            terms = h(g[lo:hi]) * _QUAD_W[lo:hi]
-        if not np.all(np.isfinite(terms)):
-            return np.nan
-        total = math.fsum(terms)
-        scale = math.fsum(np.abs(terms))
-        ends = max(abs(terms[:8]).max(), abs(terms[-8:]).max())
-        if ends > 1e-15 * scale:
-            return np.nan  # the moment does not exist, or its tail reaches past the range
-        return total
-
-    def _stats(self):
-        mean = self._quad_expect(lambda g: g)
-        if not math.isfinite(mean):
-            return np.nan, np.nan, np.nan, np.nan
-        m2 = self._quad_expect(lambda g: (g - mean) ** 2)
-        m3 = self._quad_expect(lambda g: (g - mean) ** 3)
-        m4 = self._quad_expect(lambda g: (g - mean) ** 4)
-        skew = m3 / m2**1.5 if m2 > 0 else np.nan
-        kurt = m4 / m2**2 - 3.0 if m2 > 0 else np.nan
-        return mean, m2, skew, kurt
-
-    def _munp(self, k):
-        return self._quad_expect(lambda g: g**k)
-
-
-class _ExtremeFrozen(rv_continuous_frozen):
-    """Frozen order-statistic distribution with direct (argument-check-free) methods."""
-
-    def __init__(self, gen: _ExtremeGen):
-        super().__init__(gen)
-
-    @property
-    def parent(self):
-        """The distribution of a single draw."""
-        return self.dist._parent.dist
-
-    def _call(self, name, x):
-        out = getattr(self.dist, name)(np.asarray(x, dtype=float))
-        return _scalar_out(np.asarray(out, dtype=float))
-
-    def cdf(self, x):
-        """Cumulative distribution function."""
-        return self._call("_cdf", x)
-
-    def sf(self, x):
-        """Survival function, accurate in the upper tail."""
-        return self._call("_sf", x)
-
-    def logcdf(self, x):
-        """Natural log of the cdf."""
-        return self._call("_logcdf", x)
-
-    def logsf(self, x):
-        """Natural log of the survival function."""
-        return self._call("_logsf", x)
-
-    def pdf(self, x):
-        """Probability density, in 1/(units of x)."""
-        return self._call("_pdf", x)
-
-    def logpdf(self, x):
-        """Natural log of the density."""
-        return self._call("_logpdf", x)
-
-    def ppf(self, q):
-        """Quantile function; NaN outside [0, 1]."""
-        return self._call("_ppf", q)
-
-    def isf(self, q):
-        """Inverse survival function, accurate for small q; NaN outside [0, 1]."""
-        return self._call("_isf", q)
-
-    def median(self):
-        """Median (same units as the parent)."""
-        return float(self.ppf(0.5))
-
-    def interval(self, confidence=None):
-        """Central interval with the given probability content (upper end via ``isf``).
-
-        Parameters
-        ----------
-        confidence : float
-            Probability content in [0, 1], e.g. 0.9.
-
-        Returns
-        -------
-        lower, upper : float
-        """
-        c = np.asarray(confidence, dtype=float)
-        if c.ndim or not (0 <= float(c) <= 1):
-            raise ValueError(f"confidence must be a scalar in [0, 1], got {confidence!r}")
-        tail = (1.0 - float(c)) / 2.0
-        return float(self.ppf(tail)), float(self.isf(tail))
-
-    def support(self):
-        """(lower, upper) end of the support."""
-        return float(self.dist.a), float(self.dist.b)
-
-
 # ------------------------------------------------------------------------------------------
 # maximum
 # ------------------------------------------------------------------------------------------
-class _MaximumGen(_ExtremeGen):
+class _MaximumGen(ExtremeGen):
     """Maximum of n i.i.d. draws; ``order = n`` (real, >= 1)."""
 
-    @_flat
+    @flat
     def _logcdf(self, x):
         _, logf, _, _ = self._parent.tail(x)
         return self._order * logf
 
-    @_flat
+    @flat
     def _cdf(self, x):
         f, logf, _, _ = self._parent.tail(x)
         return f if self._order == 1 else np.exp(self._order * logf)
 
-    @_flat
+    @flat
     def _sf(self, x):
         n = self._order
         _, logf, s, logs = self._parent.tail(x)
@@ -409,7 +99,7 @@ class _MaximumGen(_ExtremeGen):
         out[deep] = np.exp(math.log(n) + logs[deep])
         return out
 
-    @_flat
+    @flat
     def _logsf(self, x):
         n = self._order
         _, logf, s, logs = self._parent.tail(x)
@@ -418,7 +108,7 @@ class _MaximumGen(_ExtremeGen):
         out[deep] = math.log(n) + logs[deep]
         return out
 
-    @_flat
+    @flat
     def _logpdf(self, x):
         n = self._order
         _, logf, _, _ = self._parent.tail(x)
@@ -434,7 +124,7 @@ class _MaximumGen(_ExtremeGen):
         return self._parent.quantile(np.exp(t), -np.expm1(t))
 
 
-class MaximumDistribution(_ExtremeFrozen):
+class MaximumDistribution(ExtremeFrozen):
     """Frozen distribution of the maximum of n i.i.d. draws (see :func:`maximum`)."""
 
     @property
@@ -446,20 +136,20 @@ class MaximumDistribution(_ExtremeFrozen):
         return f"maximum({self.parent!r}, n={self.n:g})"
 
 
-class _MaximumCountGen(_ExtremeGen):
+class _MaximumCountGen(ExtremeGen):
     """Maximum of a random number N >= 1 of i.i.d. draws; ``order`` is the count given N >= 1
     (a table of values n_j and probabilities w_j)."""
 
-    @_flat
+    @flat
     def _logcdf(self, x):
         _, logf, _, _ = self._parent.tail(x)
         return self._order.log_pgf(logf)
 
-    @_flat
+    @flat
     def _cdf(self, x):
         return np.exp(self._logcdf(x))
 
-    @_flat
+    @flat
     def _sf(self, x):
         _, logf, s, logs = self._parent.tail(x)
         out = np.asarray(self._order.one_minus_pgf(logf), dtype=float)
@@ -467,7 +157,7 @@ class _MaximumCountGen(_ExtremeGen):
         out[deep] = np.exp(math.log(self._order.mean) + logs[deep])
         return out
 
-    @_flat
+    @flat
     def _logsf(self, x):
         _, logf, s, logs = self._parent.tail(x)
         with np.errstate(divide="ignore"):
@@ -476,7 +166,7 @@ class _MaximumCountGen(_ExtremeGen):
         out[deep] = math.log(self._order.mean) + logs[deep]
         return out
 
-    @_flat
+    @flat
     def _logpdf(self, x):
         # d/dx E[F^N] = E[N F^(N-1)] f
         _, logf, _, _ = self._parent.tail(x)
@@ -608,7 +298,7 @@ def maximum(dist, n: float | None = None, *, count=None) -> MaximumDistribution:
 # ------------------------------------------------------------------------------------------
 # order statistics
 # ------------------------------------------------------------------------------------------
-class _OrderStatisticGen(_ExtremeGen):
+class _OrderStatisticGen(ExtremeGen):
     """k-th smallest of n i.i.d. draws; ``order = (k, n)``."""
 
     def _km(self):
@@ -624,25 +314,25 @@ class _OrderStatisticGen(_ExtremeGen):
             sf = np.where(lower, special.betaincc(k, m, f), special.betainc(m, k, s))
         return cdf, sf
 
-    @_flat
+    @flat
     def _cdf(self, x):
         return self._both(x)[0]
 
-    @_flat
+    @flat
     def _sf(self, x):
         return self._both(x)[1]
 
-    @_flat
+    @flat
     def _logcdf(self, x):
         with np.errstate(divide="ignore"):
             return np.log(self._both(x)[0])
 
-    @_flat
+    @flat
     def _logsf(self, x):
         with np.errstate(divide="ignore"):
             return np.log(self._both(x)[1])
 
-    @_flat
+    @flat
     def _logpdf(self, x):
         k, m = self._km()
         _, logf, _, logs = self._parent.tail(x)
@@ -661,15 +351,15 @@ class _OrderStatisticGen(_ExtremeGen):
         u = np.full(v.shape, np.nan)
         s = np.full(v.shape, np.nan)
         low = v <= 0.5
-        u[low] = _betaincinv(k, m, v[low], logv[low])
-        u[~low] = _betainccinv(k, m, q[~low], logq[~low])
+        u[low] = betaincinv(k, m, v[low], logv[low])
+        u[~low] = betainccinv(k, m, q[~low], logq[~low])
         high = q <= 0.5
-        s[high] = _betaincinv(m, k, q[high], logq[high])
-        s[~high] = _betainccinv(m, k, v[~high], logv[~high])
+        s[high] = betaincinv(m, k, q[high], logq[high])
+        s[~high] = betainccinv(m, k, v[~high], logv[~high])
         return self._parent.quantile(u, s)
 
 
-class OrderStatisticDistribution(_ExtremeFrozen):
+class OrderStatisticDistribution(ExtremeFrozen):
     """Frozen distribution of the k-th smallest of n i.i.d. draws (see :func:`order_statistic`)."""
 
     @property
