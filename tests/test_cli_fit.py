@@ -13,7 +13,7 @@ import pandas as pd
 import pytest
 
 import glstat
-from glstat import cli_fit
+from glstat import cli_fit, cli_fit_options
 
 SEED = 3
 
@@ -447,7 +447,7 @@ def test_output_directory_without_write_permission_is_refused_before_computing(t
     def no_fit(*args, **kwargs):
         raise AssertionError("the fit must not start when the output directory is not writable")
 
-    monkeypatch.setattr(cli_fit.tempfile, "NamedTemporaryFile", denied)
+    monkeypatch.setattr(cli_fit_options.tempfile, "NamedTemporaryFile", denied)
     monkeypatch.setattr(glstat.fitting, "fit", no_fit)
     code, out, err = _run(capsys, [npy, "--out", tmp_path / "ro"])
     assert code == 2 and out == ""
