@@ -1,7 +1,8 @@
 """What a campaign computes: :class:`CampaignSettings` (Hurst exponents × loads × surfaces, the
 surfaces and the contact model), the checks of its values, its identity (the settings that
-define the stored results) and the seed of every surface; and the integer checks the study's
-other arguments share."""
+define the stored results), the seed of every surface and the truncation of its Weierstrass
+series; and the checks the study's other arguments share with it (positive integers, Hurst
+exponents)."""
 
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ from .topography import FORMS
 __all__ = [
     "FORMAT_VERSION",
     "CampaignSettings",
+    "check_hurst",
     "check_positive_integer",
     "is_integer",
     "nyquist_terms",
@@ -58,6 +60,21 @@ def check_positive_integer(value: Any, name: str) -> int:
     if not (is_integer(value) and value >= 1):
         raise ValueError(f"{name} must be a positive integer, got {value!r}")
     return int(value)
+
+
+def check_hurst(hurst: tuple[float, ...]) -> tuple[float, ...]:
+    """``hurst`` after checking that it holds one or more distinct exponents in [0, 1].
+
+    Raises
+    ------
+    ValueError
+        No exponent, one outside [0, 1] (NaN included), or one given twice.
+    """
+    if not hurst or any(not (0.0 <= v <= 1.0) for v in hurst):
+        raise ValueError(f"hurst must be one or more exponents in [0, 1], got {hurst!r}")
+    if len(set(hurst)) != len(hurst):
+        raise ValueError(f"hurst exponents must be distinct, got {hurst!r}")
+    return hurst
 
 
 def nyquist_terms(grid: int, length: float, gamma: float) -> int:
@@ -210,10 +227,7 @@ def _check_cases(s: CampaignSettings) -> None:
     of Weierstrass terms per exponent."""
     from contact._validate import positive_finite
 
-    if not s.hurst or any(not (0.0 <= v <= 1.0) for v in s.hurst):
-        raise ValueError(f"hurst must be one or more exponents in [0, 1], got {s.hurst!r}")
-    if len(set(s.hurst)) != len(s.hurst):
-        raise ValueError(f"hurst exponents must be distinct, got {s.hurst!r}")
+    check_hurst(s.hurst)
     if not s.pressures:
         raise ValueError("pressures must hold one or more nominal pressures in Pa, got ()")
     for v in s.pressures:

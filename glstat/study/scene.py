@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .campaign_settings import CampaignSettings, check_positive_integer, nyquist_terms, terms_of
+from .campaign_settings import CampaignSettings, check_hurst, check_positive_integer, nyquist_terms, terms_of
 from .scene_search import PressureAtRq, search_log_rq
 from .surface_task import solve_asperity, weierstrass_surface
 
@@ -101,9 +101,7 @@ def _settings_for(settings: CampaignSettings | None, hurst) -> tuple[CampaignSet
         raise TypeError(f"settings must be a CampaignSettings, got {type(s).__name__}")
     if hurst is None:
         return s, list(range(len(s.hurst)))
-    hs = tuple(float(v) for v in np.atleast_1d(np.asarray(hurst, dtype=float)))
-    if len(set(hs)) != len(hs):
-        raise ValueError(f"hurst exponents must be distinct, got {hs!r}")
+    hs = check_hurst(tuple(float(v) for v in np.atleast_1d(np.asarray(hurst, dtype=float))))
     if all(h in s.hurst for h in hs):
         return s, [s.hurst.index(h) for h in hs]
     if len(set(s.n_terms)) != 1:
