@@ -1,7 +1,7 @@
 """What a campaign computes: :class:`CampaignSettings` (Hurst exponents × loads × surfaces, the
 surfaces and the contact model), the checks of its values, its identity (the settings that
 define the stored results), the seed of every surface and the truncation of its Weierstrass
-series; and the checks the study's other arguments share with it (positive integers, Hurst
+series; and the checks the study's other arguments share with it (integers, Hurst
 exponents)."""
 
 from __future__ import annotations
@@ -19,7 +19,6 @@ __all__ = [
     "FORMAT_VERSION",
     "CampaignSettings",
     "check_hurst",
-    "check_positive_integer",
     "is_integer",
     "nyquist_terms",
     "terms_of",
@@ -36,30 +35,6 @@ def is_integer(value: Any) -> bool:
         return not isinstance(value, bool | np.bool_) and math.isfinite(value) and int(value) == value
     except (TypeError, ValueError):
         return False
-
-
-def check_positive_integer(value: Any, name: str) -> int:
-    """``value`` as an int after checking that it is an integer >= 1 (:func:`is_integer`).
-
-    Parameters
-    ----------
-    value : object
-        The candidate count.
-    name : str
-        The argument's name, for the message.
-
-    Returns
-    -------
-    int
-
-    Raises
-    ------
-    ValueError
-        Not an integer, or below 1.
-    """
-    if not (is_integer(value) and value >= 1):
-        raise ValueError(f"{name} must be a positive integer, got {value!r}")
-    return int(value)
 
 
 def check_hurst(hurst: tuple[float, ...]) -> tuple[float, ...]:
@@ -240,7 +215,9 @@ def _check_cases(s: CampaignSettings) -> None:
 
 def _check_sampling(s: CampaignSettings) -> None:
     """The surfaces per case, the kept examples, the root seed and the grid."""
-    check_positive_integer(s.n_surfaces, "n_surfaces")
+    from contact._validate import positive_integer
+
+    positive_integer(s.n_surfaces, "n_surfaces", "surfaces per Hurst exponent and load")
     if not (is_integer(s.n_examples) and 0 <= s.n_examples <= s.n_surfaces):
         raise ValueError(f"n_examples must be an integer in [0, n_surfaces], got {s.n_examples!r}")
     if not is_integer(s.seed) or s.seed < 0:
@@ -252,12 +229,11 @@ def _check_sampling(s: CampaignSettings) -> None:
 def _check_geometry(s: CampaignSettings) -> None:
     """The surface: its side, RMS roughness, frequency ratio and the truncation of the series
     (at most the grid's Nyquist limit)."""
-    from contact._validate import positive_finite
+    from contact._validate import frequency_ratio, positive_finite
 
     positive_finite(s.length, "length", "side in metres")
     positive_finite(s.rq, "rq", "RMS roughness in metres")
-    if not (math.isfinite(s.gamma) and s.gamma > 1):
-        raise ValueError(f"gamma must be > 1, got {s.gamma!r}")
+    frequency_ratio(s.gamma)
     limit = nyquist_terms(s.grid, s.length, s.gamma)
     for v in s.n_terms:
         if v is not None and not (1 <= v <= limit):

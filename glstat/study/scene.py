@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .campaign_settings import CampaignSettings, check_hurst, check_positive_integer, nyquist_terms, terms_of
+from .campaign_settings import CampaignSettings, check_hurst, nyquist_terms, terms_of
 from .scene_search import PressureAtRq, search_log_rq
 from .surface_task import solve_asperity, weierstrass_surface
 
@@ -218,11 +218,12 @@ def rq_for_pressure(
     >>> 0.5e-6 < rq < 5e-6
     True
     """
+    from contact._validate import positive_integer, tolerance
+
     t0 = time.perf_counter()
     s, idx = _settings_for(settings, hurst)
-    n_seeds = check_positive_integer(n_seeds, "n_seeds")
-    if not (isinstance(rtol, int | float) and 0 < rtol < 0.5):
-        raise ValueError(f"rtol must be in (0, 0.5), got {rtol!r}")
+    n_seeds = positive_integer(n_seeds, "n_seeds", "surfaces per Hurst exponent")
+    rtol = tolerance(rtol, "rtol", 0.5)
     bounds = _as_bounds(rq_bounds)
     targets = _as_targets(target_mean_pressure, len(idx))
     load = s.pressures[0]
@@ -348,9 +349,10 @@ def scene_summary(settings: CampaignSettings | None = None, *, n_seeds: int = 3,
     import pandas as pd
 
     import contact
+    from contact._validate import positive_integer
 
     s = settings if settings is not None else CampaignSettings()
-    n_seeds = check_positive_integer(n_seeds, "n_seeds")
+    n_seeds = positive_integer(n_seeds, "n_seeds", "surfaces per Hurst exponent")
     if paper_pressures is None:
         from .paper_table import TABLE1
 
