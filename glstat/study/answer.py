@@ -14,12 +14,18 @@ from .analysis import SAMPLE_LABELS
 
 __all__ = ["calibration_frame", "degenerate_scene", "fmt_mpa", "fmt_probability", "summary_frame"]
 
-#: Columns of ``summary.csv`` (one row per H × load × model × sample).
+
 def case_name(settings, ih: int) -> str:
     """How the report names group ``ih``: "H = 0.5", or "measured" for measured files."""
     return "measured" if getattr(settings, "measured", False) else f"H = {settings.hurst[ih]:g}"
 
 
+def case_label(settings, ih: int, il: int) -> str:
+    """How the report names a case of group ``ih`` at load ``il``: "H = 0.5, 20 MPa"."""
+    return f"{case_name(settings, ih)}, {settings.pressures[il] / 1e6:g} MPa"
+
+
+#: Columns of ``summary.csv`` (one row per H × load × model × sample).
 SUMMARY_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "mean_pressure_mpa",
                    "asperities_per_surface", "points_in_contact_per_surface", "fit", "damage",
                    "damage_low", "damage_high", "observed_damage", "coverage", "coverage_low",

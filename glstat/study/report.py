@@ -3,143 +3,16 @@ Markdown with PNG files."""
 
 from __future__ import annotations
 
-import base64
-import html
-import io
 import math
-import os
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from .analysis import SAMPLE_LABELS
+from .answer import case_label
+from .report_document import Report, fmt_cell
 
 __all__ = ["Report"]
-
-
-def _fmt(v: Any) -> str:
-    if isinstance(v, bool | np.bool_):
-        return "yes" if v else "no"
-    if isinstance(v, int | np.integer):
-        return str(int(v))
-    if isinstance(v, float | np.floating):
-        v = float(v)
-        if math.isnan(v):
-            return "—"
-        if v == 0:
-            return "0"
-        if abs(v) >= 1e5 or abs(v) < 1e-3:
-            return f"{v:.3e}"
-        return f"{v:.4g}"
-    return str(v)
-
-
-class Report:
-    """An ordered list of headings, paragraphs, tables and figures rendered to HTML and Markdown."""
-
-    def __init__(self, title: str) -> None:
-        self.title = title
-        self.blocks: list[tuple] = []
-
-    def heading(self, text: str, level: int = 2) -> None:
-        """Add a section heading."""
-        self.blocks.append(("h", level, text))
-
-    def paragraph(self, text: str) -> None:
-        """Add a paragraph (Markdown inline syntax: ``code``, **bold**)."""
-        self.blocks.append(("p", text))
-
-    def table(self, columns: list[str], rows: list[list[Any]], caption: str = "") -> None:
-        """Add a table; cells are formatted with 4 significant digits."""
-        self.blocks.append(("t", columns, [[_fmt(c) for c in r] for r in rows], caption))
-
-    def figure(self, name: str, fig: Any, caption: str) -> None:
-        """Add a matplotlib figure (rendered to PNG now and closed)."""
-        import matplotlib.pyplot as plt
-
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=90, bbox_inches="tight")
-        plt.close(fig)
-        self.blocks.append(("f", name, buf.getvalue(), caption))
-
-    # -- rendering --------------------------------------------------------------------------
-    @staticmethod
-    def _inline_html(text: str) -> str:
-        import re
-
-        t = html.escape(text)
-        t = re.sub(r"`([^`]+)`", r"<code>\1</code>", t)
-        t = re.sub(r"\*\*([^*]+)\*\*", r"<b>\1</b>", t)
-        return t
-
-    def to_markdown(self, figdir: str) -> tuple[str, dict[str, bytes]]:
-        """Markdown text and the PNG files it references (``figdir/<name>.png``)."""
-        lines = [f"# {self.title}", ""]
-        files = {}
-        for b in self.blocks:
-            if b[0] == "h":
-                lines += ["#" * b[1] + " " + b[2], ""]
-            elif b[0] == "p":
-                lines += [b[1], ""]
-            elif b[0] == "t":
-                _, cols, rows, cap = b
-                if cap:
-                    lines += [f"*{cap}*", ""]
-                lines.append("| " + " | ".join(cols) + " |")
-                lines.append("|" + "---|" * len(cols))
-                lines += ["| " + " | ".join(r) + " |" for r in rows]
-                lines.append("")
-            else:
-                _, name, png, cap = b
-                files[f"{name}.png"] = png
-                lines += [f"![{cap}]({figdir}/{name}.png)", "", f"*{cap}*", ""]
-        return "\n".join(lines), files
-
-    def to_html(self) -> str:
-        """One self-contained HTML page (PNG figures embedded as base64)."""
-        out = ["<!DOCTYPE html>", "<html><head><meta charset='utf-8'>",
-               f"<title>{html.escape(self.title)}</title>",
-               "<style>body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em;"
-               "line-height:1.45}table{border-collapse:collapse;margin:0.5em 0 1.2em}"
-               "td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}"
-               "th{background:#eee}img{max-width:100%}figcaption{font-style:italic;color:#444}"
-               "code{background:#f4f4f4}</style></head><body>",
-               f"<h1>{html.escape(self.title)}</h1>"]
-        for b in self.blocks:
-            if b[0] == "h":
-                out.append(f"<h{b[1]}>{html.escape(b[2])}</h{b[1]}>")
-            elif b[0] == "p":
-                out.append(f"<p>{self._inline_html(b[1])}</p>")
-            elif b[0] == "t":
-                _, cols, rows, cap = b
-                out.append("<table>")
-                if cap:
-                    out.append(f"<caption>{self._inline_html(cap)}</caption>")
-                out.append("<tr>" + "".join(f"<th>{html.escape(c)}</th>" for c in cols) + "</tr>")
-                for r in rows:
-                    out.append("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in r) + "</tr>")
-                out.append("</table>")
-            else:
-                _, name, png, cap = b
-                data = base64.b64encode(png).decode("ascii")
-                out.append(f"<figure id='{name}'><img alt='{html.escape(cap)}' "
-                           f"src='data:image/png;base64,{data}'><figcaption>{self._inline_html(cap)}"
-                           f"</figcaption></figure>")
-        out.append("</body></html>")
-        return "\n".join(out)
-
-    def write(self, out: str | os.PathLike) -> tuple[Path, Path]:
-        """Write ``report.html`` and ``report.md`` + ``report_files/*.png`` into ``out`` (atomically)."""
-        from .campaign import atomic_write
-
-        out = Path(out)
-        md, files = self.to_markdown("report_files")
-        for name, png in files.items():
-            atomic_write(out / "report_files" / name, png)
-        atomic_write(out / "report.md", md.encode())
-        atomic_write(out / "report.html", self.to_html().encode())
-        return out / "report.html", out / "report.md"
 
 
 def _display(a: np.ndarray, how: str, size: int = 512) -> np.ndarray:
@@ -151,12 +24,6 @@ def _display(a: np.ndarray, how: str, size: int = 512) -> np.ndarray:
     n0, n1 = (a.shape[0] // f) * f, (a.shape[1] // f) * f
     blocks = a[:n0, :n1].reshape(n0 // f, f, n1 // f, f)
     return blocks.max(axis=(1, 3)) if how == "max" else blocks.mean(axis=(1, 3))
-
-
-def _label(settings, ih: int, il: int) -> str:
-    from .answer import case_name
-
-    return f"{case_name(settings, ih)}, {settings.pressures[il] / 1e6:g} MPa"
 
 
 def _kind_panels(plt) -> tuple[Any, list[tuple[Any, str]]]:
@@ -208,7 +75,7 @@ def _fmt_interval(d) -> str:
     """``estimate [low, high]`` of a bootstrap probability, or "—"."""
     if d is None:
         return "—"
-    return f"{_fmt(float(d.estimate))} [{_fmt(float(d.low))}, {_fmt(float(d.high))}]"
+    return f"{fmt_cell(float(d.estimate))} [{fmt_cell(float(d.low))}, {fmt_cell(float(d.high))}]"
 
 
 def damage_sentence(settings, analysis: dict, hardness: float, level: int) -> str:
@@ -245,7 +112,7 @@ def damage_sentence(settings, analysis: dict, hardness: float, level: int) -> st
                 ests.append(float(d.estimate))
                 lows.append(float(d.low))
                 highs.append(float(d.high))
-        parts.append(f"{_label(settings, ih, il)}: " + ", ".join(cells))
+        parts.append(f"{case_label(settings, ih, il)}: " + ", ".join(cells))
     text = (f"Damage probability at the hardness {hardness:g} MPa on one analysed area (estimate "
             f"[{level} % bootstrap interval]): " + "; ".join(parts) + ".")
     complete = len(ests) == 2 * len(parts)
@@ -326,7 +193,7 @@ def truncation_paragraphs(settings, info: dict) -> list[str]:
     finest = {h: max(rs, key=lambda r: r[1]) for h, rs in by_h.items()}
     coarsest = min(rows, key=lambda r: (r[1], r[3]))
     lowest = min(float(r[3]) for r in rows)
-    span = ", ".join(f"~{_fmt(float(r[3]))} GPa (H = {h:g}, {int(r[1])} terms)"
+    span = ", ".join(f"~{fmt_cell(float(r[3]))} GPa (H = {h:g}, {int(r[1])} terms)"
                      for h, r in sorted(finest.items()))
     lo, hi = (p / 1e3 for p in PAPER_PRESSURES)
     reach = ("no truncation in it reaches" if lowest > hi else "some truncations reach")
@@ -337,7 +204,7 @@ def truncation_paragraphs(settings, info: dict) -> list[str]:
         "the asperity model's "
         f"mean contact pressure with the most terms is {span}; Bigerelle et al. (2019) report "
         f"{lo:g}–{hi:g} GPa, and {reach} that range (the fewest terms, {int(coarsest[1])}, give "
-        f"~{_fmt(float(coarsest[3]))} GPa). docs/study.md discusses the choice of truncation."
+        f"~{fmt_cell(float(coarsest[3]))} GPa). docs/study.md discusses the choice of truncation."
     ]
 
 
@@ -401,7 +268,7 @@ def _answer_figures(rep: Report, settings, asettings, analysis: dict, model: str
         ax.set_xlim(float(x.min()), max(top * 1.15, asettings.hardness / 1e3 * 1.1))
         ax.set_xlabel("hardness Pd (GPa)")
         ax.set_ylabel("P(max > Pd), one area")
-        ax.set_title(_label(settings, ih, il) + suffix, fontsize=9)
+        ax.set_title(case_label(settings, ih, il) + suffix, fontsize=9)
         ax.legend(fontsize=7)
     fig.tight_layout()
     rep.figure("damage_curve" + tag, fig, "Damage probability on one analysed area against the "
@@ -425,7 +292,7 @@ def _answer_figures(rep: Report, settings, asettings, analysis: dict, model: str
         ax.plot([0, 1], [0, 1], "k:", lw=1)
         ax.set_xlabel("predicted P(max > Pd)")
         ax.set_ylabel("observed fraction (Wilson 95 %)")
-        ax.set_title(_label(settings, ih, il) + suffix, fontsize=9)
+        ax.set_title(case_label(settings, ih, il) + suffix, fontsize=9)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=6)
     fig.tight_layout()
@@ -521,7 +388,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     if left:
         rep.paragraph("⚠ Elastic BEM solves that did not converge within the iteration limit are "
                       "left out of its analysis (never used): " + "; ".join(
-                          f"{_label(settings, ih, il)} surface {i}" for ih, il, i in left) + ".")
+                          f"{case_label(settings, ih, il)} surface {i}" for ih, il, i in left) + ".")
     if bem_an:
         _answer_figures(rep, settings, asettings, bem_an, model="elastic BEM")
     paper = info.get("paper_findings")
@@ -541,12 +408,12 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     rows = []
     for (ih, il), r in analysis.items():
         s = r["summary"]
-        row = [_label(settings, ih, il), s["mean_pressure"], s["contact_fraction"], s["n_contact"],
+        row = [case_label(settings, ih, il), s["mean_pressure"], s["contact_fraction"], s["n_contact"],
                s["n_asperities"], s["max_pressure"]]
         for kind in ("grid", "asperity"):
             d = r[kind].damage
             row.append("—" if d is None else
-                       f"{_fmt(float(d.estimate))} [{_fmt(float(d.low))}, {_fmt(float(d.high))}]")
+                       f"{fmt_cell(float(d.estimate))} [{fmt_cell(float(d.low))}, {fmt_cell(float(d.high))}]")
             v = r[kind].validation
             row.append("—" if v.table is None else
                        f"{100 * v.coverage:.0f} % [{100 * v.coverage_interval[0]:.0f}, "
@@ -559,7 +426,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
               f"Per-surface means; damage probability at {hard:g} MPa on one analysed area with its "
               f"{lvl} % bootstrap interval; coverage with its Wilson 95 % interval.")
     rep.paragraph(damage_sentence(settings, analysis, hard, lvl))
-    jumps = [(_label(settings, ih, il), r["summary"]) for (ih, il), r in analysis.items()
+    jumps = [(case_label(settings, ih, il), r["summary"]) for (ih, il), r in analysis.items()
              if r["summary"].get("n_in_jump", 0)]
     if jumps:
         rep.paragraph(
@@ -575,7 +442,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         for kind in ("grid", "asperity"):
             v = r[kind].validation
             if v.table is not None:
-                calib.append(f"{_label(settings, ih, il)}, {SAMPLE_LABELS[kind]}: "
+                calib.append(f"{case_label(settings, ih, il)}, {SAMPLE_LABELS[kind]}: "
                              + calibration_verdict(v, asettings.confidence_level))
     if calib:
         rep.paragraph("Calibration of the predicted maximum (calibrated = coverage consistent with "
@@ -605,7 +472,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         srows.append(["BEM comparison: surfaces per case K, boundary, tolerance, iteration limit",
                       f"{b.n_compare}, {'periodic' if b.periodic else 'isolated patch'}, {b.tol:g}, "
                       f"{b.max_iter}"])
-    rep.table(["setting", "value"], [[a, _fmt(b)] for a, b in srows])
+    rep.table(["setting", "value"], [[a, fmt_cell(b)] for a, b in srows])
     for text in ([] if settings.measured else truncation_paragraphs(settings, info)):
         rep.paragraph(text)
     if info.get("truncation") and not settings.measured:
@@ -627,7 +494,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         for ax, ((ih, il), r) in zip(axes[0], ex, strict=True):
             im = ax.imshow(_display(np.asarray(r["heights"], dtype=float), "mean").T * 1e6,
                            origin="lower", extent=ext, cmap="viridis")
-            ax.set_title(_label(settings, ih, il))
+            ax.set_title(case_label(settings, ih, il))
             ax.set_xlabel("x (mm)")
             ax.set_ylabel("y (mm)")
             fig.colorbar(im, ax=ax, label="height (µm)")
@@ -645,7 +512,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
             im = ax.imshow(np.ma.masked_less_equal(_display(p, "max"), 0).T, origin="lower", extent=ext,
                            cmap="magma", norm=norm, interpolation="nearest")
             ax.set_facecolor("#dde")
-            ax.set_title(f"{_label(settings, ih, il)}: contact pressure")
+            ax.set_title(f"{case_label(settings, ih, il)}: contact pressure")
             ax.set_xlabel("x (mm)")
             ax.set_ylabel("y (mm)")
             fig.colorbar(im, ax=ax, label="pressure (MPa)")
@@ -679,11 +546,11 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
                 if x.size > 2 else [x.size] + [math.nan] * 4
             lam = sa.boot.fit.lambdas if sa.ok else (math.nan,) * 4
             fitname = f"{sa.param.upper()} {sa.method}" if sa.ok else "none"
-            rows.append([_label(settings, ih, il), SAMPLE_LABELS[kind], *m, fitname, *lam])
+            rows.append([case_label(settings, ih, il), SAMPLE_LABELS[kind], *m, fitname, *lam])
     rep.table(["case", "sample", "n", "mean", "std", "skewness α3", "kurtosis α4", "fit",
                "λ1", "λ2", "λ3", "λ4"], rows,
               "Pooled samples of all surfaces (MPa); λ1 in MPa, λ2 in 1/MPa.")
-    notes = [f"{_label(settings, ih, il)}, {SAMPLE_LABELS[k]}: {r[k].note}"
+    notes = [f"{case_label(settings, ih, il)}, {SAMPLE_LABELS[k]}: {r[k].note}"
              for (ih, il), r in analysis.items() for k in ("grid", "asperity") if r[k].note]
     if notes:
         rep.paragraph("Fit notes: " + " | ".join(notes))
@@ -698,7 +565,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
                 plot_histogram(sa.data, *([sa.boot.fit.dist] if sa.ok else []),
                                names=[f"GLD {sa.param.upper()}"] if sa.ok else None, ax=ax)
                 ax.legend(fontsize=8)
-            ax.set_title(f"{_label(settings, ih, il)}\n{SAMPLE_LABELS[kind]}", fontsize=9)
+            ax.set_title(f"{case_label(settings, ih, il)}\n{SAMPLE_LABELS[kind]}", fontsize=9)
             ax.set_xlabel("pressure (MPa)")
     rep.figure("histograms", fig, "Pooled pressures and the fitted GLD density: grid-point pressures "
                "(top) and per-asperity peak pressures (bottom).")
@@ -706,9 +573,9 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     rep.heading("Bootstrap densities of the λ parameters")
     for ih, il, sa in _fitted(analysis, "grid"):
         fig = plot_lambda_densities(sa.boot.lambdas, true=sa.boot.fit.lambdas)
-        fig.suptitle(f"{_label(settings, ih, il)}: {SAMPLE_LABELS['grid']}, B = {asettings.n_resamples}")
+        fig.suptitle(f"{case_label(settings, ih, il)}: {SAMPLE_LABELS['grid']}, B = {asettings.n_resamples}")
         rep.figure(f"lambdas_{ih}_{il}", fig, f"Kernel densities of the bootstrapped λ1..λ4 "
-                   f"({_label(settings, ih, il)}, grid-point pressures); dashed: full-sample fit.")
+                   f"({case_label(settings, ih, il)}, grid-point pressures); dashed: full-sample fit.")
 
     # ---- maximum --------------------------------------------------------------------------------
     rep.heading("Maximal pressure over the analysed area")
@@ -726,9 +593,9 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
             lo, hi = bm.mixture_interval()
             span = hi - lo
             xs = np.linspace(max(bm.mixture.ppf(1e-4), lo - span), bm.mixture.isf(1e-4), 120)
-            ax.plot(xs, bm.mixture.pdf(xs), label=_label(settings, ih, il))
+            ax.plot(xs, bm.mixture.pdf(xs), label=case_label(settings, ih, il))
             ax.axvspan(lo, hi, alpha=0.08)
-            rows.append([_label(settings, ih, il), SAMPLE_LABELS[kind], sa.n_ref, bm.mean, lo, hi])
+            rows.append([case_label(settings, ih, il), SAMPLE_LABELS[kind], sa.n_ref, bm.mean, lo, hi])
         ax.axvline(hard, color="k", ls=":", label=f"hardness {hard:g} MPa")
         ax.set_xlabel("maximal pressure (MPa)")
         ax.set_ylabel("density (1/MPa)")
@@ -758,13 +625,13 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         for col, ((ih, il), r) in enumerate(analysis.items()):
             v = r[kind].validation
             ax = axv[0, col]
-            ax.set_title(f"{_label(settings, ih, il)}", fontsize=9)
+            ax.set_title(f"{case_label(settings, ih, il)}", fontsize=9)
             if v.table is None:
                 import textwrap
 
                 ax.text(0.5, 0.5, textwrap.fill((v.error or r[kind].note or "no fit")[:200], 40),
                         ha="center", va="center", fontsize=7, transform=ax.transAxes)
-                vrows.append([_label(settings, ih, il), SAMPLE_LABELS[kind], 0, "—", "—", "—",
+                vrows.append([case_label(settings, ih, il), SAMPLE_LABELS[kind], 0, "—", "—", "—",
                               "—", "—", v.error or r[kind].note])
                 continue
             t = v.table
@@ -786,8 +653,8 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
             ax.hist(d, bins="auto", color="tab:gray")
             ax.axvline(0, color="k", ls=":")
             ax.set_xlabel("predicted − observed (MPa)")
-            ax.set_title(f"{_label(settings, ih, il)}: t-test p = {_fmt(v.t_pvalue)}", fontsize=9)
-            vrows.append([_label(settings, ih, il), SAMPLE_LABELS[kind], len(t),
+            ax.set_title(f"{case_label(settings, ih, il)}: t-test p = {fmt_cell(v.t_pvalue)}", fontsize=9)
+            vrows.append([case_label(settings, ih, il), SAMPLE_LABELS[kind], len(t),
                           f"{100 * v.coverage:.1f} %",
                           f"[{100 * v.coverage_interval[0]:.1f}, {100 * v.coverage_interval[1]:.1f}] %",
                           float(np.mean(d)), v.t_pvalue, v.w_pvalue,
@@ -809,9 +676,9 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         for kind in ("grid", "asperity"):
             d = r[kind].damage
             if d is None:
-                rows.append([_label(settings, ih, il), SAMPLE_LABELS[kind], r[kind].n_ref, "—", "—", "—"])
+                rows.append([case_label(settings, ih, il), SAMPLE_LABELS[kind], r[kind].n_ref, "—", "—", "—"])
             else:
-                rows.append([_label(settings, ih, il), SAMPLE_LABELS[kind], r[kind].n_ref,
+                rows.append([case_label(settings, ih, il), SAMPLE_LABELS[kind], r[kind].n_ref,
                              float(d.estimate), float(d.low), float(d.high)])
     rep.table(["case", "sample", "n", "damage probability", f"{lvl} % low", f"{lvl} % high"], rows,
               f"1 − F(Pd)^n at Pd = {hard:g} MPa on one analysed area "
@@ -823,9 +690,9 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     for ax, kind in panels:
         for ih, il, sa in _fitted(analysis, kind):
             it = sa.integrity
-            line, = ax.semilogx(it.area_factor, it.estimate, label=_label(settings, ih, il))
+            line, = ax.semilogx(it.area_factor, it.estimate, label=case_label(settings, ih, il))
             ax.fill_between(it.area_factor, it.low, it.high, color=line.get_color(), alpha=0.15)
-            grows.append([_label(settings, ih, il), SAMPLE_LABELS[kind],
+            grows.append([case_label(settings, ih, il), SAMPLE_LABELS[kind],
                           *[sa.guaranteed[k] for k in (1.0, 10.0, 100.0, 1000.0)]])
         ax.set_xlabel("area factor k (area / analysed area)")
         ax.set_ylabel(f"integrity probability at {hard:g} MPa")
@@ -848,8 +715,8 @@ def _pm(v) -> str:
     """Mean ± standard deviation of a column (just the mean for one value)."""
     v = np.asarray(v, dtype=float)
     if v.size > 1:
-        return f"{_fmt(float(v.mean()))} ± {_fmt(float(v.std(ddof=1)))}"
-    return _fmt(float(v.mean()))
+        return f"{fmt_cell(float(v.mean()))} ± {fmt_cell(float(v.std(ddof=1)))}"
+    return fmt_cell(float(v.mean()))
 
 
 def _bem_section(rep: Report, settings, asettings, comps: dict, bsettings, maps: dict) -> None:
@@ -880,7 +747,7 @@ def _bem_section(rep: Report, settings, asettings, comps: dict, bsettings, maps:
         f"1 − F(Pd)^n with n = that model's mean number of points in contact per surface "
         f"({lvl} % bootstrap interval). Ratios are asperity model / BEM (1: no error); ± is the "
         f"standard deviation over the surfaces, the range their minimum and maximum.")
-    labels = {c: _label(settings, *c) for c in comps}
+    labels = {c: case_label(settings, *c) for c in comps}
     rep.paragraph("**Findings.** " + findings({labels[c]: v for c, v in comps.items()}))
     unconverged = sum(int((~v.surfaces.loc[v.surfaces["model"] == "bem", "converged"]).sum())
                       for v in comps.values())
@@ -899,7 +766,7 @@ def _bem_section(rep: Report, settings, asettings, comps: dict, bsettings, maps:
             b = s.loc[s["model"] == "bem", q].to_numpy(dtype=float)
             if q in QUANTITIES:
                 rq = r[q].to_numpy(dtype=float)
-                ratio, span = _pm(rq), f"{_fmt(float(rq.min()))} – {_fmt(float(rq.max()))}"
+                ratio, span = _pm(rq), f"{fmt_cell(float(rq.min()))} – {fmt_cell(float(rq.max()))}"
             else:
                 ratio = span = "—"
             rows.append([QUANTITY_LABELS.get(q) or extra[q], _pm(a), _pm(b), ratio, span])
