@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from ..prediction import MaximumPrediction
-from .analysis import AnalysisSettings, fit_order, predict_sample, sample_rng
+from .analysis_settings import AnalysisSettings, fit_order, predict_sample, sample_rng
 from .both_models import MODELS, contact_record, interior, solve_both
 
 __all__ = ["QUANTITIES", "QUANTITY_LABELS", "SHORT_LABELS", "BEMComparison", "compare_bem",

@@ -1,0 +1,159 @@
+"""Settings of a campaign's analysis, its seeds, and the per-surface samples it reads.
+
+The two samples and the fits tried for them are named here; :func:`predict_sample` runs the
+library's pipeline (:func:`glstat.predict_maximum`) with these settings.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["AnalysisSettings", "fit_order", "overlap_sets_maximum", "pool", "predict_sample",
+           "sample_rng", "surface_values"]
+
+#: The two samples whose maximum is predicted: grid-point pressures (the paper's) and the
+#: peak pressure 1.5 p_m of every asperity in contact (one value per asperity).
+SAMPLES = {"grid": ("samples", "n_contact", "max_pressure"),
+           "asperity": ("asperity_peak", "n_asperities", "asperity_max")}
+SAMPLE_LABELS = {"grid": "grid-point pressures (the paper's)",
+                 "asperity": "per-asperity peak pressures"}
+#: Contact models whose solutions the analysis reads, with their seed slot and name.
+MODEL_SLOTS = {"asperity": 0, "bem": 1000}
+MODEL_NAMES = {"asperity": "asperity model", "bem": "elastic BEM"}
+#: Fits tried for the primary sample, in order of preference on ties.
+CANDIDATES = (("rs", "moments"), ("fkml", "moments"), ("rs", "lmoments"), ("fkml", "lmoments"),
+              ("fkml", "mle"))
+#: Fallback order when the requested fit has no solution for a sample.
+FALLBACKS = (("rs", "moments"), ("fkml", "moments"), ("rs", "percentiles"), ("fkml", "lmoments"))
+#: Bootstrap resamples of a maximum-likelihood fit (each resample is an optimisation).
+MLE_RESAMPLES = 100
+#: Area factors checked by grouping held-out surfaces.
+AREA_CHECKS = (2, 4)
+#: A result "passes its check" when its predicted damage lies inside the observed Wilson
+#: interval at this fraction of the hardness levels (with the coverage and bias criteria).
+PASS_FRACTION = 0.8
+
+
+@dataclass(frozen=True)
+class AnalysisSettings:
+    """How a campaign's pressures are analysed.
+
+    Attributes
+    ----------
+    hardness : float
+        Hardness / first-yield pressure Pd in MPa.
+    n_resamples : int
+        Bootstrap resamples B of the primary (per-asperity) sample.
+    grid_resamples : int
+        Bootstrap resamples of the secondary grid-point sample (a million values per fold:
+        its intervals are narrow and not the answer, so fewer resamples suffice).
+    param, method : str
+        GLD of the grid-point sample (the paper: ``"rs"``, ``"moments"``).
+    confidence_level : float
+        Level of the predicted intervals of the maximum and of the probabilities.
+    test_level : float
+        Level of the test on (predicted − observed) (0.95: reject at 5 %).
+    area_factors : tuple of float
+        Area factors k of the integrity-vs-area curve.
+    integrity_level : float
+        Integrity probability of the guaranteed pressure.
+    seed : int
+        Root of the bootstrap seeds.
+    n_levels : int
+        Hardness levels of the damage check (spanning the observed per-surface maxima).
+    """
+
+    hardness: float = 2050.0
+    n_resamples: int = 1000
+    grid_resamples: int = 50
+    param: str = "rs"
+    method: str = "moments"
+    confidence_level: float = 0.9
+    test_level: float = 0.95
+    area_factors: tuple[float, ...] = tuple(np.unique(np.round(np.logspace(0, 3, 31), 6)).tolist())
+    integrity_level: float = 0.99
+    seed: int = 2019
+    n_levels: int = 7
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.hardness, int | float) and math.isfinite(self.hardness)
+                and self.hardness > 0):
+            raise ValueError(f"hardness must be a positive finite pressure in MPa, got {self.hardness!r}")
+        for name in ("n_resamples", "grid_resamples"):
+            v = getattr(self, name)
+            if int(v) != v or v < 10:
+                raise ValueError(f"{name} (bootstrap B) must be an integer >= 10, got {v!r}")
+        for name in ("confidence_level", "test_level", "integrity_level"):
+            v = getattr(self, name)
+            if not 0 < v < 1:
+                raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+        if isinstance(self.seed, bool) or int(self.seed) != self.seed or self.seed < 0:
+            raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
+        if not self.area_factors or any(not (math.isfinite(v) and v > 0) for v in self.area_factors):
+            raise ValueError(f"area_factors must be positive finite numbers, got {self.area_factors!r}")
+        if int(self.n_levels) != self.n_levels or self.n_levels < 5:
+            raise ValueError(f"n_levels must be an integer >= 5, got {self.n_levels!r}")
+
+
+
+# -- samples of the surfaces -------------------------------------------------------------------
+def surface_values(res: dict, kind: str) -> tuple[np.ndarray, int, float]:
+    """(values in MPa, count, observed maximum in MPa) of one surface's result."""
+    if kind == "grid":
+        return res["samples"] / 1e6, int(res["n_contact"]), float(res["max_pressure"]) / 1e6
+    peaks = res["asperity_peak"] / 1e6
+    return peaks, int(peaks.size), float(peaks.max()) if peaks.size else 0.0
+
+
+#: A surface's maximal pressure above its largest asperity peak by more than this fraction is
+#: set by overlapping asperity patches (their pressures add up).
+OVERLAP_MARGIN = 0.01
+
+
+def overlap_sets_maximum(res: dict) -> bool:
+    """Whether a surface's maximal grid pressure exceeds every asperity's own peak (the
+    patches of neighbouring asperities overlap there and their pressures add up)."""
+    peaks = np.asarray(res.get("asperity_peak", ()), dtype=float)
+    return bool(peaks.size and float(res["max_pressure"]) > (1 + OVERLAP_MARGIN) * peaks.max())
+
+
+def pool(per: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(pooled values, group label per value, count per surface) of per-surface values."""
+    data = np.concatenate([p[0] for p in per]) if per else np.empty(0)
+    counts = np.array([p[1] for p in per], dtype=np.int64)
+    labels = np.repeat(np.arange(len(per)), [p[0].size for p in per])
+    return data, labels, counts
+
+
+def sample_rng(a: AnalysisSettings, *key: int) -> np.random.Generator:
+    """The generator of one analysis step: ``SeedSequence(a.seed, spawn_key=(10000, *key))``."""
+    return np.random.default_rng(np.random.SeedSequence(a.seed, spawn_key=(10_000, *key)))
+
+
+def fit_order(a: AnalysisSettings, param: str | None = None, method: str | None = None,
+              order: list[tuple[str, str]] | None = None) -> list[tuple[str, str]]:
+    """The fits to try: ``order`` when given; else the requested fit (default the settings'),
+    followed by FALLBACKS unless the fit was forced."""
+    if order is not None:
+        return order
+    first = (param or a.param, method or a.method)
+    return [first] + ([] if param is not None else [f for f in FALLBACKS if f != first])
+
+
+def predict_sample(x: np.ndarray, a: AnalysisSettings, rng, fits: list[tuple[str, str]], *,
+                   groups=None, n: float | None = None, n_resamples: int | None = None,
+                   threshold: float | None = None, maximum: bool = False, maximum_rng=None):
+    """:func:`glstat.predict_maximum` with the settings' resamples and level: the first of
+    ``fits`` that has a solution, likelihood fits on at most MLE_RESAMPLES resamples."""
+    from ..prediction import predict_maximum
+
+    return predict_maximum(x, fits, n=n, groups=groups, threshold=threshold,
+                           n_resamples=n_resamples or a.n_resamples,
+                           likelihood_resamples=MLE_RESAMPLES,
+                           confidence_level=a.confidence_level, rng=rng, maximum=maximum,
+                           maximum_rng=maximum_rng)
+
+
