@@ -23,13 +23,14 @@ def check_n_resamples(n_resamples) -> int:
     return int(n_resamples)
 
 
-def check_level(confidence_level) -> float:
-    """A confidence level: a real number strictly between 0 and 1."""
+def check_level(confidence_level, name: str = "confidence_level") -> float:
+    """A confidence level or probability: a real number strictly between 0 and 1 (``name``
+    is the argument's name in messages)."""
     if isinstance(confidence_level, (bool, np.bool_)) or not isinstance(confidence_level, numbers.Real):
-        raise TypeError(f"confidence_level must be a real number, got {confidence_level!r}")
+        raise TypeError(f"{name} must be a real number, got {confidence_level!r}")
     c = float(confidence_level)
     if not 0.0 < c < 1.0:
-        raise ValueError(f"confidence_level must be strictly between 0 and 1, got {c}")
+        raise ValueError(f"{name} must be strictly between 0 and 1, got {c}")
     return c
 
 

@@ -197,6 +197,110 @@ def _study_parser() -> argparse.ArgumentParser:
     return p
 
 
+class StudyInputError(ValueError):
+    """Options of ``glstat study`` that describe no valid study (exit status 2)."""
+
+
+def _study_settings(args, argv: list[str]):
+    """(campaign settings, analysis settings, surfaces per group) of parsed options."""
+    from .study import AnalysisSettings, CampaignSettings
+
+    base = QUICK if args.quick else DEFAULTS
+    surfaces = args.surfaces or base["surfaces"]
+    length = args.size * 1e-3
+    if args.max_frequency:
+        n_terms = [math.floor(math.log(f * 1e3 * length) / math.log(args.gamma) + 1e-12) + 1
+                   for f in args.max_frequency]
+        if min(n_terms) < 1:
+            raise StudyInputError(f"--max-frequency must be at least 1/L = "
+                                  f"{1 / (length * 1e3):g} per mm (1/--size)")
+    else:
+        n_terms = args.n_terms or [DEFAULT_N_TERMS]
+    settings = CampaignSettings(
+        hurst=tuple(args.hurst), pressures=tuple(p * 1e6 for p in args.pressure),
+        n_surfaces=surfaces, grid=args.grid or base["grid"], length=length, rq=args.rq * 1e-6,
+        gamma=args.gamma, n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
+        cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
+    if args.topographies or args.like:
+        settings, surfaces = _measured_scene(args, argv, settings, surfaces)
+    elif args.target_pressure is not None:
+        import dataclasses
+
+        from .study import rq_for_pressure
+
+        print(f"glstat study: finding the Rq that gives a mean contact pressure of "
+              f"{args.target_pressure:g} MPa ...", file=sys.stderr, flush=True)
+        rq = float(rq_for_pressure(args.target_pressure * 1e6, settings=settings))
+        print(f"glstat study: Rq = {rq * 1e6:.4g} µm", file=sys.stderr, flush=True)
+        settings = dataclasses.replace(settings, rq=rq)
+    asettings = AnalysisSettings(hardness=args.hardness,
+                                 n_resamples=args.bootstrap or base["bootstrap"], seed=args.seed)
+    if args.compare_bem > surfaces and not any(a.startswith("--compare-bem") for a in argv):
+        args.compare_bem = surfaces  # the default K on a small campaign
+    if args.compare_bem > surfaces:
+        raise StudyInputError(f"--compare-bem K = {args.compare_bem} cannot exceed the {surfaces} "
+                              f"surfaces per H (--surfaces); lower K or add surfaces")
+    return settings, asettings, surfaces
+
+
+class _Terminated(BaseException):
+    """SIGTERM, raised in the main thread so that the run stops as on Ctrl-C."""
+
+
+class _Signals:
+    """SIGINT and SIGTERM raised as exceptions in the main thread while the study runs, with
+    the signals received kept in :attr:`received` (whatever exception they became); signals
+    swallowed by an unraisable-exception hook are sent again."""
+
+    def __init__(self) -> None:
+        self.received: list[int] = []
+        self.previous: dict = {}
+        self.previous_hook = sys.unraisablehook
+
+    def _on_signal(self, signum, frame):
+        import signal
+
+        self.received.append(signum)
+        raise KeyboardInterrupt if signum == signal.SIGINT else _Terminated
+
+    def _redeliver(self, unraisable):
+        import signal
+
+        # an exception raised where Python cannot propagate it (a weakref callback, a __del__)
+        # is only reported; send the signal again so that the run still stops
+        if self.received and isinstance(unraisable.exc_value, (KeyboardInterrupt, _Terminated)):
+            signal.raise_signal(self.received[-1])
+        else:
+            self.previous_hook(unraisable)
+
+    def __enter__(self) -> _Signals:
+        import signal
+        import threading
+
+        if threading.current_thread() is threading.main_thread():
+            self.previous = {sig: signal.signal(sig, self._on_signal)
+                             for sig in (signal.SIGINT, signal.SIGTERM)}
+            self.previous_hook = sys.unraisablehook
+            sys.unraisablehook = self._redeliver
+        return self
+
+    def __exit__(self, *exc) -> None:
+        import signal
+
+        for sig, handler in self.previous.items():
+            signal.signal(sig, handler)
+        if self.previous:
+            sys.unraisablehook = self.previous_hook
+
+    def exit_status(self, exc: BaseException | None = None) -> tuple[str, int]:
+        """(what happened, exit status): SIGTERM 143, Ctrl-C 130."""
+        import signal
+
+        sigterm = (bool(self.received) and self.received[0] == signal.SIGTERM) or isinstance(
+            exc, _Terminated)
+        return ("terminated (SIGTERM)", 143) if sigterm else ("interrupted (Ctrl-C)", 130)
+
+
 def study_main(argv: list[str]) -> int:
     """``glstat study``: run the study and write the report; returns the exit status."""
     parser = _study_parser()
@@ -204,81 +308,50 @@ def study_main(argv: list[str]) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # --help, or a usage error already printed by argparse
         return exc.code if isinstance(exc.code, int) else 2
-    base = QUICK if args.quick else DEFAULTS
-    surfaces = args.surfaces or base["surfaces"]
-    grid = args.grid or base["grid"]
-    boot = args.bootstrap or base["bootstrap"]
-    out = args.out or base["out"]
-    from .study import AnalysisSettings, CampaignError, CampaignSettings, run_study
-    from .study.campaign import make_executor
+    out = args.out or (QUICK if args.quick else DEFAULTS)["out"]
+    from .study import CampaignError
 
-    length = args.size * 1e-3
-    if args.max_frequency:
-        n_terms = [math.floor(math.log(f * 1e3 * length) / math.log(args.gamma) + 1e-12) + 1
-                   for f in args.max_frequency]
-        if min(n_terms) < 1:
-            print(f"glstat study: error: --max-frequency must be at least 1/L = "
-                  f"{1 / (length * 1e3):g} per mm (1/--size)", file=sys.stderr)
-            return 2
-    else:
-        n_terms = args.n_terms or [DEFAULT_N_TERMS]
     try:
-        settings = CampaignSettings(
-            hurst=tuple(args.hurst), pressures=tuple(p * 1e6 for p in args.pressure),
-            n_surfaces=surfaces, grid=grid, length=length, rq=args.rq * 1e-6, gamma=args.gamma,
-            n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
-            cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
-        if args.topographies or args.like:
-            settings, surfaces = _measured_scene(args, argv, settings, surfaces)
-        elif args.target_pressure is not None:
-            import dataclasses
-
-            from .study import rq_for_pressure
-
-            print(f"glstat study: finding the Rq that gives a mean contact pressure of "
-                  f"{args.target_pressure:g} MPa ...", file=sys.stderr, flush=True)
-            rq = float(rq_for_pressure(args.target_pressure * 1e6, settings=settings))
-            print(f"glstat study: Rq = {rq * 1e6:.4g} µm", file=sys.stderr, flush=True)
-            settings = dataclasses.replace(settings, rq=rq)
-        asettings = AnalysisSettings(hardness=args.hardness, n_resamples=boot, seed=args.seed)
-        if args.compare_bem > surfaces and not any(a.startswith("--compare-bem") for a in argv):
-            args.compare_bem = surfaces  # the default K on a small campaign
-        if args.compare_bem > surfaces:
-            raise ValueError(f"--compare-bem K = {args.compare_bem} cannot exceed the {surfaces} "
-                             f"surfaces per H (--surfaces); lower K or add surfaces")
+        settings, asettings, _ = _study_settings(args, argv)
     except (ValueError, FileNotFoundError) as exc:
         print(f"glstat study: error: {exc}", file=sys.stderr)
         return 2
-    import signal
-    import threading
+    signals = _Signals()
+    try:
+        with signals:
+            t0 = time.perf_counter()
+            res = _run_locked(args, argv, settings, asettings, out)
+    except (CampaignError, KeyboardInterrupt, _Terminated, SystemError) as exc:
+        # a signal that arrives inside a compiled kernel can surface as a SystemError, or as
+        # the failure of the task it interrupted: the signal decides, not the exception
+        if not signals.received and not isinstance(exc, (KeyboardInterrupt, _Terminated)):
+            if isinstance(exc, CampaignError):
+                print(f"glstat study: error: {exc}", file=sys.stderr)
+                return 1
+            raise
+        how, status = signals.exit_status(exc)
+        print(f"glstat study: {how}; the surfaces finished so far are saved in {out}; rerun the "
+              f"same command to resume", file=sys.stderr)
+        return status
+    if signals.received:  # a signal whose exception was swallowed on the way: it still decides
+        how, status = signals.exit_status()
+        print(f"glstat study: {how} as it finished; the results in {out} are complete",
+              file=sys.stderr)
+        return status
+    print(f"study finished in {time.perf_counter() - t0:.1f} s "
+          f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
+    _print_answer(res, settings, asettings, args.hardness)
+    return 0
 
+
+def _run_locked(args, argv: list[str], settings, asettings, out: str):
+    """Run the study holding the output directory's lock (on a Dask cluster with
+    ``--scheduler``)."""
     from _glstat_numba import compile_note
 
-    from .study.campaign import lock_directory
+    from .study import run_study
+    from .study.campaign import lock_directory, make_executor
 
-    class _Terminated(BaseException):
-        """SIGTERM, raised in the main thread so that the run stops as on Ctrl-C."""
-
-    received: list[int] = []  # the signals that arrived, whatever exception they became
-
-    def _on_signal(signum, frame):
-        received.append(signum)
-        raise KeyboardInterrupt if signum == signal.SIGINT else _Terminated
-
-    def _redeliver(unraisable):
-        # an exception raised where Python cannot propagate it (a weakref callback, a __del__)
-        # is only reported; send the signal again so that the run still stops
-        if received and isinstance(unraisable.exc_value, (KeyboardInterrupt, _Terminated)):
-            signal.raise_signal(received[-1])
-        else:
-            previous_hook(unraisable)
-
-    main_thread = threading.current_thread() is threading.main_thread()
-    previous = ({sig: signal.signal(sig, _on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
-                if main_thread else {})
-    previous_hook = sys.unraisablehook
-    if main_thread:
-        sys.unraisablehook = _redeliver
     shutdown = None
     try:
         with lock_directory(out, wait=args.wait, on_wait=lambda holder: print(
@@ -295,45 +368,24 @@ def study_main(argv: list[str]) -> int:
                 label = f"Dask scheduler {args.scheduler}"
             elif args.workers == 1:
                 label = "1 (serial, in-process)"
-            t0 = time.perf_counter()
-            res = run_study(settings, asettings, out, executor=executor, workers=args.workers,
-                            force=args.force, progress=not args.no_progress,
-                            command="glstat study " + " ".join(argv), workers_label=label,
-                            compare_bem=args.compare_bem, model=args.model)
-    except (CampaignError, KeyboardInterrupt, _Terminated, SystemError) as exc:
-        # a signal that arrives inside a compiled kernel can surface as a SystemError, or as
-        # the failure of the task it interrupted: the signal decides, not the exception
-        if not received and not isinstance(exc, (KeyboardInterrupt, _Terminated)):
-            if isinstance(exc, CampaignError):
-                print(f"glstat study: error: {exc}", file=sys.stderr)
-                return 1
-            raise
-        sigterm = (received and received[0] == signal.SIGTERM) or isinstance(exc, _Terminated)
-        how, status = (("terminated (SIGTERM)", 143) if sigterm else ("interrupted (Ctrl-C)", 130))
-        print(f"glstat study: {how}; the surfaces finished so far are saved in {out}; rerun the "
-              f"same command to resume", file=sys.stderr)
-        return status
+            return run_study(settings, asettings, out, executor=executor, workers=args.workers,
+                             force=args.force, progress=not args.no_progress,
+                             command="glstat study " + " ".join(argv), workers_label=label,
+                             compare_bem=args.compare_bem, model=args.model)
     finally:
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
-        if main_thread:
-            sys.unraisablehook = previous_hook
         if shutdown is not None:
             shutdown()
-    if received:  # a signal whose exception was swallowed on the way: it still decides the exit
-        sigterm = received[0] == signal.SIGTERM
-        how, status = (("terminated (SIGTERM)", 143) if sigterm else ("interrupted (Ctrl-C)", 130))
-        print(f"glstat study: {how} as it finished; the results in {out} are complete",
-              file=sys.stderr)
-        return status
-    print(f"study finished in {time.perf_counter() - t0:.1f} s "
-          f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
+
+
+def _print_answer(res, settings, asettings, hardness: float) -> None:
+    """The answer on the terminal: damage probability per case, warnings, the comparison of
+    the contact models, and where the report is."""
     from .study.answer import case_name, degenerate_scene, fmt_mpa, fmt_probability, overlap_note
     from .study.answer import fmt_number as _num
 
     table = res.summary()
     lvl = round(100 * asettings.confidence_level)
-    print(f"Probability that the contact pressure exceeds {args.hardness:g} MPa somewhere on one "
+    print(f"Probability that the contact pressure exceeds {hardness:g} MPa somewhere on one "
           f"{settings.length * 1e3:g} x {settings.length * 1e3:g} mm² area ({lvl} % interval):")
     for _, r in table[table["sample"] == "asperity"].iterrows():
         model = "asperity model" if r["model"] == "asperity" else "elastic BEM   "
@@ -361,7 +413,6 @@ def study_main(argv: list[str]) -> int:
                   f"{_num(r['max_pressure_MPa'], '.3g')}; damage P {_num(fits['asperity'], '.4g')} "
                   f"(asperity) vs {_num(fits['bem'], '.4g')} (BEM)")
     print(f"report: {res.report_html}  (and {res.report_md})")
-    return 0
 
 
 #: Options that describe simulated surfaces, refused with --topographies.

@@ -79,17 +79,17 @@ class AnalysisSettings:
     n_levels: int = 7
 
     def __post_init__(self) -> None:
-        if not (isinstance(self.hardness, int | float) and math.isfinite(self.hardness)
-                and self.hardness > 0):
-            raise ValueError(f"hardness must be a positive finite pressure in MPa, got {self.hardness!r}")
+        from contact._validate import positive_finite
+
+        from .._validate import check_level
+
+        positive_finite(self.hardness, "hardness", "pressure in MPa")
         for name in ("n_resamples", "grid_resamples"):
             v = getattr(self, name)
             if int(v) != v or v < 10:
                 raise ValueError(f"{name} (bootstrap B) must be an integer >= 10, got {v!r}")
         for name in ("confidence_level", "test_level", "integrity_level"):
-            v = getattr(self, name)
-            if not 0 < v < 1:
-                raise ValueError(f"{name} must be in (0, 1), got {v!r}")
+            check_level(getattr(self, name), name)
         if isinstance(self.seed, bool) or int(self.seed) != self.seed or self.seed < 0:
             raise ValueError(f"seed must be an integer >= 0, got {self.seed!r}")
         if not self.area_factors or any(not (math.isfinite(v) and v > 0) for v in self.area_factors):

@@ -111,15 +111,12 @@ class BEMSettings:
     max_iter: int = 1000
 
     def __post_init__(self) -> None:
-        if isinstance(self.n_compare, bool) or int(self.n_compare) != self.n_compare or self.n_compare < 1:
-            raise ValueError(f"compare_bem (K, surfaces compared per H) must be a positive integer, "
-                             f"got {self.n_compare!r}")
-        if not isinstance(self.periodic, bool | np.bool_):
-            raise TypeError(f"periodic must be True or False, got {self.periodic!r}")
-        if not (math.isfinite(self.tol) and 0 < self.tol < 1):
-            raise ValueError(f"tol must be a relative tolerance in (0, 1), got {self.tol!r}")
-        if int(self.max_iter) != self.max_iter or self.max_iter < 1:
-            raise ValueError(f"max_iter must be a positive integer, got {self.max_iter!r}")
+        from contact._validate import flag, positive_integer, tolerance
+
+        positive_integer(self.n_compare, "compare_bem", "K, surfaces compared per H")
+        flag(self.periodic, "periodic")
+        tolerance(self.tol, "tol", 1.0)
+        positive_integer(self.max_iter, "max_iter", "iteration limit of the BEM")
 
     def identity(self) -> dict[str, Any]:
         """The settings that define a stored BEM solve (everything but ``n_compare``: the
