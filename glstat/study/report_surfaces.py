@@ -1,5 +1,6 @@
 """Report text and sections describing the surfaces: simulated, measured, or simulated like a
-measured template (computations live in :mod:`glstat.study.measured`)."""
+measured template (computations live in :mod:`glstat.study.measured`). The sections return
+their :class:`~glstat.study.report_document.Blocks`."""
 
 from __future__ import annotations
 
@@ -9,6 +10,8 @@ from typing import Any
 
 from .answer import fmt_number
 from .campaign import MEASURED_PARAMETERS
+from .report_document import Blocks
+from .report_figures import psd_like_figure
 
 __all__ = ["like_section", "measured_section", "scene_sentence", "surface_rows"]
 
@@ -70,8 +73,9 @@ def surface_rows(settings) -> list[list[Any]]:
     return rows
 
 
-def measured_section(rep, settings, results: dict) -> None:
+def measured_section(settings, results: dict) -> Blocks:
     """"Measured topographies": one row per file with its ISO 25178 parameters and its contact."""
+    rep = Blocks()
     rep.heading("Measured topographies")
     rep.paragraph(
         f"Each file is one surface; its form ({settings.form}) was removed before the contact "
@@ -102,11 +106,13 @@ def measured_section(rep, settings, results: dict) -> None:
         rep.paragraph(f"⚠ {settings.n_surfaces} files: the checks on held-out surfaces need about "
                       f"ten or more; with fewer they are weak or not run (the table of checks says "
                       f"which).")
+    return rep
 
 
-def like_section(rep, settings, like: dict, plt) -> None:
+def like_section(settings, like: dict) -> Blocks:
     """"Measured template and simulated surfaces": spectrum fit, ISO parameters and PSDs side by
     side, and the contact of the template against the simulated surfaces."""
+    rep = Blocks()
     p = like["parameters"]
     fit = p.fit
     rep.heading("Measured template and simulated surfaces")
@@ -134,13 +140,9 @@ def like_section(rep, settings, like: dict, plt) -> None:
               f"ISO 25178-2 parameters (about the least-squares plane) of the measured template and "
               f"of the first {n_sim} simulated surfaces; z = (measured − simulated mean) / "
               f"simulated sd.")
-    import contact
-
-    fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
-    contact.plot_psd_comparison(like["measured"], like["simulated"], ax=ax)
-    rep.figure("psd_like", fig, "Radially averaged power spectral density of the measured template, "
-                                f"the mean and 95 % band of {n_sim} simulated surfaces, and the "
-                                "power law fitted to the template.")
+    rep.figure("psd_like", psd_like_figure(like),
+               "Radially averaged power spectral density of the measured template, the mean and "
+               f"95 % band of {n_sim} simulated surfaces, and the power law fitted to the template.")
     prow = []
     for _, r in like["pressure"].iterrows():
         scale, spec = ((1e-6, ".4g") if "pressure" in r["quantity"] else (1.0, ".3g"))
@@ -157,3 +159,4 @@ def like_section(rep, settings, like: dict, plt) -> None:
         rep.paragraph("⚠ Outside the simulated 5–95 % range: " + ", ".join(sorted(set(outside)))
                       + ". The damage probability above describes the simulated surfaces; compare "
                         "with a study of measured topographies (--topographies).")
+    return rep

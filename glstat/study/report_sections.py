@@ -1,0 +1,234 @@
+"""The sections of the study report that come first: the answer on the first screen, its
+checks, the consistency with the paper, the main results, the settings, and the example
+surfaces. Each function returns its section as :class:`~glstat.study.report_document.Blocks`."""
+
+from __future__ import annotations
+
+from .analysis import SAMPLE_LABELS
+from .answer import case_label, case_name, check_rows, degenerate_scene, first_screen_rows, overlap_note
+from .report_document import Blocks, fmt_cell
+from .report_figures import (
+    damage_curve_figure,
+    damage_reliability_figure,
+    pressure_maps_figure,
+    surfaces_figure,
+)
+from .report_numbers import KINDS, model_error_factors
+from .report_surfaces import scene_sentence, surface_rows
+from .report_text import (
+    calibration_verdict,
+    damage_sentence,
+    fmt_interval,
+    truncation_caption,
+    truncation_paragraphs,
+)
+
+__all__ = ["answer_section", "checks_section", "examples_section", "main_results_section",
+           "paper_section", "settings_section"]
+
+
+def _level(asettings) -> int:
+    return round(100 * asettings.confidence_level)
+
+
+def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
+    """"The answer": warnings on the scene, the damage probability per case beside the
+    observed fraction, the elastic model and the paper, the model error of the asperity
+    model, and how the peak pressures were fitted."""
+    out = Blocks()
+    hard, lvl = asettings.hardness, _level(asettings)
+    out.heading("The answer")
+    bem = info.get("bem")
+    for warn in (degenerate_scene(analysis), overlap_note(settings, analysis)):
+        if warn:
+            out.paragraph("⚠ " + warn)
+    rows, columns = first_screen_rows(settings, asettings, analysis, bem, info.get("bem_analysis"))
+    out.table(columns, rows,
+              f"Probability that the contact pressure exceeds the hardness {hard:g} MPa somewhere on "
+              f"one analysed area ({settings.length * 1e3:g} × {settings.length * 1e3:g} mm²), "
+              f"predicted from the peak pressures of the asperities in contact with their number "
+              f"per surface as a random count (docs/method.md §6), with its {lvl} % bootstrap "
+              f"interval (surfaces resampled). 'Check' is the prediction tested on held-out "
+              f"surfaces (coverage of the maximum, centring, and the damage probability at "
+              f"{asettings.n_levels}+ hardness levels). The elastic BEM column is the same "
+              f"predictor on the elastic solution of the first surfaces (per contact spot).")
+    if bem:
+        ratios = [f"{case_name(settings, ih)}: mean pressure ×{mean:.2g}, maximal pressure ×{peak:.2g}"
+                  for ih, _, mean, peak in model_error_factors(bem)]
+        out.paragraph("Contact model error: on the same surfaces the elastic boundary-element "
+                      "solution gives " + "; ".join(ratios) + " the asperity model's (c = "
+                      f"{settings.cone_factor:g}). The asperity model neglects elastic interaction "
+                      "and prescribes the pressure shape; the damage verdict depends on the model.")
+    notes = [f"{case_name(settings, ih)}: {r['asperity'].end_note}" for (ih, il), r in analysis.items()
+             if r["asperity"].end_note]
+    if notes:
+        out.paragraph("⚠ Fitted end point: " + "; ".join(notes) + ".")
+    choices = [f"{case_name(settings, ih)}: {r['asperity'].choice.reason}"
+               for (ih, il), r in analysis.items() if r["asperity"].choice is not None]
+    if choices:
+        out.paragraph("Fit of the peak pressures, chosen on an inner split of the surfaces (never on "
+                      "the surfaces it is checked against): " + "; ".join(choices) + ".")
+    return out
+
+
+def _answer_figures(out: Blocks, settings, asettings, analysis: dict, model: str = "") -> None:
+    """Damage probability against hardness (with its band and the observed fraction) and the
+    reliability of the predicted damage probabilities, per case."""
+    suffix = f" ({model})" if model else ""
+    tag = "_bem" if model else ""
+    out.figure("damage_curve" + tag, damage_curve_figure(settings, asettings, analysis, suffix),
+               "Damage probability on one analysed area against the hardness, with its bootstrap "
+               "band (per-asperity predictor), and the fraction of surfaces whose maximal pressure "
+               "exceeds it" + suffix + ".")
+    out.figure("damage_reliability" + tag, damage_reliability_figure(settings, analysis, suffix),
+               "Reliability of the damage probability: predicted (fit on the other fold) against "
+               "observed on held-out surfaces, at several hardness levels, for one area (k = 1) and "
+               "groups of k = 2 and 4 surfaces (the area scaling). Filled: per-asperity predictor; "
+               "open squares: the paper's grid-point predictor.")
+
+
+def checks_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
+    """The checks of the answer on held-out surfaces: their table, the damage curves and
+    their reliability per model, and the elastic solves left out."""
+    out = Blocks()
+    bem_an = info.get("bem_analysis")
+    rows, columns = check_rows(settings, asettings, analysis, bem_an)
+    out.table(columns, rows,
+              "Checks on held-out surfaces (fit on one fold, predict the other): coverage of the "
+              "predicted interval of each surface's maximum, the t-test of (predicted − observed) "
+              "maxima, the hardness levels at which the predicted damage probability lies inside "
+              "the observed Wilson interval, and the extremal index θ (effective over nominal number "
+              "of draws). A prediction passes when the coverage interval contains the level, the "
+              "test does not reject at 5 % and ≥ 80 % of the levels are inside. The Holm column "
+              "adjusts the centring p-values for testing every case (one family per model and "
+              "sample; statsmodels' multipletests): it answers whether any case is off-centre, "
+              "while each case's check uses its own p.")
+    _answer_figures(out, settings, asettings, analysis)
+    left = info.get("bem_left_out") or []
+    if left:
+        out.paragraph("⚠ Elastic BEM solves that did not converge within the iteration limit are "
+                      "left out of its analysis (never used): " + "; ".join(
+                          f"{case_label(settings, ih, il)} surface {i}" for ih, il, i in left) + ".")
+    if bem_an:
+        _answer_figures(out, settings, asettings, bem_an, model="elastic BEM")
+    return out
+
+
+def paper_section(info: dict) -> Blocks:
+    """"Consistency with the paper": the findings computed from the paper's Table 1 (empty
+    when the run has none)."""
+    out = Blocks()
+    paper = info.get("paper_findings")
+    if paper:
+        out.heading("Consistency with the paper")
+        out.paragraph("Computed from the paper's Table 1 by this run (docs/method.md §11):")
+        for line in paper:
+            out.paragraph("• " + line)
+    return out
+
+
+def _coverage(v) -> str:
+    """Coverage of the predicted interval with its Wilson interval, in percent ("—" unchecked)."""
+    if v.table is None:
+        return "—"
+    return (f"{100 * v.coverage:.0f} % [{100 * v.coverage_interval[0]:.0f}, "
+            f"{100 * v.coverage_interval[1]:.0f}]")
+
+
+def main_results_section(settings, asettings, analysis: dict) -> Blocks:
+    """"Main results": the scene, one row per case with its contact, damage probabilities and
+    coverages, the damage verdict, load-control jumps and the calibration of the maximum."""
+    out = Blocks()
+    hard, lvl = asettings.hardness, _level(asettings)
+    out.heading("Main results")
+    out.paragraph(
+        scene_sentence(settings) + f" Per-asperity peaks: the GLD chosen per H "
+        f"(above), B = {asettings.n_resamples} bootstrap resamples of whole surfaces; grid-point "
+        f"pressures: {asettings.param.upper()} by {asettings.method} (the paper's), B = "
+        f"{asettings.grid_resamples}; hardness {hard:g} MPa, {lvl} % intervals. Pressures in MPa.")
+    rows = []
+    for (ih, il), r in analysis.items():
+        s = r["summary"]
+        row = [case_label(settings, ih, il), s["mean_pressure"], s["contact_fraction"], s["n_contact"],
+               s["n_asperities"], s["max_pressure"]]
+        for kind in KINDS:
+            row += [fmt_interval(r[kind].damage), _coverage(r[kind].validation)]
+        rows.append(row)
+    out.table(["case", "mean contact pressure", "1 − α", "points in contact / surface",
+               "asperities / surface", "max pressure / surface",
+               "damage P (grid)", f"coverage of {lvl} % interval (grid)",
+               "damage P (asperity)", f"coverage of {lvl} % interval (asperity)"], rows,
+              f"Per-surface means; damage probability at {hard:g} MPa on one analysed area with its "
+              f"{lvl} % bootstrap interval; coverage with its Wilson 95 % interval.")
+    out.paragraph(damage_sentence(settings, analysis, hard, lvl))
+    jumps = [(case_label(settings, ih, il), r["summary"]) for (ih, il), r in analysis.items()
+             if r["summary"].get("n_in_jump", 0)]
+    if jumps:
+        out.paragraph(
+            "Load control: the asperity model's force jumps where a summit starts to touch or a "
+            "patch boundary passes a dip, so a requested load can fall inside a jump, where no "
+            "state of the model carries it exactly; such surfaces keep the nearest physical "
+            "state (docs/contact.md). " + "; ".join(
+                f"{lab}: {s['n_in_jump']} of {s['n_surfaces']} surfaces, largest jump "
+                f"{100 * s['max_force_jump']:.2g} % of the load, largest |force error| "
+                f"{100 * s['force_error']:.2g} %" for lab, s in jumps) + ".")
+    calib = [f"{case_label(settings, ih, il)}, {SAMPLE_LABELS[kind]}: "
+             + calibration_verdict(r[kind].validation, asettings.confidence_level)
+             for (ih, il), r in analysis.items() for kind in KINDS
+             if r[kind].validation.table is not None]
+    if calib:
+        out.paragraph("Calibration of the predicted maximum (calibrated = coverage consistent with "
+                      "the nominal level, i.e. the level inside the Wilson interval, and the "
+                      "centring t-test at the test level not rejecting; docs/method.md §9): "
+                      + "; ".join(calib) + ".")
+    return out
+
+
+def settings_section(settings, asettings, info: dict) -> Blocks:
+    """"Settings, versions and timings": the surfaces and the method, the Weierstrass
+    truncation (simulated surfaces), package versions and the time of each stage."""
+    out = Blocks()
+    out.heading("Settings, versions and timings")
+    rows = [*surface_rows(settings),
+            ["E (GPa), ν, cone factor c",
+             f"{settings.E / 1e9:g}, {settings.nu:g}, {settings.cone_factor:g}"],
+            ["seed", settings.seed], ["hardness Pd (MPa)", asettings.hardness],
+            ["GLD fit", f"{asettings.param.upper()} by {asettings.method}"],
+            ["bootstrap resamples B", asettings.n_resamples],
+            ["interval level", asettings.confidence_level],
+            ["test level", asettings.test_level],
+            ["guaranteed-pressure integrity level", asettings.integrity_level]]
+    if info.get("bem_settings") is not None:
+        b = info["bem_settings"]
+        rows.append(["BEM comparison: surfaces per case K, boundary, tolerance, iteration limit",
+                     f"{b.n_compare}, {'periodic' if b.periodic else 'isolated patch'}, {b.tol:g}, "
+                     f"{b.max_iter}"])
+    out.table(["setting", "value"], [[a, fmt_cell(b)] for a, b in rows])
+    for text in ([] if settings.measured else truncation_paragraphs(settings, info)):
+        out.paragraph(text)
+    if info.get("truncation") and not settings.measured:
+        out.table(["H", "n_terms", "highest frequency (1/mm)", "mean pressure (GPa)", "1 − α",
+                   "asperities in contact"], info["truncation"],
+                  truncation_caption(settings, info.get("truncation_reference")))
+    out.table(["package", "version"], [[k, v] for k, v in info.get("versions", {}).items()])
+    out.table(["stage", "seconds"], [[k, v] for k, v in info.get("timings", {}).items()],
+              f"Workers: {info.get('workers', '?')}. Command: `{info.get('command', '')}`")
+    return out
+
+
+def examples_section(settings, analysis: dict, results: dict) -> Blocks:
+    """"Example surfaces" and "Pressure maps" of surface 0 of every case whose maps were
+    loaded (empty when none was)."""
+    out = Blocks()
+    stored = [(c, results.get((c[0], c[1], 0))) for c in analysis]
+    ex = [(c, r) for c, r in stored if r is not None and "heights" in r]
+    if not ex:
+        return out
+    out.heading("Example surfaces")
+    out.figure("surfaces", surfaces_figure(settings, ex),
+               "Example surface (surface 0) of every case: heights in µm.")
+    out.heading("Pressure maps")
+    out.figure("pressure_maps", pressure_maps_figure(settings, ex),
+               "Contact-pressure maps of the example surfaces (log colour scale, grey: no contact) "
+               "and a zoom around the highest pressure.")
+    return out
