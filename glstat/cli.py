@@ -380,8 +380,9 @@ def _run_locked(args, argv: list[str], settings, asettings, out: str):
 def _print_answer(res, settings, asettings, hardness: float) -> None:
     """The answer on the terminal: damage probability per case, warnings, the comparison of
     the contact models, and where the report is."""
-    from .study.answer import case_name, degenerate_scene, fmt_mpa, fmt_probability, overlap_note
-    from .study.answer import fmt_number as _num
+    from .formatting import fmt_mpa, fmt_probability
+    from .formatting import fmt_number as _num
+    from .study.answer import case_name, degenerate_scene, overlap_note
 
     table = res.summary()
     lvl = round(100 * asettings.confidence_level)

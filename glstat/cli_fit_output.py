@@ -14,6 +14,7 @@ import numpy as np
 from .cli_fit_options import GOF_ROWS, METHOD_NAMES
 from .cli_fit_results import FitResults
 from .cli_input import Sample
+from .formatting import fmt_number
 
 if TYPE_CHECKING:  # pragma: no cover
     from .bootstrap import BootstrapFit
@@ -23,7 +24,8 @@ __all__ = ["print_bootstrap", "print_damage", "print_fit", "print_gof", "print_h
 
 
 def fmt_g(v: float, digits: int = 6) -> str:
-    return "nan" if v is None or not np.isfinite(v) else f"{v:.{digits}g}"
+    """``v`` with ``digits`` significant digits ("nan" when missing)."""
+    return fmt_number(v, f".{digits}g", missing="nan")
 
 
 def text_table(df, digits: int = 6) -> str:

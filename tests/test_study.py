@@ -462,7 +462,7 @@ def test_report_with_hardness_far_above_the_pressures(tmp_path, capsys):
 
 
 def test_cli_number_format():
-    from glstat.study.answer import fmt_number as _num
+    from glstat.formatting import fmt_number as _num
 
     assert _num(0.99834, ".4g") == "0.9983"
     assert _num(0.8, ".0f", 100, " %") == "80 %"

@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from glstat.formatting import fmt_mpa, fmt_probability
 from glstat.study.analysis import (
     AnalysisSettings,
     SampleAnalysis,
@@ -16,7 +17,7 @@ from glstat.study.analysis import (
     choose_fit,
     hardness_levels,
 )
-from glstat.study.answer import degenerate_scene, fmt_mpa, fmt_probability
+from glstat.study.answer import degenerate_scene
 
 
 def _surfaces(rng, n, sampler):

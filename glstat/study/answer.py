@@ -10,9 +10,10 @@ from typing import Any
 
 import numpy as np
 
+from ..formatting import fmt_mpa, fmt_probability
 from .analysis import SAMPLE_LABELS
 
-__all__ = ["calibration_frame", "degenerate_scene", "fmt_mpa", "fmt_probability", "summary_frame"]
+__all__ = ["calibration_frame", "degenerate_scene", "summary_frame"]
 
 
 def case_name(settings, ih: int) -> str:
@@ -38,56 +39,6 @@ CALIBRATION_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "hardness_mpa
 PAPER_VERDICTS = {0.0: "certain", 0.5: "≈ 1 %", 1.0: "impossible"}
 #: The paper's mean contact pressures (Table 1), MPa, by H.
 PAPER_MEAN_MPA = {0.0: 1724.0, 0.5: 1369.0, 1.0: 1108.0}
-
-
-def fmt_number(value, spec: str = ".3g", factor: float = 1.0, unit: str = "") -> str:
-    """``value * factor`` formatted with ``spec`` and followed by ``unit``; "—" when missing.
-
-    Parameters
-    ----------
-    value : float or None
-        The number; None, NaN and values that are not numbers are missing.
-    spec : str
-        Format specification, e.g. ``".4g"``.
-    factor : float
-        Multiplier applied before formatting (e.g. 100 for a percentage).
-    unit : str
-        Text appended to a formatted number (not to "—").
-
-    Returns
-    -------
-    str
-    """
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        return "—"
-    if math.isnan(v):
-        return "—"
-    return f"{v * factor:{spec}}{unit}"
-
-
-def fmt_mpa(v: float) -> str:
-    """A pressure in MPa with three significant digits ('—' when missing)."""
-    if v is None or not math.isfinite(v):
-        return "—" if v is None or math.isnan(v) else ("∞" if v > 0 else "−∞")
-    return f"{v:.3g} MPa" if abs(v) < 1000 else f"{v / 1000:.3g} GPa"
-
-
-def fmt_probability(p: float) -> str:
-    """A probability as a percentage with up to three significant digits."""
-    if p is None or not math.isfinite(p):
-        return "—"
-    pc = 100 * p
-    if pc == 0:
-        return "0 %"
-    if pc == 100:
-        return "100 %"
-    if pc < 0.01:
-        return f"{pc:.2g} %"
-    if pc > 99.9:
-        return f"{pc:.4g} %"
-    return f"{pc:.3g} %"
 
 
 def _scalar(a) -> float:

@@ -18,7 +18,6 @@ comparison resumes like the campaign. The comparison itself is
 from __future__ import annotations
 
 import json
-import math
 import os
 import time
 from concurrent.futures import Executor

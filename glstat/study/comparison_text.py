@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from ..formatting import fmt_number
 from .both_models import MODELS
 from .model_comparison import QUANTITIES, SHORT_LABELS, BEMComparison
 
@@ -13,7 +14,7 @@ __all__ = ["findings"]
 
 
 def _x(r: float) -> str:
-    return "—" if not math.isfinite(r) else f"×{r:.3g}"
+    return "—" if not math.isfinite(r) else "×" + fmt_number(r)
 
 
 def findings(comparisons: dict[str, BEMComparison]) -> str:

@@ -36,6 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from ..formatting import fmt_probability
 from .paper_checks import FAMILIES, common_n, n_contact_for, reading_family
 from .paper_checks import damage_claims as damage_claims
 from .paper_checks import moment_fit_roots as moment_fit_roots
@@ -160,16 +161,6 @@ def paper_consistency(n_contact=None, *, table=None,
 
 
 # -- the findings --------------------------------------------------------------------------------
-def _fmt_p(d: float) -> str:
-    if d == 0:
-        return "0"
-    if d >= 0.995:
-        return f"{d:.3f}"
-    if d >= 1e-3:
-        return f"{100 * d:.3g} %"
-    return f"{d:.2g}"
-
-
 def _means_finding(c: PaperConsistency) -> str:
     """What the printed means imply with the paper's c = 0.2, E = 210 GPa, nu = 0.3."""
     from contact import effective_modulus
@@ -274,7 +265,7 @@ def _damage_findings(c: PaperConsistency) -> list[str]:
         parts = []
         for h in sorted(sub["hurst"].unique(), reverse=True):
             s = sub[sub["hurst"] == h]
-            vals = ", ".join(_fmt_p(v) for v in s["damage"])
+            vals = ", ".join(fmt_probability(v) for v in s["damage"])
             parts.append(f"H = {h:g}: {vals} (claim: {s['claim'].iloc[0]})")
         nn = ", ".join(f"{c.n_contact[h]:.3g}" for h in sorted(c.n_contact, reverse=True))
         out.append(f"Damage at {c.hardness_mpa:g} MPa from {FAMILIES[fam]} with n = {nn} points in "

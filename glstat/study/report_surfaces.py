@@ -8,7 +8,7 @@ import math
 import os
 from typing import Any
 
-from .answer import fmt_number
+from ..formatting import fmt_number
 from .campaign import MEASURED_PARAMETERS
 from .report_document import Blocks
 from .report_figures import psd_like_figure
