@@ -174,6 +174,8 @@ class _GLDGen(rv_continuous):
         L-moment fit where the percentiles are out of reach), widened so that the support
         covers the data; scipy's default start when given shapes or when neither fit exists."""
         if args is None:
+            # importing a module of glstat.fitting runs the package's __init__, whose GLDFit
+            # is built on glstat.gld and so on this module: imported when a fit runs
             from .fitting._data import scipy_fitstart
 
             x = data._uncensor() if hasattr(data, "_uncensor") else data
@@ -198,8 +200,10 @@ class _GLDGen(rv_continuous):
         """
         if any(k.startswith("f") or k == "optimizer" for k in kwds):
             return super().fit(data, *args, **kwds)
+        # imported here, not with the module: see _fitstart
+        from .fitting._candidates import emit_issues
         from .fitting._data import scipy_guess
-        from .fitting.core import fit as _fit
+        from .fitting._sample_fit import fit_sample
 
         param = "rs" if self._family == quantile_function.RS else "fkml"
         method = kwds.pop("method", "mle")
@@ -209,7 +213,9 @@ class _GLDGen(rv_continuous):
                             self.numargs)
         if guess is not None and method in ("mle", "mps", "starship"):
             kwds["start"] = guess
-        res = _fit(data, param=param, method=method, warn=warn, **kwds)
+        res = fit_sample(data, param=param, method=method, **kwds)
+        if warn:
+            emit_issues(res.issues, stacklevel=2)
         l1, l2, l3, l4 = res.lambdas
         return l3, l4, l1, 1.0 / abs(l2)
 

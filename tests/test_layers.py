@@ -97,11 +97,7 @@ def test_no_private_names_across_modules():
 
 
 #: Import cycles still present, each a set of modules (lazy imports inside functions count).
-KNOWN_CYCLES = {
-    # scipy's fit of gld_rs / gld_fkml runs glstat.fit, whose result is a glstat.GLD
-    frozenset({"glstat.distributions", "glstat.fitting._data", "glstat.fitting._equations",
-               "glstat.fitting._result", "glstat.fitting.core", "glstat.gld"}),
-}
+KNOWN_CYCLES: set[frozenset[str]] = set()
 
 
 def _import_graph() -> dict[str, set[str]]:

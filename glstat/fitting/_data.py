@@ -15,6 +15,7 @@ from .._core.quantile_function import FKML, RS, median_std, q_lower, rs_sign
 from ..errors import ConvergenceWarning, FitError
 from . import _kernels as K
 from . import _likelihood as L
+from ._candidates import FitIssue, candidate, make_record, select_candidate
 from ._stats import distinct_note
 
 logger = logging.getLogger(__name__)
@@ -256,11 +257,9 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     the selected objective is never worse.
 
     The selected candidate is the valid, covering one with the lowest objective. Nothing is
-    warned: an optimiser that stopped at ``maxiter`` is reported in ``GLDFit.issues``
-    (:func:`glstat.fit` emits the issues).
+    warned: an optimiser that stopped at ``maxiter`` is reported in the record's ``issues``
+    (:func:`glstat.fit` emits them).
     """
-    from ._result import FitIssue, candidate, make_fit, select_candidate
-
     if optimizer not in OPTIMIZERS:
         raise ValueError(f"optimizer must be one of {OPTIMIZERS}, got {optimizer!r}")
     if maxiter is None:
@@ -349,8 +348,8 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
     options = {"maxiter": maxiter, "starts": starts, "optimizer": optimizer}
     if start is not None:
         options["start"] = tuple(float(v) for v in start)
-    return make_fit(rows, sel, param, method, n, {_OBJECTIVE_NAME[method]: rows[sel]["objective"]},
-                     options, issues)
+    return make_record(rows, sel, param, method, n, {_OBJECTIVE_NAME[method]: rows[sel]["objective"]},
+                       options, issues)
 
 
 def scipy_fitstart(data, param: str) -> tuple[float, float, float, float] | None:

@@ -15,7 +15,7 @@ from .._core import quantile_function
 from ..errors import FitError, FitWarning
 from . import _kernels as K
 from . import _stats as S
-from ._result import FitIssue, GLDFit, candidate, make_fit, select_candidate
+from ._candidates import FitIssue, FitRecord, candidate, make_record, select_candidate
 
 __all__ = ["DATA_METHODS", "FAMILY", "KIND", "STAT_NAMES", "check_u", "equation_roots",
            "fit_equations", "fit_from_stats", "poor_fit_issue", "reach_message", "seed_table"]
@@ -167,16 +167,16 @@ def poor_fit_issue(rows, param: str, method: str, x: np.ndarray) -> FitIssue | N
     return FitIssue(FitWarning, msg)
 
 
-def fit_from_stats(method, param, stats, u, x, n, statistics, options) -> GLDFit:
+def fit_from_stats(method, param, stats, u, x, n, statistics, options) -> FitRecord:
     roots = equation_roots(method, param, stats, u)
     rows = [candidate(lams, param, conv, res, x) for lams, conv, res in roots]
     sel = select_candidate(rows, x is not None)
     if sel < 0:
         raise FitError(reach_message(method, param, stats, u))
-    return make_fit(rows, sel, param, method, n, statistics, options)
+    return make_record(rows, sel, param, method, n, statistics, options)
 
 
-def fit_equations(x: np.ndarray, param: str, method: str, u: float = 0.1) -> GLDFit:
+def fit_equations(x: np.ndarray, param: str, method: str, u: float = 0.1) -> FitRecord:
     """The equation fit (``"moments"``, ``"percentiles"`` or ``"lmoments"``) of the sorted,
     finite sample ``x``: its statistics, every root, the selected candidate.
 

@@ -1,46 +1,27 @@
-"""The result of a GLD fit (:class:`GLDFit`, its issues and text summary) and the bookkeeping
-of candidate solutions: their validity, cover of the data, KS distance and the selection rule
-shared by the equation and the data-based fits."""
+"""The result of a GLD fit: :class:`GLDFit`, a fit's record (:mod:`glstat.fitting._candidates`)
+with its distribution, its table of candidates and its text summary."""
 
 from __future__ import annotations
 
 import math
 import textwrap
-import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, fields
 from functools import cached_property
-from typing import TYPE_CHECKING, Any, NamedTuple
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from ..gld import GLD
 from ..regions import rs_region
-from ._eval import gld_evaluate, gld_support, lambdas_valid
+from ._candidates import FitRecord, candidates_frame, count_valid
+from ._eval import gld_support
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-__all__ = ["FitIssue", "GLDFit", "candidate", "covers", "emit_issues", "ks_distance", "make_fit",
-           "nan_fit", "select_candidate"]
-
-
-class FitIssue(NamedTuple):
-    """A warning of a fit: what :func:`fit` warns, or with ``warn=False`` would have warned.
-
-    Attributes
-    ----------
-    category : type
-        The warning class (:class:`glstat.FitWarning`, :class:`glstat.ConvergenceWarning`).
-    message : str
-        The warning text, with the figures behind it.
-    """
-
-    category: type
-    message: str
+__all__ = ["GLDFit", "as_gldfit"]
 
 
 @dataclass(frozen=True)
-class GLDFit:
+class GLDFit(FitRecord):
     """Result of a GLD fit.
 
     The selected distribution is ``fit.dist``, a :class:`glstat.GLD` in the lambda (R)
@@ -77,15 +58,6 @@ class GLDFit:
         built on first access.
     """
 
-    lambdas: tuple[float, float, float, float]
-    param: str
-    method: str
-    n: int | None
-    statistics: dict[str, float]
-    options: dict[str, Any] = field(default_factory=dict)
-    issues: tuple[FitIssue, ...] = ()
-    _candidates: tuple[dict, ...] = field(default=(), repr=False, compare=False)
-
     @cached_property
     def dist(self) -> GLD | None:
         """The selected distribution, ``GLD(*lambdas, param=param)`` (None for a NaN fit)."""
@@ -102,7 +74,7 @@ class GLDFit:
     def n_valid(self) -> int:
         """Number of valid roots or candidates (a distribution each), without building
         ``solutions``."""
-        return sum(bool(r["valid"]) for r in self._candidates)
+        return count_valid(self._candidates)
 
     @property
     def region(self) -> int | None:
@@ -207,98 +179,6 @@ def _summary_text(f: GLDFit) -> str:
     return "\n".join(lines)
 
 
-def ks_distance(dist, x: np.ndarray) -> float:
-    """Kolmogorov–Smirnov distance between a GLD and the sorted sample ``x``.
-
-    ``dist`` is a :class:`glstat.GLD` or ``(param, lambdas)``. Never warns (safe in worker
-    threads): points where the inversion of Q reached its limit enter with its best estimate.
-    """
-    param, lams = (dist.param, dist.lambdas) if isinstance(dist, GLD) else dist
-    f, _ = gld_evaluate(param, "cdf", x, lams)
-    n = x.size
-    i = np.arange(1, n + 1)
-    return float(max(np.max(i / n - f), np.max(f - (i - 1) / n)))
-
-
-def covers(dist, x: np.ndarray) -> bool:
-    """True when the support of the GLD ``dist`` (or ``(param, lambdas)``) contains every
-    point of the sorted sample ``x``."""
-    param, lams = (dist.param, dist.lambdas) if isinstance(dist, GLD) else dist
-    lo, hi = gld_support(param, lams)
-    return bool(lo <= x[0] and hi >= x[-1])
-
-
-def candidate(lams, param, converged, objective, x) -> dict:
-    """One candidate: its lambdas, validity, and with data its cover and KS distance."""
-    lams = tuple(float(v) for v in lams)
-    row = {"lambdas": lams, "valid": lambdas_valid(param, lams), "converged": bool(converged),
-           "objective": float(objective), "covers_data": None, "ks": math.nan, "selected": False}
-    if x is not None and row["valid"]:
-        row["covers_data"] = covers((param, lams), x)
-        row["ks"] = ks_distance((param, lams), x)
-    return row
-
-
-def select_candidate(rows: list[dict], have_data: bool, by_objective: bool = False) -> int:
-    """Index of the selected candidate (the documented rule), -1 when none qualifies.
-
-    Valid and converged first; with data, a support that covers the data; then the smallest
-    KS distance (data) or objective (``by_objective``); without data, the root with the
-    least extreme shapes, the smallest max(|lambda3|, |lambda4|).
-    """
-    best = -1
-    best_key: tuple = ()
-    key: tuple[float, ...]
-    for i, r in enumerate(rows):
-        if not (r["valid"] and r["converged"]):
-            continue
-        if have_data:
-            key = (0 if r["covers_data"] else 1,
-                   r["objective"] if by_objective else r["ks"], r["objective"])
-        else:
-            key = (max(abs(r["lambdas"][2]), abs(r["lambdas"][3])), r["objective"])
-        if best < 0 or key < best_key:
-            best, best_key = i, key
-    return best
-
-
-CANDIDATE_COLUMNS = ["lambda1", "lambda2", "lambda3", "lambda4", "region", "valid", "converged", "objective",
-            "covers_data", "ks", "selected"]
-
-
-def candidates_frame(rows, param: str):
-    import pandas as pd
-
-    lam = np.array([r["lambdas"] for r in rows], dtype=float).reshape(-1, 4)
-    if param == "rs" and len(rows):
-        region = np.asarray(rs_region(lam[:, 2], lam[:, 3]), dtype=int)
-    else:
-        region = np.zeros(len(rows), dtype=int)
-    data: dict[str, np.ndarray | list[Any]] = {f"lambda{i + 1}": lam[:, i] for i in range(4)}
-    data["region"] = region
-    for c in CANDIDATE_COLUMNS[5:]:
-        data[c] = [r[c] for r in rows]
-    return pd.DataFrame(data, columns=CANDIDATE_COLUMNS)
-
-
-def make_fit(rows, sel, param, method, n, statistics, options, issues=()) -> GLDFit:
-    if sel >= 0:
-        rows[sel]["selected"] = True
-        lams = rows[sel]["lambdas"]
-    else:
-        lams = (math.nan,) * 4
-    l1, l2, l3, l4 = (float(v) for v in lams)
-    return GLDFit(lambdas=(l1, l2, l3, l4), param=param, method=method, n=n,
-                  statistics=statistics, options=options, issues=tuple(issues),
-                  _candidates=tuple(rows))
-
-
-def nan_fit(param, method, n, options) -> GLDFit:
-    return GLDFit(lambdas=(math.nan,) * 4, param=param, method=method, n=n, statistics={},
-                  options=options)
-
-
-def emit_issues(issues, stacklevel: int) -> None:
-    """Warn every issue (in the calling thread)."""
-    for issue in issues:
-        warnings.warn(issue.message, issue.category, stacklevel=stacklevel + 1)
+def as_gldfit(record: FitRecord) -> GLDFit:
+    """The :class:`GLDFit` of a fit's record (same fields, same candidates)."""
+    return GLDFit(**{f.name: getattr(record, f.name) for f in fields(FitRecord)})

@@ -1,44 +1,32 @@
 """Fitting a GLD: every root of the moment, percentile and L-moment equations, ML, MPS, starship.
 
-The public functions here handle input checking, candidate bookkeeping and selection; the
-numerical work is in the compiled kernels of :mod:`glstat.fitting._kernels` (shape equations
-and Newton solver) and :mod:`glstat.fitting._likelihood` (data-based objectives).
+The public functions here check their input and return :class:`GLDFit` results; the fit of
+a sample is :func:`glstat.fitting._sample_fit.fit_sample`, the candidate bookkeeping and
+selection are in :mod:`glstat.fitting._candidates`, and the numerical work is in the compiled
+kernels of :mod:`glstat.fitting._kernels` (shape equations and Newton solver) and
+:mod:`glstat.fitting._likelihood` (data-based objectives).
 """
 
 from __future__ import annotations
 
-import logging
-
 import numpy as np
 
+from .._validate import check_param as _check_param
 from ..errors import FitError
 from . import _kernels as K
 from . import _stats as S
-from ._equations import DATA_METHODS as _DATA_METHODS
+from ._candidates import FitIssue
+from ._candidates import emit_issues as _emit
 from ._equations import FAMILY as _FAM
 from ._equations import KIND as _KIND
 from ._equations import STAT_NAMES as _STAT_NAMES
 from ._equations import check_u as _check_u
-from ._equations import fit_equations, poor_fit_issue
-from ._equations import fit_from_stats as _fit_from_stats
+from ._equations import fit_from_stats
 from ._equations import seed_table as _table
-from ._result import FitIssue, GLDFit
-from ._result import emit_issues as _emit
-from ._result import nan_fit as _nan_fit
+from ._result import GLDFit, as_gldfit
+from ._sample_fit import fit_sample
 
 __all__ = ["FitIssue", "GLDFit", "fit", "fit_batch", "fit_lmoments", "fit_moments", "fit_percentiles"]
-
-logger = logging.getLogger(__name__)
-
-METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
-
-
-def _check_param(param: str) -> str:
-    p = str(param).lower()
-    if p not in _FAM:
-        raise ValueError(f"param must be 'rs' or 'fkml', got {param!r}")
-    return p
-
 
 # ---------------------------------------------------------------------------------------------
 # public API: fits from summary statistics
@@ -89,8 +77,8 @@ def fit_moments(mean: float, std: float, skew: float, kurt: float, param: str = 
     kurt = float(kurt) + (3.0 if fisher else 0.0)
     stats = (float(mean), float(std), float(skew), kurt)
     S.check_moment_stats(*stats)
-    return _fit_from_stats("moments", param, stats, 0.1, None, None,
-                           dict(zip(_STAT_NAMES["moments"], stats, strict=True)), {})
+    return as_gldfit(fit_from_stats("moments", param, stats, 0.1, None, None,
+                                    dict(zip(_STAT_NAMES["moments"], stats, strict=True)), {}))
 
 
 def fit_percentiles(rho=None, param: str = "rs", *, quantiles=None, u: float = 0.1) -> GLDFit:
@@ -136,8 +124,9 @@ def fit_percentiles(rho=None, param: str = "rs", *, quantiles=None, u: float = 0
         if len(stats) != 4:
             raise ValueError(f"rho must hold 4 values, got {len(stats)}")
     S.check_rho(*stats)
-    return _fit_from_stats("percentiles", param, stats, u, None, None,
-                           dict(zip(_STAT_NAMES["percentiles"], stats, strict=True)), {"u": u})
+    return as_gldfit(fit_from_stats("percentiles", param, stats, u, None, None,
+                                    dict(zip(_STAT_NAMES["percentiles"], stats, strict=True)),
+                                    {"u": u}))
 
 
 def fit_lmoments(l1: float, l2: float, t3: float, t4: float, param: str = "rs") -> GLDFit:
@@ -159,8 +148,8 @@ def fit_lmoments(l1: float, l2: float, t3: float, t4: float, param: str = "rs") 
     param = _check_param(param)
     stats = (float(l1), float(l2), float(t3), float(t4))
     S.check_lmoment_stats(*stats)
-    return _fit_from_stats("lmoments", param, stats, 0.1, None, None,
-                           dict(zip(_STAT_NAMES["lmoments"], stats, strict=True)), {})
+    return as_gldfit(fit_from_stats("lmoments", param, stats, 0.1, None, None,
+                                    dict(zip(_STAT_NAMES["lmoments"], stats, strict=True)), {}))
 
 
 def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0.1,
@@ -312,31 +301,7 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
     >>> f.issues                        # nothing to warn about
     ()
     """
-    param = _check_param(param)
-    if method not in METHODS:
-        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    allowed = {"u"} if method == "percentiles" else set()
-    if method in _DATA_METHODS:
-        allowed = {"maxiter", "starts", "optimizer", "start"}
-    unknown = set(options) - allowed
-    if unknown:
-        raise ValueError(f"unknown option(s) {sorted(unknown)} for method {method!r}; "
-                         f"allowed: {sorted(allowed) or 'none'}")
-    x, _ = S.prepare_data(data, nan_policy)
-    if x is None:
-        return _nan_fit(param, method, None, dict(options))
-    n = x.size
-    if method in _DATA_METHODS:
-        from ._data import fit_data_objective
-
-        f = fit_data_objective(x, param, method, **options)
-    else:
-        f = fit_equations(x, param, method, options.get("u", 0.1))
-    logger.debug("fit %s %s of n=%d: %d candidate(s), %d valid; selected lambdas %s", param, method, n,
-                 len(f._candidates), f.n_valid, f.lambdas)
-    issue = poor_fit_issue(f._candidates, param, method, x)
-    if issue is not None:
-        object.__setattr__(f, "issues", (issue, *f.issues))
+    f = as_gldfit(fit_sample(data, param, method, nan_policy, **options))
     if warn:
         _emit(f.issues, stacklevel=2)
     return f
