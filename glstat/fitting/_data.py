@@ -15,6 +15,7 @@ from .._core.quantile_function import FKML, RS, median_std, q_lower, rs_sign
 from ..errors import ConvergenceWarning, FitError
 from . import _kernels as K
 from . import _likelihood as L
+from ._bfgs import FREE, MAXITER, minimize_bfgs
 from ._candidates import FitIssue, candidate, make_record, select_candidate
 from ._stats import distinct_note
 
@@ -194,10 +195,10 @@ def _refine_bfgs(kind, fam, z, th0, w, maxiter, unit):
     the better result. Returns (theta, objective, not stopped by maxiter, iterations of the
     free run)."""
     th = th0.copy()
-    val, nit, _, status, hit = L.minimize_bfgs(kind, fam, z, th, w, maxiter, unit, _GTOL, _FTOL, L.FREE,
-                                               0.0)
-    ok = status != L.MAXITER
-    mode = L.FREE
+    val, nit, _, status, hit = minimize_bfgs(kind, fam, z, th, w, maxiter, unit, _GTOL, _FTOL, FREE,
+                                             0.0)
+    ok = status != MAXITER
+    mode = FREE
     gap = _PIN_GAP * float(z[-1] - z[0])
     for _ in range(2):
         if not hit or (mode | hit) == mode:
@@ -205,8 +206,8 @@ def _refine_bfgs(kind, fam, z, th0, w, maxiter, unit):
         mode |= hit
         th2 = th.copy()
         w2 = w.copy()
-        val2, _, _, _, hit = L.minimize_bfgs(kind, fam, z, th2, w2, min(maxiter, _PIN_MAXITER), unit,
-                                             _GTOL, _FTOL, mode, gap)
+        val2, _, _, _, hit = minimize_bfgs(kind, fam, z, th2, w2, min(maxiter, _PIN_MAXITER), unit,
+                                           _GTOL, _FTOL, mode, gap)
         if not val2 < val:
             break
         # a pinned run stopped by its iteration cap still improved on the free optimum

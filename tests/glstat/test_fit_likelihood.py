@@ -224,7 +224,7 @@ def test_ml_start_heading_into_the_rs_origin_is_stopped():
     # Karian–Dudewicz gamma case: the percentile root near the RS origin, (-0.0061, -0.0174), starts a
     # BFGS run whose shapes shrink towards 0 while the scale diverges; it used to run to
     # maxiter (500 iterations, ~0.1 s) for an objective worse than that of the other start
-    from glstat.fitting import _data, _likelihood
+    from glstat.fitting import _bfgs, _data, _likelihood
 
     x = np.sort(stats.gamma(5, scale=3).rvs(1000, random_state=1))
     med = float(np.median(x))
@@ -237,9 +237,9 @@ def test_ml_start_heading_into_the_rs_origin_is_stopped():
     n = x.size
     w = np.log((np.arange(n) + 0.5) / (n - np.arange(n) - 0.5))
     th = near[0].copy()
-    _, nit, _, status, _ = _likelihood.minimize_bfgs(_likelihood.MLE, 0, z, th, w, 500, float(n),
-                                                     _data._GTOL, _data._FTOL, _likelihood.FREE, 0.0)
-    assert status == _likelihood.DEGENERATE and nit < 500
+    _, nit, _, status, _ = _bfgs.minimize_bfgs(_likelihood.MLE, 0, z, th, w, 500, float(n),
+                                               _data._GTOL, _data._FTOL, _bfgs.FREE, 0.0)
+    assert status == _bfgs.DEGENERATE and nit < 500
     assert max(abs(th[2]), abs(th[3])) < 1e-4
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no ConvergenceWarning
