@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 from scipy import stats
 
+from ._validate import check_n_resamples
 from .fitting import GLDFit
 from .fitting import fit as _gld_fit
 from .gld import GLD
@@ -110,30 +111,9 @@ def prepare_sample(data, nan_policy: str) -> tuple[np.ndarray | None, int]:
 
 
 def check_gof_resamples(n_resamples) -> int:
-    """A number of parametric-bootstrap replicates: 0 (no bootstrap) or an integer >= 2.
-
-    Parameters
-    ----------
-    n_resamples : int
-        The number given.
-
-    Returns
-    -------
-    int
-
-    Raises
-    ------
-    TypeError
-        Not an integer (booleans included).
-    ValueError
-        1 or negative.
-    """
-    if isinstance(n_resamples, bool) or int(n_resamples) != n_resamples:
-        raise TypeError(f"n_resamples must be an integer, got {n_resamples!r}")
-    b = int(n_resamples)
-    if b != 0 and b < 2:
-        raise ValueError(f"n_resamples must be 0 (no bootstrap) or >= 2, got {b}")
-    return b
+    """A number of parametric-bootstrap replicates: 0 (no bootstrap) or an integer >= 2
+    (:func:`glstat._validate.check_n_resamples` with zero allowed)."""
+    return check_n_resamples(n_resamples, allow_zero=True)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -14,12 +14,16 @@ PARAMS = ("rs", "fkml")
 FIT_METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
 
 
-def check_n_resamples(n_resamples) -> int:
-    """A number of bootstrap resamples: an integer >= 2."""
+def check_n_resamples(n_resamples, allow_zero: bool = False) -> int:
+    """A number of bootstrap resamples: an integer >= 2, or 0 (no bootstrap) where
+    ``allow_zero``."""
     if isinstance(n_resamples, (bool, np.bool_)) or not isinstance(n_resamples, numbers.Integral):
         raise TypeError(f"n_resamples must be an integer, got {n_resamples!r}")
+    if allow_zero and n_resamples == 0:
+        return 0
     if n_resamples < 2:
-        raise ValueError(f"n_resamples must be >= 2, got {n_resamples}")
+        raise ValueError(f"n_resamples must be {'0 (no bootstrap) or ' if allow_zero else ''}"
+                         f">= 2, got {n_resamples}")
     return int(n_resamples)
 
 

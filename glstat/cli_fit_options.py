@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ._validate import FIT_METHODS, PARAMS
 from .cli_input import InputError, Sample
 from .fitting._stats import MIN_N
 
@@ -17,8 +18,7 @@ __all__ = ["GOF_BUDGET", "GOF_MIN_RESAMPLES", "GOF_RESAMPLES", "METHODS", "METHO
            "build_parser", "check_options", "check_output_dir", "check_sample", "gof_resamples_for",
            "parse_n_max"]
 
-METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
-PARAMS = ("rs", "fkml")
+METHODS = FIT_METHODS
 METHOD_NAMES = {"moments": "method of moments", "percentiles": "percentiles (Karian–Dudewicz)",
                  "lmoments": "L-moments", "mle": "maximum likelihood",
                  "mps": "maximum product of spacings", "starship": "starship (minimum Anderson–Darling)"}

@@ -23,11 +23,11 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import xlogy
 
+from ._validate import check_param
 from .errors import InvalidParameterError
 
 __all__ = ["check_lambdas", "fkml_valid", "rs_region", "rs_valid"]
 
-_PARAMS = ("rs", "fkml")
 
 
 def _region56_inequality(a, b):
@@ -130,8 +130,7 @@ def check_lambdas(l1, l2, l3, l4, param: str = "rs") -> int:
         Naming the violated condition; for RS also the region of (lambda3, lambda4) and the
         sign lambda2 needs there.
     """
-    if param not in _PARAMS:
-        raise ValueError(f"param must be 'rs' or 'fkml', got {param!r}")
+    param = check_param(param)
     values = {"lambda1": l1, "lambda2": l2, "lambda3": l3, "lambda4": l4}
     for name, v in values.items():
         if np.ndim(v) != 0:
