@@ -181,15 +181,17 @@ def _study_parser() -> argparse.ArgumentParser:
     src.add_argument("--topographies", nargs="+", metavar="PATH",
                      help="measured topographies instead of simulated surfaces: files, folders or "
                           "glob patterns (X3P, npy/npz, text, XYZ, and SurfaceTopography's formats "
-                          "when installed), each file one surface; they must share one square grid "
-                          "and spacing. --grid, --size, --rq, --hurst and the Weierstrass options "
-                          "do not apply")
+                          "when installed), each file one surface; they must share one grid and "
+                          "spacing (square or rectangular, dx and dy from the file). --grid, --size, "
+                          "--rq, --hurst and the Weierstrass options do not apply")
     src.add_argument("--like", metavar="FILE",
                      help="simulate --surfaces Weierstrass surfaces statistically like this "
                           "measured topography (H, Rq, grid, spacing and truncation from its "
                           "spectrum) and compare them with it in the report")
-    p.add_argument("--form", choices=("plane", "mean", "none"), default="plane",
-                   help="form removed from each measured file (--topographies, --like)")
+    p.add_argument("--form", choices=("plane", "poly2", "poly3", "mean", "none"), default="plane",
+                   help="form removed from each measured file (--topographies, --like), fitted by "
+                        "least squares on its measured points: the plane, a polynomial of degree 2 "
+                        "or 3 in x and y, the mean, or nothing")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--wait", action="store_true",
                    help="when another campaign runs in the output directory, wait for it to end "

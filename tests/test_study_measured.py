@@ -79,10 +79,13 @@ def test_files_of_different_grid_spacing_or_shape_are_refused(measured_dir, tmp_
     contact.write(s, tmp_path / "small.npz")
     with pytest.raises(ValueError, match=r"small\.npz has 64 × 64 points .* must share grid and spacing"):
         read_measured([measured_dir / "scan_00.npz", tmp_path / "small.npz"])
-    wide = contact.Surface(np.zeros((64, 32)), 1e-6)
+    wide = contact.Surface(np.zeros((64, 32)), 1e-6, 2e-6)
     contact.write(wide, tmp_path / "wide.npz")
-    with pytest.raises(ValueError, match=r"wide\.npz: the study needs square topographies"):
-        read_measured([tmp_path / "wide.npz"])
+    (s,) = read_measured([tmp_path / "wide.npz"])  # a rectangular grid on its own is fine
+    assert s.shape == (64, 32) and (s.dx, s.dy) == (1e-6, 2e-6)
+    with pytest.raises(ValueError, match=r"wide\.npz has 64 × 32 points at 1 × 2 µm spacing "
+                                         r"\(x × y\) but .*scan_00\.npz has 128 × 128"):
+        read_measured([measured_dir / "scan_00.npz", tmp_path / "wide.npz"])
 
 
 def test_a_changed_file_is_refused_and_never_mixed(measured_dir, measured_study, tmp_path):

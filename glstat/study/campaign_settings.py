@@ -20,6 +20,7 @@ __all__ = [
     "CampaignSettings",
     "check_hurst",
     "is_integer",
+    "nyquist_limit",
     "nyquist_terms",
     "terms_of",
 ]
@@ -58,6 +59,18 @@ def nyquist_terms(grid: int, length: float, gamma: float) -> int:
     return math.floor(math.log(grid / 2) / math.log(gamma) + 1e-12) + 1
 
 
+def nyquist_limit(settings: CampaignSettings) -> int:
+    """Most Weierstrass terms per axis of the settings' grid: every frequency
+    ``gamma^n / max(Lx, Ly)`` up to the Nyquist limit of the coarser axis (as
+    :func:`contact.weierstrass` computes it; :func:`nyquist_terms` on a square grid)."""
+    if settings.square:
+        return nyquist_terms(settings.grid, settings.length, settings.gamma)
+    big = max(settings.size)
+    return min(math.floor(math.log(n / 2 if side == big else big * n / (2 * side))
+                          / math.log(settings.gamma) + 1e-12) + 1
+               for n, side in zip(settings.shape, settings.size, strict=True))
+
+
 @dataclass(frozen=True)
 class CampaignSettings:
     """What a campaign computes; two runs with equal settings give identical files.
@@ -71,9 +84,10 @@ class CampaignSettings:
     n_surfaces : int
         Independent surfaces per (H, load).
     grid : int
-        Grid points per side (square grid).
+        Grid points per side (square grid), or along x when ``grid_y`` is given.
     length : float
-        Side of the square surface in metres.
+        Side of the square surface in metres, or its length along x when ``length_y`` is
+        given.
     rq : float
         RMS roughness in metres.
     gamma : float
@@ -104,6 +118,17 @@ class CampaignSettings:
         Form removed from each measured file.
     like : bool
         The measured file is a template; the surfaces are simulated.
+    grid_y : int or None
+        Grid points along y of a rectangular grid (measured files, or surfaces like a
+        rectangular template); None: ``grid`` (a square grid). Equal to ``grid``, it is None.
+    length_y : float or None
+        Length along y in metres of a rectangular surface; None: ``length``. Equal to
+        ``length``, it is None.
+
+    Notes
+    -----
+    ``shape``, ``size`` and ``spacing`` give the grid, the side lengths and the spacing along
+    x and y whatever the form.
     """
 
     hurst: tuple[float, ...] = (0.0, 0.5, 1.0)
@@ -123,8 +148,14 @@ class CampaignSettings:
     digests: tuple[str, ...] = ()
     form: str = "plane"
     like: bool = False
+    grid_y: int | None = None
+    length_y: float | None = None
 
     def __post_init__(self) -> None:
+        if self.grid_y is not None and is_integer(self.grid_y) and self.grid_y == self.grid:
+            object.__setattr__(self, "grid_y", None)
+        if self.length_y is not None and self.length_y == self.length:
+            object.__setattr__(self, "length_y", None)
         object.__setattr__(self, "topographies", tuple(str(v) for v in self.topographies))
         object.__setattr__(self, "digests", tuple(str(v) for v in self.digests))
         _check_measured_files(self)
@@ -146,10 +177,15 @@ class CampaignSettings:
         """The settings that define the stored results (everything but ``n_surfaces``).
 
         Surface i of a given (H, load) has the same seed whatever the number of surfaces,
-        so a campaign can be extended with more surfaces in the same directory.
+        so a campaign can be extended with more surfaces in the same directory. A square grid
+        leaves ``grid_y`` and ``length_y`` out (the identity of square campaigns is the same
+        as before they existed); a rectangular one holds both.
         """
         d = dataclasses.asdict(self)
         d.pop("n_surfaces")
+        for name in ("grid_y", "length_y"):
+            if d[name] is None:
+                d.pop(name)
         if not self.topographies:  # simulated surfaces: the identity of earlier versions
             for name in ("topographies", "digests", "form", "like"):
                 d.pop(name)
@@ -158,13 +194,35 @@ class CampaignSettings:
         return d
 
     @property
+    def shape(self) -> tuple[int, int]:
+        """Grid points ``(nx, ny)`` along x and y."""
+        return int(self.grid), int(self.grid if self.grid_y is None else self.grid_y)
+
+    @property
+    def size(self) -> tuple[float, float]:
+        """Side lengths ``(Lx, Ly)`` of a surface in metres."""
+        return float(self.length), float(self.length if self.length_y is None else self.length_y)
+
+    @property
+    def spacing(self) -> tuple[float, float]:
+        """Grid spacing ``(dx, dy)`` in metres."""
+        (nx, ny), (lx, ly) = self.shape, self.size
+        return lx / nx, ly / ny
+
+    @property
+    def square(self) -> bool:
+        """Whether the grid is square with one spacing on both axes."""
+        return self.grid_y is None and self.length_y is None
+
+    @property
     def measured(self) -> bool:
         """Whether the surfaces are measured files (not simulated)."""
         return bool(self.topographies) and not self.like
 
     def max_frequency(self, ih: int) -> float:
-        """Highest Weierstrass frequency of Hurst exponent number ``ih``, in 1/m."""
-        return self.gamma ** (terms_of(self, ih) - 1) / self.length
+        """Highest Weierstrass frequency of Hurst exponent number ``ih``, in 1/m (``gamma^(N-1)
+        / max(Lx, Ly)``)."""
+        return self.gamma ** (terms_of(self, ih) - 1) / max(self.size)
 
     def tasks(self) -> list[tuple[int, int, int]]:
         """Every (H index, load index, surface index) of the campaign."""
@@ -180,7 +238,7 @@ def terms_of(settings: CampaignSettings, ih: int) -> int:
     """Weierstrass terms per axis of Hurst exponent number ``ih`` (its ``n_terms``, or every
     frequency up to the grid's Nyquist limit for None)."""
     nt = settings.n_terms[ih]
-    return nyquist_terms(settings.grid, settings.length, settings.gamma) if nt is None else nt
+    return nyquist_limit(settings) if nt is None else nt
 
 
 def _check_measured_files(s: CampaignSettings) -> None:
@@ -224,6 +282,8 @@ def _check_sampling(s: CampaignSettings) -> None:
         raise ValueError(f"seed must be an integer >= 0, got {s.seed!r}")
     if not is_integer(s.grid) or s.grid < 16:
         raise ValueError(f"grid must be an integer >= 16 points per side, got {s.grid!r}")
+    if s.grid_y is not None and (not is_integer(s.grid_y) or s.grid_y < 16):
+        raise ValueError(f"grid_y must be None or an integer >= 16 points, got {s.grid_y!r}")
 
 
 def _check_geometry(s: CampaignSettings) -> None:
@@ -232,13 +292,16 @@ def _check_geometry(s: CampaignSettings) -> None:
     from contact._validate import frequency_ratio, positive_finite
 
     positive_finite(s.length, "length", "side in metres")
+    if s.length_y is not None:
+        positive_finite(s.length_y, "length_y", "length along y in metres")
     positive_finite(s.rq, "rq", "RMS roughness in metres")
     frequency_ratio(s.gamma)
-    limit = nyquist_terms(s.grid, s.length, s.gamma)
+    limit = nyquist_limit(s)
+    grid = f"{s.grid}²" if s.grid_y is None else f"{s.grid} × {s.grid_y}"
     for v in s.n_terms:
         if v is not None and not (1 <= v <= limit):
             raise ValueError(
-                f"n_terms must be between 1 and {limit} (the Nyquist limit of a {s.grid}² "
+                f"n_terms must be between 1 and {limit} (the Nyquist limit of a {grid} "
                 f"grid with gamma={s.gamma}), got {v}; use None for the full spectrum"
             )
 

@@ -3,8 +3,10 @@
 Two ways in (docs/study.md, "Measured surfaces"):
 
 * :func:`measured_settings` — every file is one surface of the campaign (``glstat study
-  --topographies PATH ...``). The files must share grid and spacing; the form (plane by
-  default) is removed from each; heights and lengths come from the file in metres.
+  --topographies PATH ...``). The files must share grid and spacing (square or rectangular,
+  with one spacing along x and another along y if need be); the form (plane by default, or a
+  polynomial of degree 2 or 3) is removed from each; heights and lengths come from the file
+  in metres.
 * :func:`like_settings` — one measured file is the template: its spectrum gives the Hurst
   exponent, Rq, size and truncation of the Weierstrass surfaces the campaign simulates
   (``glstat study --like FILE``), the paper's "measure, then simulate statistically equivalent
@@ -27,6 +29,9 @@ import numpy as np
 
 from .campaign import CampaignSettings
 from .topography import FORMS, file_digest, measured_rq, read_topography
+
+#: Fewest grid points along each axis of a measured file.
+MIN_POINTS = 16
 
 __all__ = ["FORMS", "find_topographies", "like_settings", "measured_settings", "read_measured"]
 
@@ -89,8 +94,27 @@ def find_topographies(specs: str | os.PathLike | Iterable[str | os.PathLike]) ->
     return unique
 
 
+def _grid_text(surface: Any) -> str:
+    """``"nx × ny points at dx × dy µm"`` (or one spacing when both are equal)."""
+    nx, ny = surface.shape
+    spacing = (f"{surface.dx * 1e6:.6g} µm spacing"
+               if math.isclose(surface.dx, surface.dy, rel_tol=SPACING_RTOL)
+               else f"{surface.dx * 1e6:.6g} × {surface.dy * 1e6:.6g} µm spacing (x × y)")
+    return f"{nx} × {ny} points at {spacing}"
+
+
 def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane") -> list[Any]:
-    """Read every file, remove its form, and check that all share one square grid and spacing.
+    """Read every file, remove its form, and check that all share one grid and spacing.
+
+    The grid may be rectangular (``nx != ny``) and the spacing may differ between the axes
+    (``dx != dy``); the files must agree on both, point count and spacing along x and along y.
+
+    Parameters
+    ----------
+    paths : sequence of path
+        The topography files (:func:`contact.read`; lengths and heights in metres).
+    form : {"plane", "poly2", "poly3", "mean", "none"}
+        Form removed from each file (:func:`glstat.study.topography.remove_form`).
 
     Returns
     -------
@@ -99,29 +123,25 @@ def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane") -> li
     Raises
     ------
     ValueError
-        Files of different grid or spacing, a grid that is not square with equal spacing on
-        both axes, or fewer than 16 points per side (the message names the file).
+        Files of different grid or spacing, fewer than 16 points along an axis, or no measured
+        point (the message names the file).
     """
-    surfaces = []
-    first = None
+    surfaces: list[Any] = []
     for path in paths:
         s = read_topography(path, form)
         name = os.fspath(path)
         nx, ny = s.shape
-        if nx != ny or not math.isclose(s.dx, s.dy, rel_tol=SPACING_RTOL):
-            raise ValueError(
-                f"{name}: the study needs square topographies with one spacing on both axes; this "
-                f"one has {nx} × {ny} points at {s.dx * 1e6:.6g} × {s.dy * 1e6:.6g} µm: crop it to "
-                f"a square (contact.Surface(heights[:n, :n], dx)) or resample it")
-        if nx < 16:
-            raise ValueError(f"{name}: {nx} × {ny} points is too small a grid (at least 16 per side)")
-        if first is None:
-            first = (name, s.shape, s.dx)
-        elif s.shape != first[1] or not math.isclose(s.dx, first[2], rel_tol=SPACING_RTOL):
-            raise ValueError(
-                f"{name} has {s.shape[0]} × {s.shape[1]} points at {s.dx * 1e6:.6g} µm spacing but "
-                f"{first[0]} has {first[1][0]} × {first[1][1]} at {first[2] * 1e6:.6g} µm: every "
-                f"topography of one study must share grid and spacing (one surface per file)")
+        if min(nx, ny) < MIN_POINTS:
+            raise ValueError(f"{name}: {nx} × {ny} points is too small a grid (at least "
+                             f"{MIN_POINTS} along each axis)")
+        if surfaces:
+            f0 = surfaces[0]
+            if s.shape != f0.shape or not (math.isclose(s.dx, f0.dx, rel_tol=SPACING_RTOL)
+                                           and math.isclose(s.dy, f0.dy, rel_tol=SPACING_RTOL)):
+                raise ValueError(
+                    f"{name} has {_grid_text(s)} but {os.fspath(paths[0])} has {_grid_text(f0)}: "
+                    f"every topography of one study must share grid and spacing (one surface "
+                    f"per file); crop or resample the files to one grid")
         if s.mask is not None and np.all(s.mask):
             raise ValueError(f"{name}: every point is missing (masked)")
         surfaces.append(s)
@@ -147,8 +167,9 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
     ----------
     specs : path, pattern or folder, or a sequence of them
         The topographies (:func:`find_topographies`).
-    form : {"plane", "mean", "none"}
-        Form removed from each file before the contact solve.
+    form : {"plane", "poly2", "poly3", "mean", "none"}
+        Form removed from each file before the contact solve: the least-squares plane, the
+        least-squares polynomial of total degree 2 or 3 in x and y, the mean, or nothing.
     **scene
         Other :class:`CampaignSettings` fields: ``pressures`` (Pa), ``E`` (Pa), ``nu``,
         ``cone_factor``, ``seed``.
@@ -156,20 +177,30 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
     Returns
     -------
     CampaignSettings
-        ``grid`` and ``length`` from the files, ``rq`` their mean RMS height about the removed
-        form (m), ``hurst`` one value: the median of the files' structure-function estimates in
-        [0, 1] (0.5 when none is physical) — a label of the group, not a simulation input.
+        ``grid`` and ``length`` (points and length in metres along x) and, for a rectangular
+        grid or unequal spacings, ``grid_y`` and ``length_y`` from the files; ``rq`` their mean
+        RMS height about the removed form (m), ``hurst`` one value: the median of the files'
+        structure-function estimates in [0, 1] (0.5 when none is physical) — a label of the
+        group, not a simulation input.
     """
     paths = find_topographies(specs)
     surfaces = read_measured(paths, form)
-    s0 = surfaces[0]
     estimates = [h for h in (_hurst_estimate(s) for s in surfaces) if math.isfinite(h)]
     hurst = float(np.clip(np.median(estimates), 0.0, 1.0)) if estimates else 0.5
     return CampaignSettings(
-        hurst=(hurst,), n_surfaces=len(paths), grid=s0.shape[0], length=s0.shape[0] * s0.dx,
+        hurst=(hurst,), n_surfaces=len(paths), **_grid_fields(surfaces[0]),
         rq=float(np.mean([measured_rq(s) for s in surfaces])), n_terms=(None,),
         n_examples=min(1, len(paths)), topographies=tuple(os.fspath(p) for p in paths),
         digests=tuple(file_digest(p) for p in paths), form=form, **scene)
+
+
+def _grid_fields(surface: Any) -> dict[str, Any]:
+    """``grid``, ``length`` and, when the grid is not square with one spacing, ``grid_y`` and
+    ``length_y`` of a surface (points, metres)."""
+    (nx, ny), (lx, ly) = surface.shape, surface.size
+    if nx == ny and math.isclose(surface.dx, surface.dy, rel_tol=SPACING_RTOL):
+        return {"grid": nx, "length": lx}
+    return {"grid": nx, "length": lx, "grid_y": ny, "length_y": ly}
 
 
 def like_settings(path: str | os.PathLike, n_surfaces: int, *, form: str = "plane",
@@ -178,15 +209,16 @@ def like_settings(path: str | os.PathLike, n_surfaces: int, *, form: str = "plan
 
     The file's form is removed, its spectrum fitted (:func:`contact.fit_spectrum`) and mapped
     onto the series (:func:`contact.weierstrass_parameters`): H, Rq about the plane, grid and
-    spacing, truncation at the measured cut-off.
+    spacing, truncation at the measured cut-off. The simulated surfaces have the template's
+    grid and side lengths, rectangular if it is.
 
     Parameters
     ----------
     path : path
-        The measured topography (square grid, one spacing, fully measured).
+        The measured topography (fully measured; square or rectangular).
     n_surfaces : int
         Simulated surfaces.
-    form : {"plane", "mean", "none"}
+    form : {"plane", "poly2", "poly3", "mean", "none"}
         Form removed from the file before the fit.
     gamma : float
         Frequency ratio of the series.
@@ -198,6 +230,12 @@ def like_settings(path: str | os.PathLike, n_surfaces: int, *, form: str = "plan
     settings : CampaignSettings
     parameters : contact.WeierstrassParameters
         The mapping, with the spectrum fit and its quality (``parameters.fit.r2``).
+
+    Raises
+    ------
+    ValueError
+        The template has missing points, or its spacings along x and y map onto different
+        numbers of Weierstrass terms per axis (the campaign's series has one number for both).
     """
     import contact
 
@@ -207,9 +245,15 @@ def like_settings(path: str | os.PathLike, n_surfaces: int, *, form: str = "plan
         raise ValueError(f"{os.fspath(path)} has missing points; the spectrum fit of --like needs "
                          f"a fully measured topography (fill or crop the missing points)")
     params = contact.weierstrass_parameters(measured, gamma=gamma)
+    if params.n_terms[0] != params.n_terms[1]:
+        raise ValueError(
+            f"{os.fspath(path)} has {_grid_text(measured)}: its spectrum maps onto "
+            f"{params.n_terms[0]} Weierstrass terms along x but {params.n_terms[1]} along y, and "
+            f"the simulated series of --like has one number of terms on both axes; resample the "
+            f"template to one spacing (--topographies takes it as it is)")
     settings = CampaignSettings(
-        hurst=(params.hurst,), n_surfaces=n_surfaces, grid=params.shape[0], length=params.length[0],
-        rq=params.rq, gamma=params.gamma, n_terms=(params.n_terms[0],),
+        hurst=(params.hurst,), n_surfaces=n_surfaces, **_grid_fields(measured), rq=params.rq,
+        gamma=params.gamma, n_terms=(params.n_terms[0],),
         topographies=(os.fspath(p),), digests=(file_digest(p),), form=form, like=True, **scene)
     return settings, params
 

@@ -12,8 +12,10 @@ from ..formatting import fmt_number
 from .campaign import MEASURED_PARAMETERS
 from .report_document import Blocks
 from .report_figures import psd_like_figure
+from .topography import FORM_LABELS
 
-__all__ = ["like_section", "measured_section", "scene_sentence", "surface_rows"]
+__all__ = ["area_text", "grid_text", "like_section", "measured_section", "scene_sentence",
+           "surface_rows"]
 
 #: Units and scale of the ISO parameters in the measured table.
 _ISO_DISPLAY = {"Sq": ("Sq (µm)", 1e6), "Ssk": ("Ssk", 1.0), "Sku": ("Sku", 1.0),
@@ -21,8 +23,26 @@ _ISO_DISPLAY = {"Sq": ("Sq (µm)", 1e6), "Ssk": ("Ssk", 1.0), "Sku": ("Sku", 1.0
                 "hurst": ("H (structure function)", 1.0)}
 
 
-def _mm(settings) -> str:
-    return f"{settings.length * 1e3:g} × {settings.length * 1e3:g} mm²"
+def area_text(settings) -> str:
+    """The side lengths of one surface, ``"Lx × Ly mm²"``."""
+    lx, ly = settings.size
+    return f"{lx * 1e3:g} × {ly * 1e3:g} mm²"
+
+
+def grid_text(settings) -> str:
+    """The grid of one surface: ``"n² points"`` on a square grid, else ``"nx × ny points"``
+    and the spacing along x and y when they differ."""
+    (nx, ny), (dx, dy) = settings.shape, settings.spacing
+    if settings.square:
+        return f"{nx}² points"
+    text = f"{nx} × {ny} points"
+    if not math.isclose(dx, dy, rel_tol=1e-6):
+        text += f" (spacing {dx * 1e6:.4g} µm along x, {dy * 1e6:.4g} µm along y)"
+    return text
+
+
+def _form(settings) -> str:
+    return FORM_LABELS.get(settings.form, settings.form)
 
 
 def scene_sentence(settings) -> str:
@@ -31,15 +51,16 @@ def scene_sentence(settings) -> str:
              f"{settings.E / 1e9:g} GPa, ν = {settings.nu:g})")
     if settings.measured:
         return (f"{settings.n_surfaces} measured topographies (one surface per file, form removed: "
-                f"{settings.form}), {settings.grid}² points on {_mm(settings)}, mean Rq = "
+                f"{_form(settings)}), {grid_text(settings)} on {area_text(settings)}, mean Rq = "
                 f"{settings.rq * 1e6:.3g} µm, {model}.")
     like = ""
     if settings.like:
         like = (f", statistically like the measured {os.path.basename(settings.topographies[0])} "
                 f"(H, Rq, size and truncation from its spectrum; section \"Measured template and "
                 f"simulated surfaces\")")
-    return (f"{settings.n_surfaces} Weierstrass surfaces per Hurst exponent{like}, {settings.grid}² "
-            f"points on {_mm(settings)}, Rq = {settings.rq * 1e6:.4g} µm, {model}.")
+    return (f"{settings.n_surfaces} Weierstrass surfaces per Hurst exponent{like}, "
+            f"{grid_text(settings)} on {area_text(settings)}, Rq = {settings.rq * 1e6:.4g} µm, "
+            f"{model}.")
 
 
 def surface_rows(settings) -> list[list[Any]]:
@@ -48,25 +69,27 @@ def surface_rows(settings) -> list[list[Any]]:
     if settings.measured:
         rows += [["measured topographies", f"{len(settings.topographies)} files in "
                   f"{os.path.commonpath([os.path.dirname(p) for p in settings.topographies])}"],
-                 ["form removed", settings.form],
+                 ["form removed", f"{settings.form} ({_form(settings)})"],
                  ["Hurst exponent (median structure-function estimate; a label only)",
                   f"{settings.hurst[0]:.3g}"]]
     else:
         rows.append(["Hurst exponents H", ", ".join(f"{h:.4g}" for h in settings.hurst)])
         if settings.like:
             rows += [["measured template", settings.topographies[0]],
-                     ["its SHA-256", settings.digests[0]], ["form removed", settings.form]]
+                     ["its SHA-256", settings.digests[0]],
+                     ["form removed", f"{settings.form} ({_form(settings)})"]]
     rows += [["nominal pressures (MPa)", ", ".join(f"{p / 1e6:g}" for p in settings.pressures)],
              ["surfaces per (H, load)", settings.n_surfaces],
-             ["grid", f"{settings.grid} × {settings.grid}"],
-             ["size (mm)", f"{settings.length * 1e3:g} × {settings.length * 1e3:g}"],
+             ["grid", "{} × {}".format(*settings.shape)],
+             ["size (mm)", "{:g} × {:g}".format(*(v * 1e3 for v in settings.size))],
+             ["spacing (µm)", "{:.4g} × {:.4g}".format(*(v * 1e6 for v in settings.spacing))],
              ["Rq (µm)" + (" (mean over the files)" if settings.measured else ""), settings.rq * 1e6]]
     if not settings.measured:
         n = len(settings.hurst)
         rows += [["γ", settings.gamma],
                  ["Weierstrass terms per axis (n_terms) per H",
                   ", ".join("Nyquist" if t is None else str(t) for t in settings.n_terms)],
-                 ["highest frequency γ^(N−1)/L (1/mm) per H",
+                 ["highest frequency γ^(N−1)/max(Lx, Ly) (1/mm) per H",
                   ", ".join(f"{settings.max_frequency(i) / 1e3:.3g}" for i in range(n))],
                  ["shortest wavelength (µm) per H",
                   ", ".join(f"{1e6 / settings.max_frequency(i):.3g}" for i in range(n))]]
@@ -78,13 +101,17 @@ def measured_section(settings, results: dict) -> Blocks:
     rep = Blocks()
     rep.heading("Measured topographies")
     rep.paragraph(
-        f"Each file is one surface; its form ({settings.form}) was removed before the contact "
-        f"solve, lengths and heights come from the file in metres and the analysed area is one "
-        f"file's ({_mm(settings)}; points missing in a file carry no load). ISO 25178-2 parameters "
+        f"Each file is one surface; its form ({_form(settings)}, fitted by least squares on the "
+        f"measured points) was removed before the contact solve, lengths and heights come from "
+        f"the file in metres and the analysed area is one file's ({grid_text(settings)} on "
+        f"{area_text(settings)}). Points missing in a file carry no load and are no part of the "
+        f"nominal area: the nominal pressure is the load over the measured area (measured points "
+        f"× dx × dy, in the table). ISO 25178-2 parameters "
         f"about the mean of the levelled heights; the Hurst exponent from the structure function "
         f"(— when the fit is outside [0, 1]). A file's SHA-256 is checked before it is used, so a "
         f"changed file is never mixed with results of the old one.")
     cols = ["file", *[_ISO_DISPLAY[k][0] for k in MEASURED_PARAMETERS], "missing points",
+            "measured area (mm²)",
             *[f"{p / 1e6:g} MPa: mean / max pressure (MPa), asperities" for p in settings.pressures]]
     rows = []
     for i, path in enumerate(settings.topographies[:settings.n_surfaces]):
@@ -94,7 +121,9 @@ def measured_section(settings, results: dict) -> Blocks:
         row = [os.path.basename(path)]
         row += [fmt_number(float(first.get(f"iso_{k}", math.nan)), ".3g", _ISO_DISPLAY[k][1])
                 for k in MEASURED_PARAMETERS]
-        row.append(f"{100 * float(first.get('masked_fraction', 0.0)):.2g} %")
+        missing = float(first.get("masked_fraction", 0.0))
+        row.append(f"{100 * missing:.2g} %")
+        row.append(f"{(1.0 - missing) * math.prod(settings.size) * 1e6:.4g}")
         for il in range(len(settings.pressures)):
             r = results.get((0, il, i))
             row.append("—" if r is None else
@@ -128,7 +157,7 @@ def like_section(settings, like: dict) -> Blocks:
         + (f"; its roll-off below {fit.q_r:.3g} rad/m cannot be reproduced by the series"
            if fit.rolloff_detected else "")
         + f". The series has {p.n_terms[0]} terms per axis (γ = {p.gamma:g}) on the measured grid "
-          f"and spacing.")
+          f"and spacing ({grid_text(settings)} on {area_text(settings)}).")
     iso = like["iso"]
     n_sim = len(like["simulated"])
     rows = [[name, fmt_number(r["measured"], ".4g", 1e6 if r["unit"] == "m" else 1.0),

@@ -38,14 +38,17 @@ def weierstrass_surface(settings: CampaignSettings, ih: int, il: int, i: int, *,
     rq : float, optional
         RMS roughness in metres instead of the settings'.
     grid : int, optional
-        Grid points per side instead of the settings' (the same band-limited surface sampled
-        on another grid when the truncation fits under its Nyquist limit).
+        Grid points per side of a square grid instead of the settings' (the same band-limited
+        surface sampled on another grid when the truncation fits under its Nyquist limit).
+        Without it the surface has the settings' grid ``shape`` and side lengths ``size``,
+        rectangular or square.
     """
     import contact
 
     rng = np.random.default_rng(settings.seed_sequence(ih, il, i))
-    n = settings.grid if grid is None else grid
-    return contact.weierstrass((n, n), settings.length, settings.hurst[ih], settings.gamma,
+    shape = settings.shape if grid is None else (grid, grid)
+    length = settings.size if grid is None else settings.length
+    return contact.weierstrass(shape, length, settings.hurst[ih], settings.gamma,
                                rq=settings.rq if rq is None else rq, rng=rng,
                                n_terms=settings.n_terms[ih])
 

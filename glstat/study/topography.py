@@ -1,6 +1,6 @@
 """One measured topography as the study uses it: read (:func:`contact.read`), checked against the
-SHA-256 recorded when the campaign started, its form removed; and the RMS height of the
-measured points."""
+SHA-256 recorded when the campaign started, its form removed (a least-squares plane or
+polynomial, or the mean); and the RMS height of the measured points."""
 
 from __future__ import annotations
 
@@ -10,10 +10,58 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["FORMS", "file_digest", "measured_rq", "read_topography", "remove_form"]
+__all__ = ["FORMS", "FORM_LABELS", "file_digest", "form_degree", "measured_rq", "read_topography",
+           "remove_form"]
 
-#: Form removal applied to each measured file: the least-squares plane, the mean, or nothing.
-FORMS = ("plane", "mean", "none")
+#: Form removal applied to each measured file: the least-squares plane, the least-squares
+#: polynomial of total degree 2 or 3 in x and y, the mean, or nothing.
+FORMS = ("plane", "poly2", "poly3", "mean", "none")
+
+#: Each form in words, as the report states it.
+FORM_LABELS = {"plane": "least-squares plane",
+               "poly2": "least-squares polynomial of degree 2 in x and y",
+               "poly3": "least-squares polynomial of degree 3 in x and y",
+               "mean": "mean height only", "none": "none"}
+
+
+def form_degree(form: str) -> int | None:
+    """Total degree of the polynomial a form removes (0 for the mean, 1 for the plane), None
+    for ``"none"``."""
+    if form not in FORMS:
+        raise ValueError(f"form must be one of {', '.join(FORMS)}, got {form!r}")
+    return {"none": None, "mean": 0, "plane": 1, "poly2": 2, "poly3": 3}[form]
+
+
+def polynomial_form(surface: Any, degree: int) -> np.ndarray:
+    """The least-squares polynomial of total degree ``degree`` in x and y fitted on the measured
+    points of ``surface``, evaluated on its whole grid (m).
+
+    Parameters
+    ----------
+    surface : contact.Surface
+        Heights in metres on a grid of spacing ``dx``, ``dy`` (m); masked points are not fitted.
+    degree : int
+        Total degree: every ``x^a y^b`` with ``a + b <= degree``.
+
+    Returns
+    -------
+    ndarray, shape (nx, ny)
+        The fitted form in metres.
+    """
+    nx, ny = surface.shape
+    # coordinates scaled to [-1, 1] on each axis keep the normal equations well conditioned;
+    # the fitted polynomial is the same as in metres
+    u = np.linspace(-1.0, 1.0, nx)[:, None] * np.ones((1, ny))
+    v = np.ones((nx, 1)) * np.linspace(-1.0, 1.0, ny)[None, :]
+    powers = [(a, t - a) for t in range(degree + 1) for a in range(t, -1, -1)]
+    valid = (np.ones(surface.shape, dtype=bool) if surface.mask is None
+             else ~np.asarray(surface.mask, dtype=bool))
+    design = np.stack([u[valid] ** a * v[valid] ** b for a, b in powers], axis=1)
+    coef, *_ = np.linalg.lstsq(design, surface.heights[valid], rcond=None)
+    return sum((c * u ** a * v ** b for c, (a, b) in zip(coef, powers, strict=True)),
+               np.zeros(surface.shape))
+
+
 def file_digest(path: str | os.PathLike) -> str:
     """SHA-256 of a file's bytes (hex), read in blocks."""
     h = hashlib.sha256()
@@ -24,11 +72,30 @@ def file_digest(path: str | os.PathLike) -> str:
 
 
 def remove_form(surface: Any, form: str) -> Any:
-    """``surface`` less its least-squares plane (``"plane"``) or mean (``"mean"``), fitted on
-    the measured points, or unchanged (``"none"``)."""
-    if form not in FORMS:
-        raise ValueError(f"form must be one of {', '.join(FORMS)}, got {form!r}")
-    return surface if form == "none" else surface.detrend(form)
+    """``surface`` less its form, fitted by least squares on the measured points.
+
+    Parameters
+    ----------
+    surface : contact.Surface
+        Heights in metres.
+    form : {"plane", "poly2", "poly3", "mean", "none"}
+        The least-squares plane, the least-squares polynomial of total degree 2 or 3 in x and
+        y (:func:`polynomial_form`), the mean, or nothing (the surface is returned unchanged).
+
+    Returns
+    -------
+    contact.Surface
+        Levelled heights in metres; spacing and mask kept.
+    """
+    import contact
+
+    degree = form_degree(form)
+    if degree is None:
+        return surface
+    if degree <= 1:
+        return surface.detrend(form)
+    return contact.Surface(surface.heights - polynomial_form(surface, degree), surface.dx,
+                           surface.dy, mask=surface.mask)
 
 
 def read_topography(path: str | os.PathLike, form: str, digest: str | None = None) -> Any:
