@@ -17,6 +17,9 @@ rectangle.
 
 from __future__ import annotations
 
+import threading
+from collections import OrderedDict
+from collections.abc import Callable
 from typing import Protocol
 
 import numpy as np
@@ -147,6 +150,69 @@ def inverse_stencil(dx: float, dy: float, e_star: float, radius: int = 1) -> np.
     return np.ascontiguousarray(kernel[np.ix_(idx, idx)])
 
 
+# Kernel spectra kept per process, keyed by boundary condition, grid, spacing and modulus:
+# a study solves many surfaces of one grid, whose kernel is the same. Bounded (about 17 MB
+# per 1024² isolated-patch entry); the arrays are read-only, so operators share them.
+_KERNEL_CACHE_SIZE = 4
+_kernel_cache: OrderedDict[tuple, tuple[np.ndarray, float]] = OrderedDict()
+_kernel_lock = threading.Lock()
+
+
+def _cached_kernel(key: tuple, build: Callable[..., tuple[np.ndarray, float]]
+                   ) -> tuple[np.ndarray, float]:
+    """``build(*key[1:])`` (a read-only kernel spectrum and the self-compliance, m/Pa), kept
+    in a bounded least-recently-used cache of the process."""
+    with _kernel_lock:
+        hit = _kernel_cache.get(key)
+        if hit is not None:
+            _kernel_cache.move_to_end(key)
+            return hit
+    kernel, self_compliance = build(*key[1:])
+    kernel.flags.writeable = False
+    entry = (kernel, float(self_compliance))
+    with _kernel_lock:
+        _kernel_cache[key] = entry
+        _kernel_cache.move_to_end(key)
+        while len(_kernel_cache) > _KERNEL_CACHE_SIZE:
+            _kernel_cache.popitem(last=False)
+    return entry
+
+
+def _isolated_kernel(nx: int, ny: int, dx: float, dy: float, e_star: float
+                     ) -> tuple[np.ndarray, float]:
+    """Spectrum of the zero-padded Love kernel, transposed, and the self-compliance.
+
+    Returns
+    -------
+    (ndarray, float)
+        The real spectrum (m/Pa) of the ``2 nx`` by ``2 ny`` circulant embedding of the
+        coefficients, half-spectrum along y, stored as shape ``(ny + 1, 2 nx)``; and the
+        displacement of a cell under a unit pressure on itself (m/Pa).
+    """
+    c = love_coefficients(nx, ny, dx, dy) / (np.pi * e_star)
+    # circulant embedding: offsets 0..n, then -(n-1)..-1; a linear convolution of n
+    # points never reaches offset n, whose entry is only a filler
+    full = np.empty((2 * nx, 2 * ny))
+    full[: nx + 1, : ny + 1] = c
+    full[nx + 1 :, : ny + 1] = c[nx - 1 : 0 : -1, :]
+    full[:, ny + 1 :] = full[:, ny - 1 : 0 : -1]
+    kernel_t = np.ascontiguousarray(sfft.rfft2(full).real.T)
+    return kernel_t, float(c[0, 0])
+
+
+def _periodic_kernel(nx: int, ny: int, dx: float, dy: float, e_star: float
+                     ) -> tuple[np.ndarray, float]:
+    """Half-space spectrum ``2 / (E* |q|)`` (m/Pa) on the grid's half-spectrum, zero at
+    ``q = 0``, and the self-compliance (m/Pa)."""
+    qx = 2.0 * np.pi * sfft.fftfreq(nx, d=dx)
+    qy = 2.0 * np.pi * sfft.rfftfreq(ny, d=dy)
+    q = np.hypot(qx[:, None], qy[None, :])
+    k = np.zeros_like(q)
+    nz = q > 0
+    k[nz] = 2.0 / (e_star * q[nz])
+    return k, float(sfft.irfft2(k, s=(nx, ny))[0, 0])
+
+
 class LinearOperator2D(Protocol):
     """Compliance operator: ``apply(p)`` is the surface displacement (m) of pressure ``p`` (Pa)."""
 
@@ -171,8 +237,14 @@ class NonPeriodicOperator:
     The pressure is zero-padded to ``2 nx`` by ``2 ny``, which makes the circular
     convolution of the FFT equal to the linear one on the patch. The transforms are
     pruned: the zero rows are not transformed and only the first ``nx`` rows of the
-    result are transformed back. The kernel is even in both offsets, so its spectrum is
-    real: it is computed once and stored as float64 (half the memory of a complex one).
+    result are transformed back. Every transform runs along contiguous memory: after the
+    real-to-complex transform of the rows, the half-spectrum is transposed into a work
+    array, transformed along x, multiplied and transformed back there, and transposed
+    back before the last complex-to-real transform (transforms along a strided axis cost
+    three times as much at 1024²). The kernel is even in both offsets, so its spectrum
+    is real: it is stored as float64 (half the memory of a complex one), transposed, and
+    kept in a bounded cache of the process, shared by the operators of the same grid,
+    spacing and modulus.
 
     Parameters
     ----------
@@ -197,20 +269,13 @@ class NonPeriodicOperator:
         self.workers = workers
         self.periodic = False
         self._spacing = (float(dx), float(dy), float(e_star))
-        c = love_coefficients(nx, ny, dx, dy) / (np.pi * e_star)
-        # circulant embedding: offsets 0..n, then -(n-1)..-1; a linear convolution of n
-        # points never reaches offset n, whose entry is only a filler
-        full = np.empty((2 * nx, 2 * ny))
-        full[: nx + 1, : ny + 1] = c
-        full[nx + 1 :, : ny + 1] = c[nx - 1 : 0 : -1, :]
-        full[:, ny + 1 :] = full[:, ny - 1 : 0 : -1]
-        self._self = float(c[0, 0])
-        self._kernel_hat = np.ascontiguousarray(sfft.rfft2(full, workers=workers).real)
-        del full
+        self._kernel_hat_t, self._self = _cached_kernel(
+            ("isolated", nx, ny, *self._spacing), _isolated_kernel
+        )
         self._buffers = _NUMPY_OUT and workers in (None, 1)
         if self._buffers:
             self._half = np.empty((nx, ny + 1), dtype=np.complex128)
-            self._spec = np.empty((2 * nx, ny + 1), dtype=np.complex128)
+            self._spec_t = np.empty((ny + 1, 2 * nx), dtype=np.complex128)
             self._wide = np.empty((nx, 2 * ny), dtype=np.float64)
 
     def inverse_stencil(self) -> np.ndarray:
@@ -239,19 +304,26 @@ class NonPeriodicOperator:
         """
         nx, ny = self.shape
         if self._buffers:
-            np.fft.rfft(p, n=2 * ny, axis=1, out=self._half)
-            spec = self._spec
-            np.fft.fft(self._half, n=2 * nx, axis=0, out=spec)
-            np.multiply(spec, self._kernel_hat, out=spec)
-            np.fft.ifft(spec, axis=0, out=spec)
-            np.fft.irfft(spec[:nx], n=2 * ny, axis=1, out=self._wide)
+            half = self._half
+            np.fft.rfft(p, n=2 * ny, axis=1, out=half)
+            spec = self._spec_t
+            spec[:, :nx] = half.T
+            spec[:, nx:] = 0.0
+            np.fft.fft(spec, axis=1, out=spec)
+            np.multiply(spec, self._kernel_hat_t, out=spec)
+            np.fft.ifft(spec, axis=1, out=spec)
+            half[...] = spec[:, :nx].T
+            np.fft.irfft(half, n=2 * ny, axis=1, out=self._wide)
             res = self._wide[:, :ny]
         else:
             w = self.workers
             a = sfft.rfft(p, n=2 * ny, axis=1, workers=w)
-            a = sfft.fft(a, n=2 * nx, axis=0, workers=w, overwrite_x=True)
-            a *= self._kernel_hat
-            a = sfft.ifft(a, axis=0, workers=w, overwrite_x=True)[:nx]
+            spec = np.zeros((ny + 1, 2 * nx), dtype=np.complex128)
+            spec[:, :nx] = a.T
+            spec = sfft.fft(spec, axis=1, workers=w, overwrite_x=True)
+            spec *= self._kernel_hat_t
+            spec = sfft.ifft(spec, axis=1, workers=w, overwrite_x=True)
+            a[...] = spec[:, :nx].T
             res = sfft.irfft(a, n=2 * ny, axis=1, workers=w)[:, :ny]
         if out is None:
             return np.array(res)
@@ -265,8 +337,9 @@ class PeriodicOperator:
     Uses the Fourier transform of the half-space Green function, ``2 / (E* |q|)``
     (Stanley & Kato 1997), at the discrete wave vectors of the grid; the ``q = 0`` mode
     (a rigid-body displacement, undefined for a periodic load) is set to zero. The
-    pressure is thereby band-limited rather than cell-wise uniform. The spectrum is real
-    and computed once; the transforms are real-to-complex (``rfft2``/``irfft2``).
+    pressure is thereby band-limited rather than cell-wise uniform. The spectrum is real,
+    kept in the same bounded cache as that of :class:`NonPeriodicOperator`; the
+    transforms are real-to-complex (``rfft2``/``irfft2``).
 
     Parameters
     ----------
@@ -291,17 +364,12 @@ class PeriodicOperator:
         self.workers = workers
         self.periodic = True
         self._spacing = (float(dx), float(dy), float(e_star))
-        qx = 2.0 * np.pi * sfft.fftfreq(nx, d=dx)
-        qy = 2.0 * np.pi * sfft.rfftfreq(ny, d=dy)
-        q = np.hypot(qx[:, None], qy[None, :])
-        k = np.zeros_like(q)
-        nz = q > 0
-        k[nz] = 2.0 / (e_star * q[nz])
-        self._kernel_hat = k
-        self._self = float(sfft.irfft2(k, s=(nx, ny))[0, 0])
+        self._kernel_hat, self._self = _cached_kernel(
+            ("periodic", nx, ny, *self._spacing), _periodic_kernel
+        )
         self._buffers = _NUMPY_OUT and workers in (None, 1)
         if self._buffers:
-            self._spec = np.empty(k.shape, dtype=np.complex128)
+            self._spec = np.empty(self._kernel_hat.shape, dtype=np.complex128)
 
     def inverse_stencil(self) -> np.ndarray:
         """3 x 3 stencil of the inverse compliance (Pa/m), see :func:`inverse_stencil`."""

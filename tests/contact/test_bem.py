@@ -76,6 +76,42 @@ def test_nonperiodic_operator_is_the_linear_convolution():
     np.testing.assert_allclose(u, direct, rtol=1e-12)
 
 
+@pytest.mark.parametrize("workers", [None, 2])
+def test_nonperiodic_operator_is_the_linear_convolution_with_any_fft_path(workers):
+    rng = np.random.default_rng(1)
+    nx, ny, dx, dy = 6, 9, 1.3e-6, 1e-6
+    p = rng.random((nx, ny))
+    c = love_coefficients(nx, ny, dx, dy) / (np.pi * E_STAR)
+    i, j = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+    direct = np.zeros((nx, ny))
+    for k in range(nx):
+        for m in range(ny):
+            direct += c[abs(i - k), abs(j - m)] * p[k, m]
+    op = NonPeriodicOperator((nx, ny), dx, dy, E_STAR, workers=workers)
+    np.testing.assert_allclose(op.apply(p), direct, rtol=1e-12)
+    out = np.empty((nx, ny))
+    assert op.apply(p, out=out) is out
+    np.testing.assert_allclose(out, direct, rtol=1e-12)
+
+
+@pytest.mark.parametrize("cls", [NonPeriodicOperator, PeriodicOperator])
+def test_operators_of_one_grid_share_a_read_only_kernel_from_a_bounded_cache(cls):
+    from contact import _influence
+
+    a = cls((16, 12), 1e-6, 2e-6, E_STAR)
+    b = cls((16, 12), 1e-6, 2e-6, E_STAR)
+    other = cls((16, 12), 1e-6, 2e-6, 2 * E_STAR)
+    name = "_kernel_hat_t" if cls is NonPeriodicOperator else "_kernel_hat"
+    assert getattr(a, name) is getattr(b, name)
+    assert not getattr(a, name).flags.writeable
+    assert a.self_compliance == b.self_compliance == 2 * other.self_compliance
+    for n in range(2 * _influence._KERNEL_CACHE_SIZE):
+        cls((8, 4 + n), 1e-6, 1e-6, E_STAR)
+    assert len(_influence._kernel_cache) <= _influence._KERNEL_CACHE_SIZE
+    p = np.random.default_rng(2).random((16, 12))
+    np.testing.assert_array_equal(cls((16, 12), 1e-6, 2e-6, E_STAR).apply(p), a.apply(p))
+
+
 def test_periodic_operator_reproduces_the_sinusoidal_response():
     nx, ny, dx = 64, 8, 1e-6
     q = 2 * np.pi * 3 / (nx * dx)
