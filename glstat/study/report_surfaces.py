@@ -101,8 +101,8 @@ def measured_section(settings, results: dict) -> Blocks:
     rep = Blocks()
     rep.heading("Measured topographies")
     rep.paragraph(
-        f"Each file is one surface; its form ({_form(settings)}, fitted by least squares on the "
-        f"measured points) was removed before the contact solve, lengths and heights come from "
+        f"Each file is one surface; its form ({_form(settings)}, fitted on the measured points) "
+        f"was removed before the contact solve, lengths and heights come from "
         f"the file in metres and the analysed area is one file's ({grid_text(settings)} on "
         f"{area_text(settings)}). Points missing in a file carry no load and are no part of the "
         f"nominal area: the nominal pressure is the load over the measured area (measured points "
