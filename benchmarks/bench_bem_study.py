@@ -136,11 +136,15 @@ def main() -> None:
                              args.repeat)
         tn, res = best(lambda surf=surf: contact.solve_bem(surf, pressure, s.E, s.nu, tol=b.tol,
                                                  max_iter=b.max_iter, workers=1), args.repeat)
-        ts, rec = best(lambda key=key: simulate_bem(s, b, *key), args.repeat)
+        ts, rest = np.inf, np.inf
+        for _ in range(args.repeat):
+            t = time.perf_counter()
+            rec = simulate_bem(s, b, *key)
+            whole_t = time.perf_counter() - t
+            ts, rest = min(ts, whole_t), min(rest, whole_t - float(rec["seconds_bem"]))
         pn = res.pressure
         dmax = float(np.abs(pn - pb).max() / np.abs(pb).max())
         dl1 = float(np.abs(pn - pb).sum() / np.abs(pb).sum())
-        rest = ts - float(rec["seconds_bem"])
         whole.append(ts)
         base_t.append(tb)
         new_t.append(tn)

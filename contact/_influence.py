@@ -213,6 +213,25 @@ def _periodic_kernel(nx: int, ny: int, dx: float, dy: float, e_star: float
     return k, float(sfft.irfft2(k, s=(nx, ny))[0, 0])
 
 
+def _rfft_rows(p: np.ndarray, ny: int, out: np.ndarray) -> None:
+    """``out = rfft(p, n=2 ny, axis=1)``, transforming only the rows of ``p`` that hold a
+    non-zero value (the others give zero); ``out`` is C-contiguous complex, ``(nx, ny + 1)``.
+
+    A contact pressure is zero on most rows of a rough surface's grid: the runs of non-zero
+    rows are transformed, the rest of ``out`` is set to zero.
+    """
+    nonzero = np.empty(p.shape[0] + 2, dtype=np.int8)
+    nonzero[0] = nonzero[-1] = 0
+    np.any(p, axis=1, out=nonzero[1:-1].view(bool))
+    edges = np.flatnonzero(np.diff(nonzero))
+    done = 0
+    for start, stop in zip(edges[::2].tolist(), edges[1::2].tolist(), strict=True):
+        out[done:start] = 0.0
+        np.fft.rfft(p[start:stop], n=2 * ny, axis=1, out=out[start:stop])
+        done = stop
+    out[done:] = 0.0
+
+
 class LinearOperator2D(Protocol):
     """Compliance operator: ``apply(p)`` is the surface displacement (m) of pressure ``p`` (Pa)."""
 
@@ -236,7 +255,8 @@ class NonPeriodicOperator:
 
     The pressure is zero-padded to ``2 nx`` by ``2 ny``, which makes the circular
     convolution of the FFT equal to the linear one on the patch. The transforms are
-    pruned: the zero rows are not transformed and only the first ``nx`` rows of the
+    pruned: the padding is not transformed, nor are the rows of the pressure that are
+    zero (most of them under a rough contact), and only the first ``nx`` rows of the
     result are transformed back. Every transform runs along contiguous memory: after the
     real-to-complex transform of the rows, the half-spectrum is transposed into a work
     array, transformed along x, multiplied and transformed back there, and transposed
@@ -305,7 +325,7 @@ class NonPeriodicOperator:
         nx, ny = self.shape
         if self._buffers:
             half = self._half
-            np.fft.rfft(p, n=2 * ny, axis=1, out=half)
+            _rfft_rows(p, ny, half)
             spec = self._spec_t
             spec[:, :nx] = half.T
             spec[:, nx:] = 0.0
