@@ -137,6 +137,9 @@ def test_the_identity_differs_by_form_and_shape(rect_dir, tmp_path):
         square.identity()
     assert CampaignSettings(grid=64, length=0.2e-3, grid_y=48, length_y=0.15e-3).identity() != \
         square.identity()
+    for bad in ({"grid_y": 8}, {"grid_y": 2.5}, {"length_y": -1.0}, {"length_y": float("nan")}):
+        with pytest.raises(ValueError, match=r"grid_y|length_y"):
+            CampaignSettings(grid=64, length=0.2e-3, **bad)
     # a square scan with one spacing keeps the square identity (no grid_y, no length_y)
     contact.write(contact.self_affine((64, 64), 0.2e-3, hurst=0.7, rq=0.3e-6, rng=1),
                   tmp_path / "square.npz")

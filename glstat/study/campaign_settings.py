@@ -170,7 +170,11 @@ class CampaignSettings:
         object.__setattr__(self, "n_terms", nt)
         _check_cases(self)
         _check_sampling(self)
+        if self.grid_y is not None:
+            object.__setattr__(self, "grid_y", int(self.grid_y))
         _check_geometry(self)
+        if self.length_y is not None:
+            object.__setattr__(self, "length_y", float(self.length_y))
         _check_material(self)
 
     def identity(self) -> dict[str, Any]:
@@ -179,7 +183,8 @@ class CampaignSettings:
         Surface i of a given (H, load) has the same seed whatever the number of surfaces,
         so a campaign can be extended with more surfaces in the same directory. A square grid
         leaves ``grid_y`` and ``length_y`` out (the identity of square campaigns is the same
-        as before they existed); a rectangular one holds both.
+        as before they existed); a rectangular one holds those that differ from ``grid`` and
+        ``length``.
         """
         d = dataclasses.asdict(self)
         d.pop("n_surfaces")

@@ -89,7 +89,8 @@ def surface_rows(settings) -> list[list[Any]]:
         rows += [["γ", settings.gamma],
                  ["Weierstrass terms per axis (n_terms) per H",
                   ", ".join("Nyquist" if t is None else str(t) for t in settings.n_terms)],
-                 ["highest frequency γ^(N−1)/max(Lx, Ly) (1/mm) per H",
+                 [f"highest frequency γ^(N−1)/{'L' if settings.square else 'max(Lx, Ly)'} (1/mm) "
+                  f"per H",
                   ", ".join(f"{settings.max_frequency(i) / 1e3:.3g}" for i in range(n))],
                  ["shortest wavelength (µm) per H",
                   ", ".join(f"{1e6 / settings.max_frequency(i):.3g}" for i in range(n))]]
