@@ -92,7 +92,7 @@ def test_degenerate_scene_warning():
 
 
 def test_end_note_and_formats():
-    sa = SampleAnalysis(kind="asperity", data=np.ones(5), n_ref=5.0, upper_end=1983.0)
+    sa = SampleAnalysis(sample="asperity", data=np.ones(5), n_ref=5.0, upper_end=1983.0)
     assert "beyond the fitted GLD's upper end point 1983 MPa" in _end_note(sa, 2050.0)
     sa.upper_end = 2100.0
     assert "within 10 %" in _end_note(sa, 2050.0)

@@ -84,7 +84,7 @@ class SampleAnalysis:
 
     Attributes
     ----------
-    kind : str
+    sample : str
         ``"grid"`` or ``"asperity"``.
     data : ndarray
         The pooled sample (MPa).
@@ -113,7 +113,7 @@ class SampleAnalysis:
     validation : Validation
     """
 
-    kind: str
+    sample: str
     data: np.ndarray
     n_ref: float
     counts: np.ndarray = field(default_factory=lambda: np.empty(0))
@@ -131,6 +131,15 @@ class SampleAnalysis:
     def ok(self) -> bool:
         """Whether a GLD was fitted."""
         return self.boot is not None
+
+    @property
+    def kind(self) -> str:
+        """Deprecated name of :attr:`sample`."""
+        import warnings
+
+        warnings.warn("SampleAnalysis.kind is deprecated: use SampleAnalysis.sample",
+                      DeprecationWarning, stacklevel=2)
+        return self.sample
 
     @property
     def param(self) -> str:
@@ -173,7 +182,7 @@ def _end_note(sa: SampleAnalysis, hardness: float) -> str:
     return ""
 
 
-def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
+def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
                    ih: int, il: int) -> SampleAnalysis:
     """Fit, bootstrap, maximum, damage, integrity and validation of one sample.
 
@@ -183,7 +192,7 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
         Surface results keyed by (ih, il, i) (:func:`glstat.study.load_results`).
     keys : list of (int, int, int)
         The surfaces of this (H, load).
-    kind : {"grid", "asperity"}
+    sample : {"grid", "asperity"}
     a : AnalysisSettings
     ih, il : int
         Indices of the Hurst exponent and load (seeds).
@@ -192,23 +201,23 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
 
     import glstat
 
-    per = [surface_values(results[k], kind) for k in keys]
+    per = [surface_values(results[k], sample) for k in keys]
     data, labels, counts = pool(per)
-    sa = SampleAnalysis(kind=kind, data=data, n_ref=max(float(counts.mean()) if per else 0.0, 1.0),
+    sa = SampleAnalysis(sample=sample, data=data, n_ref=max(float(counts.mean()) if per else 0.0, 1.0),
                         counts=counts)
     if data.size < 5:
         sa.note = f"only {data.size} values pooled over {len(keys)} surfaces; at least 5 are needed"
         return sa
-    grouped = kind == "asperity"
+    grouped = sample == "asperity"
     param = method = order = None
     if grouped:
         sa.choice = choose_fit(per)
         param, method, order = sa.choice.param, sa.choice.method, sa.choice.order()
     sa.prediction = predict_sample(
-        data, a, sample_rng(a, ih, il, 0 if kind == "grid" else 5),
+        data, a, sample_rng(a, ih, il, 0 if sample == "grid" else 5),
         fit_order(a, param, method, order), groups=labels if grouped else None,
         n=None if grouped else sa.n_ref,
-        n_resamples=a.grid_resamples if kind == "grid" else None, threshold=a.hardness,
+        n_resamples=a.grid_resamples if sample == "grid" else None, threshold=a.hardness,
         maximum=True, maximum_rng=sample_rng(a, ih, il, 6))
     bf, p, m = sa.prediction.boot, sa.prediction.param, sa.prediction.method
     sa.note = sa.prediction.note
@@ -233,7 +242,7 @@ def analyse_sample(results: dict, keys: list, kind: str, a: AnalysisSettings,
                       "low": float(np.ravel(d.low)[0]), "high": float(np.ravel(d.high)[0]),
                       "observed": float(np.mean(maxima > lv))})
     sa.damage_curve = pd.DataFrame(curve)
-    sa.validation = validate_sample(per, kind, a, ih, il, p, m, levels)
+    sa.validation = validate_sample(per, sample, a, ih, il, p, m, levels)
     return sa
 
 
@@ -278,11 +287,11 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
             }
             slot = MODEL_SLOTS[model]
             case: dict[str, SampleAnalysis | dict[str, float]] = {}
-            for kind in SAMPLES:
+            for sample in SAMPLES:
                 if progress is not None:
                     progress(f"analysis ({MODEL_NAMES[model]}): H = {settings.hurst[ih]:g}, "
-                             f"{settings.pressures[il] / 1e6:g} MPa, {SAMPLE_LABELS[kind]}")
-                case[kind] = analyse_sample(results, keys, kind, a, ih + slot, il)
+                             f"{settings.pressures[il] / 1e6:g} MPa, {SAMPLE_LABELS[sample]}")
+                case[sample] = analyse_sample(results, keys, sample, a, ih + slot, il)
             case["summary"] = summary
             out[(ih, il)] = case
     return out

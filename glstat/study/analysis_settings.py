@@ -100,9 +100,9 @@ class AnalysisSettings:
 
 
 # -- samples of the surfaces -------------------------------------------------------------------
-def surface_values(res: dict, kind: str) -> tuple[np.ndarray, int, float]:
+def surface_values(res: dict, sample: str) -> tuple[np.ndarray, int, float]:
     """(values in MPa, count, observed maximum in MPa) of one surface's result."""
-    if kind == "grid":
+    if sample == "grid":
         return res["samples"] / 1e6, int(res["n_contact"]), float(res["max_pressure"]) / 1e6
     peaks = res["asperity_peak"] / 1e6
     return peaks, int(peaks.size), float(peaks.max()) if peaks.size else 0.0

@@ -49,14 +49,14 @@ def _analysis_rows(settings, analysis: dict, model: str) -> list[dict]:
     rows = []
     for (ih, il), r in analysis.items():
         s = r["summary"]
-        for kind in ("asperity", "grid"):
-            sa = r[kind]
+        for sample in ("asperity", "grid"):
+            sa = r[sample]
             v = sa.validation
             d = sa.damage
             hits, m = v.damage_hits()
             rows.append({
                 "hurst": settings.hurst[ih], "pressure_mpa": settings.pressures[il] / 1e6,
-                "model": model, "sample": kind, "mean_pressure_mpa": s["mean_pressure"],
+                "model": model, "sample": sample, "mean_pressure_mpa": s["mean_pressure"],
                 "asperities_per_surface": s["n_asperities"],
                 "points_in_contact_per_surface": s["n_contact"],
                 "fit": f"{sa.param.upper()} {sa.method}" if sa.ok else "none",
@@ -135,12 +135,12 @@ def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None
     models = [("asperity", analysis)] + ([("bem", bem_analysis)] if bem_analysis else [])
     for model, an in models:
         for (ih, il), r in an.items():
-            for kind in ("asperity", "grid"):
-                c = r[kind].validation.calibration
+            for sample in ("asperity", "grid"):
+                c = r[sample].validation.calibration
                 if c is None or len(c) == 0:
                     continue
                 c = c.copy()
-                c.insert(0, "sample", kind)
+                c.insert(0, "sample", sample)
                 c.insert(0, "model", model)
                 c.insert(0, "pressure_mpa", settings.pressures[il] / 1e6)
                 c.insert(0, "hurst", settings.hurst[ih])
@@ -247,18 +247,18 @@ def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = 
                  + [(k, r, ", elastic BEM") for k, r in bem_analysis.items()])
     holm = _holm_across_cases(items)
     for (ih, il), r, label in items:
-        for kind in ("asperity", "grid"):
-            v = r[kind].validation
+        for sample in ("asperity", "grid"):
+            v = r[sample].validation
             case = case_name(settings, ih) + (
                 f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1 else "") + label
             if v.table is None:
-                rows.append([case, SAMPLE_LABELS[kind], "—", "—", "—", "—", "—",
-                             f"not checked: {v.error or r[kind].note}"])
+                rows.append([case, SAMPLE_LABELS[sample], "—", "—", "—", "—", "—",
+                             f"not checked: {v.error or r[sample].note}"])
                 continue
             hits, m = v.damage_hits()
             lo, hi = v.coverage_interval
-            adjusted = holm.get((ih, il, label, kind), math.nan)
-            rows.append([case, SAMPLE_LABELS[kind],
+            adjusted = holm.get((ih, il, label, sample), math.nan)
+            rows.append([case, SAMPLE_LABELS[sample],
                          f"{100 * v.coverage:.0f} % [{100 * lo:.0f}, {100 * hi:.0f}]",
                          f"{v.t_pvalue:.2g}", f"{adjusted:.2g}" if math.isfinite(adjusted) else "—",
                          f"{hits} of {m}", f"{v.theta:.2g}" if math.isfinite(v.theta) else "—",
@@ -275,12 +275,12 @@ def _holm_across_cases(items: list) -> dict:
 
     out: dict[tuple[int, int, str, str], float] = {}
     for label in dict.fromkeys(lab for _, _, lab in items):
-        for kind in ("asperity", "grid"):
+        for sample in ("asperity", "grid"):
             keys, ps = [], []
             for (ih, il), r, lab in items:
-                v = r[kind].validation
+                v = r[sample].validation
                 if lab == label and v.table is not None and math.isfinite(v.t_pvalue):
-                    keys.append((ih, il, label, kind))
+                    keys.append((ih, il, label, sample))
                     ps.append(v.t_pvalue)
             if ps:
                 out.update(zip(keys, np.atleast_1d(adjust_pvalues(np.array(ps))).tolist(),

@@ -11,7 +11,7 @@ import numpy as np
 from .analysis import SAMPLE_LABELS
 from .answer import case_label
 from .report_document import fmt_cell
-from .report_numbers import KINDS, fitted
+from .report_numbers import SAMPLE_ORDER, fitted
 
 __all__ = ["bem_histograms_figure", "bem_maps_figure", "damage_curve_figure",
            "damage_reliability_figure", "differences_figure", "display_map", "histograms_figure",
@@ -40,17 +40,17 @@ def display_map(a: np.ndarray, how: str, size: int = 512) -> np.ndarray:
     return blocks.max(axis=(1, 3)) if how == "max" else blocks.mean(axis=(1, 3))
 
 
-def kind_panels() -> tuple[Any, list[tuple[Any, str]]]:
-    """A figure with one panel per sample kind, side by side.
+def sample_panels() -> tuple[Any, list[tuple[Any, str]]]:
+    """A figure with one panel per sample, side by side.
 
     Returns
     -------
     fig : matplotlib.figure.Figure
     panels : list of (matplotlib.axes.Axes, str)
-        The axes of the grid-point and of the per-asperity sample, with the kind.
+        The axes of the grid-point and of the per-asperity sample, with the sample.
     """
     fig, axes = pyplot().subplots(1, 2, figsize=(11, 3.8), squeeze=False, layout="constrained")
-    return fig, [(axes[0, col], kind) for col, kind in enumerate(KINDS)]
+    return fig, [(axes[0, col], sample) for col, sample in enumerate(SAMPLE_ORDER)]
 
 
 def _log_norm(positive: np.ndarray):
@@ -113,8 +113,8 @@ def damage_reliability_figure(settings, analysis: dict, suffix: str = ""):
     cases = list(analysis.items())
     fig, axes = pyplot().subplots(1, len(cases), figsize=(4.2 * len(cases), 3.6), squeeze=False)
     for ax, ((ih, il), r) in zip(axes[0], cases, strict=True):
-        for kind, marker in (("asperity", "o"), ("grid", "s")):
-            c = r[kind].validation.calibration
+        for sample, marker in (("asperity", "o"), ("grid", "s")):
+            c = r[sample].validation.calibration
             if c is None or len(c) == 0:
                 continue
             for k, color in ((1, "C0"), (2, "C1"), (4, "C2")):
@@ -124,8 +124,8 @@ def damage_reliability_figure(settings, analysis: dict, suffix: str = ""):
                 ax.errorbar(ck["predicted"], ck["observed"],
                             yerr=[np.maximum(ck["observed"] - ck["observed_low"], 0.0),
                                   np.maximum(ck["observed_high"] - ck["observed"], 0.0)],
-                            fmt=marker, ms=4, color=color, mfc="none" if kind == "grid" else color,
-                            label=f"{'grid (paper)' if kind == 'grid' else 'asperity'}, k = {k}")
+                            fmt=marker, ms=4, color=color, mfc="none" if sample == "grid" else color,
+                            label=f"{'grid (paper)' if sample == 'grid' else 'asperity'}, k = {k}")
         ax.plot([0, 1], [0, 1], "k:", lw=1)
         ax.set_xlabel("predicted P(max > Pd)")
         ax.set_ylabel("observed fraction (Wilson 95 %)")
@@ -183,14 +183,14 @@ def histograms_figure(settings, analysis: dict):
     nc = len(analysis)
     fig, axes = pyplot().subplots(2, nc, figsize=(4.2 * nc, 6.8), squeeze=False, layout="constrained")
     for col, ((ih, il), r) in enumerate(analysis.items()):
-        for irow, kind in enumerate(KINDS):
-            sa = r[kind]
+        for irow, sample in enumerate(SAMPLE_ORDER):
+            sa = r[sample]
             ax = axes[irow, col]
             if sa.data.size:
                 plot_histogram(sa.data, *([sa.boot.fit.dist] if sa.ok else []),
                                names=[f"GLD {sa.param.upper()}"] if sa.ok else None, ax=ax)
                 ax.legend(fontsize=8)
-            ax.set_title(f"{case_label(settings, ih, il)}\n{SAMPLE_LABELS[kind]}", fontsize=9)
+            ax.set_title(f"{case_label(settings, ih, il)}\n{SAMPLE_LABELS[sample]}", fontsize=9)
             ax.set_xlabel("pressure (MPa)")
     return fig
 
@@ -207,11 +207,11 @@ def lambda_figure(settings, asettings, ih: int, il: int, sa):
 
 def maximum_figure(settings, asettings, records: list):
     """Density of the maximal pressure over one analysed area with its interval, one panel
-    per sample kind; ``records`` from :func:`glstat.study.report_numbers.maximum_records`."""
-    fig, panels = kind_panels()
-    for ax, kind in panels:
+    per sample; ``records`` from :func:`glstat.study.report_numbers.maximum_records`."""
+    fig, panels = sample_panels()
+    for ax, sample in panels:
         for rec in records:
-            if rec["kind"] != kind:
+            if rec["sample"] != sample:
                 continue
             bm, lo, hi = rec["maximum"], rec["low"], rec["high"]
             span = hi - lo
@@ -221,23 +221,23 @@ def maximum_figure(settings, asettings, records: list):
         ax.axvline(asettings.hardness, color="k", ls=":", label=f"hardness {asettings.hardness:g} MPa")
         ax.set_xlabel("maximal pressure (MPa)")
         ax.set_ylabel("density (1/MPa)")
-        ax.set_title(SAMPLE_LABELS[kind])
+        ax.set_title(SAMPLE_LABELS[sample])
         ax.legend(fontsize=8)
     return fig
 
 
-def validation_figure(settings, asettings, analysis: dict, kind: str):
+def validation_figure(settings, asettings, analysis: dict, sample: str):
     """Observed maximal pressure of every held-out surface against its predicted interval,
     one panel per case (the reason in words where the sample was not checked)."""
     lvl = round(100 * asettings.confidence_level)
     nc = len(analysis)
     fig, axes = pyplot().subplots(1, nc, figsize=(4.2 * nc, 3.6), squeeze=False, layout="constrained")
     for col, ((ih, il), r) in enumerate(analysis.items()):
-        v = r[kind].validation
+        v = r[sample].validation
         ax = axes[0, col]
         ax.set_title(f"{case_label(settings, ih, il)}", fontsize=9)
         if v.table is None:
-            ax.text(0.5, 0.5, textwrap.fill((v.error or r[kind].note or "no fit")[:200], 40),
+            ax.text(0.5, 0.5, textwrap.fill((v.error or r[sample].note or "no fit")[:200], 40),
                     ha="center", va="center", fontsize=7, transform=ax.transAxes)
             continue
         t = v.table
@@ -254,17 +254,17 @@ def validation_figure(settings, asettings, analysis: dict, kind: str):
         ax.text(0.02, 0.97, f"coverage {100 * v.coverage:.0f} % [{100 * v.coverage_interval[0]:.0f}, "
                 f"{100 * v.coverage_interval[1]:.0f}]", transform=ax.transAxes, va="top", fontsize=8)
         ax.legend(fontsize=7, loc="lower right")
-    fig.suptitle(SAMPLE_LABELS[kind])
+    fig.suptitle(SAMPLE_LABELS[sample])
     return fig
 
 
-def differences_figure(settings, analysis: dict, kind: str):
+def differences_figure(settings, analysis: dict, sample: str):
     """Histogram of (predicted − observed) maximal pressure of the held-out surfaces, one
     panel per case (empty where the sample was not checked)."""
     nc = len(analysis)
     fig, axes = pyplot().subplots(1, nc, figsize=(4.2 * nc, 3.2), squeeze=False, layout="constrained")
     for col, ((ih, il), r) in enumerate(analysis.items()):
-        v = r[kind].validation
+        v = r[sample].validation
         if v.table is None:
             continue
         ax = axes[0, col]
@@ -272,22 +272,22 @@ def differences_figure(settings, analysis: dict, kind: str):
         ax.axvline(0, color="k", ls=":")
         ax.set_xlabel("predicted − observed (MPa)")
         ax.set_title(f"{case_label(settings, ih, il)}: t-test p = {fmt_cell(v.t_pvalue)}", fontsize=9)
-    fig.suptitle(SAMPLE_LABELS[kind])
+    fig.suptitle(SAMPLE_LABELS[sample])
     return fig
 
 
 def integrity_figure(settings, asettings, analysis: dict):
     """Integrity probability against the area factor with its band, one panel per sample."""
-    fig, panels = kind_panels()
-    for ax, kind in panels:
-        for ih, il, sa in fitted(analysis, kind):
+    fig, panels = sample_panels()
+    for ax, sample in panels:
+        for ih, il, sa in fitted(analysis, sample):
             it = sa.integrity
             line, = ax.semilogx(it.area_factor, it.estimate, label=case_label(settings, ih, il))
             ax.fill_between(it.area_factor, it.low, it.high, color=line.get_color(), alpha=0.15)
         ax.set_xlabel("area factor k (area / analysed area)")
         ax.set_ylabel(f"integrity probability at {asettings.hardness:g} MPa")
         ax.set_ylim(-0.02, 1.02)
-        ax.set_title(SAMPLE_LABELS[kind])
+        ax.set_title(SAMPLE_LABELS[sample])
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=8)
     return fig

@@ -13,25 +13,25 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-__all__ = ["KINDS", "TruncationSummary", "comparison_rows", "damage_records", "damage_verdict",
+__all__ = ["SAMPLE_ORDER", "TruncationSummary", "comparison_rows", "damage_records", "damage_verdict",
            "fitted", "guaranteed_records", "maximum_records", "mean_sd", "model_error_factors",
            "sample_moments", "truncation_summary", "unconverged_solves", "validation_records"]
 
 #: The two samples of every case, in the order of the report's tables: grid-point pressures
 #: (the paper's) and per-asperity peak pressures.
-KINDS = ("grid", "asperity")
+SAMPLE_ORDER = ("grid", "asperity")
 #: Area factors k of the guaranteed-pressure table.
 GUARANTEED_FACTORS = (1.0, 10.0, 100.0, 1000.0)
 
 
-def fitted(analysis: dict, kind: str) -> Iterator[tuple[int, int, Any]]:
-    """The cases whose sample of one kind got a GLD.
+def fitted(analysis: dict, sample: str) -> Iterator[tuple[int, int, Any]]:
+    """The cases whose sample of one sample got a GLD.
 
     Parameters
     ----------
     analysis : dict
-        ``(ih, il) -> {kind: SampleAnalysis, ...}``.
-    kind : str
+        ``(ih, il) -> {sample: SampleAnalysis, ...}``.
+    sample : str
         ``"grid"`` or ``"asperity"``.
 
     Yields
@@ -42,7 +42,7 @@ def fitted(analysis: dict, kind: str) -> Iterator[tuple[int, int, Any]]:
         Its analysis of that sample, with ``sa.ok``.
     """
     for (ih, il), r in analysis.items():
-        sa = r[kind]
+        sa = r[sample]
         if sa.ok:
             yield ih, il, sa
 
@@ -65,8 +65,8 @@ def damage_verdict(analysis: dict) -> str:
     """
     lows, highs, ests = [], [], []
     for r in analysis.values():
-        for kind in KINDS:
-            d = r[kind].damage
+        for sample in SAMPLE_ORDER:
+            d = r[sample].damage
             if d is not None:
                 ests.append(float(d.estimate))
                 lows.append(float(d.low))
@@ -164,16 +164,16 @@ def maximum_records(analysis: dict) -> list[dict[str, Any]]:
     Returns
     -------
     list of dict
-        Grid samples first, then per-asperity samples: ``ih``, ``il``, ``kind``, ``n`` (the
+        Grid samples first, then per-asperity samples: ``ih``, ``il``, ``sample``, ``n`` (the
         reference count), ``maximum`` (the bootstrap maximum), ``mean``, ``low``, ``high``
         (its mixture's mean and interval).
     """
     out = []
-    for kind in KINDS:
-        for ih, il, sa in fitted(analysis, kind):
+    for sample in SAMPLE_ORDER:
+        for ih, il, sa in fitted(analysis, sample):
             bm = sa.maximum
             lo, hi = bm.mixture_interval()
-            out.append({"ih": ih, "il": il, "kind": kind, "n": sa.n_ref, "maximum": bm,
+            out.append({"ih": ih, "il": il, "sample": sample, "n": sa.n_ref, "maximum": bm,
                         "mean": bm.mean, "low": lo, "high": hi})
     return out
 
@@ -189,18 +189,18 @@ def validation_records(analysis: dict) -> list[dict[str, Any]]:
     Returns
     -------
     list of dict
-        Grid samples first, then per-asperity samples: ``ih``, ``il``, ``kind``,
+        Grid samples first, then per-asperity samples: ``ih``, ``il``, ``sample``,
         ``validation`` and, when it was checked, ``surfaces`` (held-out surfaces) and
         ``mean_difference`` (mean of predicted − observed maxima, MPa); otherwise ``reason``
         (why it was not).
     """
     out: list[dict[str, Any]] = []
-    for kind in KINDS:
+    for sample in SAMPLE_ORDER:
         for (ih, il), r in analysis.items():
-            v = r[kind].validation
-            rec: dict[str, Any] = {"ih": ih, "il": il, "kind": kind, "validation": v}
+            v = r[sample].validation
+            rec: dict[str, Any] = {"ih": ih, "il": il, "sample": sample, "validation": v}
             if v.table is None:
-                rec["reason"] = v.error or r[kind].note
+                rec["reason"] = v.error or r[sample].note
             else:
                 t = v.table
                 rec["surfaces"] = len(t)
@@ -219,14 +219,14 @@ def damage_records(analysis: dict) -> list[tuple[int, int, str, Any, tuple[float
 
     Returns
     -------
-    list of (ih, il, kind, n, (estimate, low, high) or None)
+    list of (ih, il, sample, n, (estimate, low, high) or None)
         Per case, the grid sample then the per-asperity sample, with the reference count.
     """
     out = []
     for (ih, il), r in analysis.items():
-        for kind in KINDS:
-            d = r[kind].damage
-            out.append((ih, il, kind, r[kind].n_ref,
+        for sample in SAMPLE_ORDER:
+            d = r[sample].damage
+            out.append((ih, il, sample, r[sample].n_ref,
                         None if d is None else (float(d.estimate), float(d.low), float(d.high))))
     return out
 
@@ -241,11 +241,11 @@ def guaranteed_records(analysis: dict) -> list[tuple[int, int, str, list[float]]
 
     Returns
     -------
-    list of (ih, il, kind, pressures)
+    list of (ih, il, sample, pressures)
         Grid samples first; pressures (MPa) at the area factors :data:`GUARANTEED_FACTORS`.
     """
-    return [(ih, il, kind, [sa.guaranteed[k] for k in GUARANTEED_FACTORS])
-            for kind in KINDS for ih, il, sa in fitted(analysis, kind)]
+    return [(ih, il, sample, [sa.guaranteed[k] for k in GUARANTEED_FACTORS])
+            for sample in SAMPLE_ORDER for ih, il, sa in fitted(analysis, sample)]
 
 
 def mean_sd(values) -> tuple[float, float | None]:

@@ -19,7 +19,7 @@ from .report_figures import (
     validation_figure,
 )
 from .report_numbers import (
-    KINDS,
+    SAMPLE_ORDER,
     damage_records,
     fitted,
     guaranteed_records,
@@ -38,17 +38,17 @@ def fit_section(settings, asettings, analysis: dict) -> Blocks:
     out.heading("Moments and fitted GLD")
     rows = []
     for (ih, il), r in analysis.items():
-        for kind in KINDS:
-            sa = r[kind]
+        for sample in SAMPLE_ORDER:
+            sa = r[sample]
             lam = sa.boot.fit.lambdas if sa.ok else (math.nan,) * 4
             fitname = f"{sa.param.upper()} {sa.method}" if sa.ok else "none"
-            rows.append([case_label(settings, ih, il), SAMPLE_LABELS[kind], *sample_moments(sa.data),
+            rows.append([case_label(settings, ih, il), SAMPLE_LABELS[sample], *sample_moments(sa.data),
                          fitname, *lam])
     out.table(["case", "sample", "n", "mean", "std", "skewness α3", "kurtosis α4", "fit",
                "λ1", "λ2", "λ3", "λ4"], rows,
               "Pooled samples of all surfaces (MPa); λ1 in MPa, λ2 in 1/MPa.")
     notes = [f"{case_label(settings, ih, il)}, {SAMPLE_LABELS[k]}: {r[k].note}"
-             for (ih, il), r in analysis.items() for k in KINDS if r[k].note]
+             for (ih, il), r in analysis.items() for k in SAMPLE_ORDER if r[k].note]
     if notes:
         out.paragraph("Fit notes: " + " | ".join(notes))
 
@@ -82,7 +82,7 @@ def maximum_section(settings, asettings, analysis: dict) -> Blocks:
                f"Density of the maximal pressure over one analysed area, per H, with its {lvl} % "
                f"interval (shaded).")
     out.table(["case", "sample", "n", "mean maximum", f"{lvl} % low", f"{lvl} % high"],
-              [[case_label(settings, m["ih"], m["il"]), SAMPLE_LABELS[m["kind"]], m["n"], m["mean"],
+              [[case_label(settings, m["ih"], m["il"]), SAMPLE_LABELS[m["sample"]], m["n"], m["mean"],
                 m["low"], m["high"]] for m in records],
               "Maximal pressure (MPa) over one analysed area.")
     return out
@@ -90,7 +90,7 @@ def maximum_section(settings, asettings, analysis: dict) -> Blocks:
 
 def _validation_row(settings, rec: dict) -> list:
     """One row of the validation table."""
-    head = [case_label(settings, rec["ih"], rec["il"]), SAMPLE_LABELS[rec["kind"]]]
+    head = [case_label(settings, rec["ih"], rec["il"]), SAMPLE_LABELS[rec["sample"]]]
     v = rec["validation"]
     if "reason" in rec:
         return [*head, 0, "—", "—", "—", "—", "—", rec["reason"]]
@@ -116,12 +116,12 @@ def validation_section(settings, asettings, analysis: dict) -> Blocks:
         f"whose observed maximum lies in its interval, with its Wilson 95 % binomial interval. "
         f"Test: one-sample two-sided t-test of the null hypothesis 'the mean of (predicted − "
         f"observed) is 0' at the {test} level (Wilcoxon signed-rank p-value for reference).")
-    for kind in KINDS:
-        out.figure(f"validation_{kind}", validation_figure(settings, asettings, analysis, kind),
+    for sample in SAMPLE_ORDER:
+        out.figure(f"validation_{sample}", validation_figure(settings, asettings, analysis, sample),
                    f"Observed maximal pressure of every surface against its predicted {lvl} % "
-                   f"interval ({SAMPLE_LABELS[kind]}).")
-        out.figure(f"differences_{kind}", differences_figure(settings, analysis, kind),
-                   f"Histogram of (predicted − observed) maximal pressure ({SAMPLE_LABELS[kind]}).")
+                   f"interval ({SAMPLE_LABELS[sample]}).")
+        out.figure(f"differences_{sample}", differences_figure(settings, analysis, sample),
+                   f"Histogram of (predicted − observed) maximal pressure ({SAMPLE_LABELS[sample]}).")
     out.table(["case", "sample", "surfaces", "coverage", "Wilson 95 %", "mean (pred. − obs.)",
                "t-test p", "Wilcoxon p", f"H0 at {test}"],
               [_validation_row(settings, rec) for rec in validation_records(analysis)],
@@ -135,8 +135,8 @@ def damage_section(settings, asettings, analysis: dict) -> Blocks:
     hard, lvl = asettings.hardness, round(100 * asettings.confidence_level)
     out = Blocks()
     out.heading("Damage probability at the hardness")
-    rows = [[case_label(settings, ih, il), SAMPLE_LABELS[kind], n, *(("—",) * 3 if d is None else d)]
-            for ih, il, kind, n, d in damage_records(analysis)]
+    rows = [[case_label(settings, ih, il), SAMPLE_LABELS[sample], n, *(("—",) * 3 if d is None else d)]
+            for ih, il, sample, n, d in damage_records(analysis)]
     out.table(["case", "sample", "n", "damage probability", f"{lvl} % low", f"{lvl} % high"], rows,
               f"1 − F(Pd)^n at Pd = {hard:g} MPa on one analysed area "
               f"({settings.length * 1e3:g} × {settings.length * 1e3:g} mm²).")
@@ -146,8 +146,8 @@ def damage_section(settings, asettings, analysis: dict) -> Blocks:
                f"Integrity probability F(Pd)^(k n) against the area factor k, with the {lvl} % "
                f"bootstrap band.")
     out.table(["case", "sample", "k = 1", "k = 10", "k = 100", "k = 1000"],
-              [[case_label(settings, ih, il), SAMPLE_LABELS[kind], *g]
-               for ih, il, kind, g in guaranteed_records(analysis)],
+              [[case_label(settings, ih, il), SAMPLE_LABELS[sample], *g]
+               for ih, il, sample, g in guaranteed_records(analysis)],
               f"Guaranteed pressure Q(p^(1/(k n))) (MPa): all points of an area k times the analysed "
               f"one stay below it with probability p = {asettings.integrity_level:g}.")
     return out

@@ -13,7 +13,7 @@ from .report_figures import (
     pressure_maps_figure,
     surfaces_figure,
 )
-from .report_numbers import KINDS, model_error_factors
+from .report_numbers import SAMPLE_ORDER, model_error_factors
 from .report_surfaces import scene_sentence, surface_rows
 from .report_text import (
     calibration_verdict,
@@ -151,8 +151,8 @@ def main_results_section(settings, asettings, analysis: dict) -> Blocks:
         s = r["summary"]
         row = [case_label(settings, ih, il), s["mean_pressure"], s["contact_fraction"], s["n_contact"],
                s["n_asperities"], s["max_pressure"]]
-        for kind in KINDS:
-            row += [fmt_interval(r[kind].damage), _coverage(r[kind].validation)]
+        for sample in SAMPLE_ORDER:
+            row += [fmt_interval(r[sample].damage), _coverage(r[sample].validation)]
         rows.append(row)
     out.table(["case", "mean contact pressure", "1 − α", "points in contact / surface",
                "asperities / surface", "max pressure / surface",
@@ -172,10 +172,10 @@ def main_results_section(settings, asettings, analysis: dict) -> Blocks:
                 f"{lab}: {s['n_in_jump']} of {s['n_surfaces']} surfaces, largest jump "
                 f"{100 * s['max_force_jump']:.2g} % of the load, largest |force error| "
                 f"{100 * s['force_error']:.2g} %" for lab, s in jumps) + ".")
-    calib = [f"{case_label(settings, ih, il)}, {SAMPLE_LABELS[kind]}: "
-             + calibration_verdict(r[kind].validation, asettings.confidence_level)
-             for (ih, il), r in analysis.items() for kind in KINDS
-             if r[kind].validation.table is not None]
+    calib = [f"{case_label(settings, ih, il)}, {SAMPLE_LABELS[sample]}: "
+             + calibration_verdict(r[sample].validation, asettings.confidence_level)
+             for (ih, il), r in analysis.items() for sample in SAMPLE_ORDER
+             if r[sample].validation.table is not None]
     if calib:
         out.paragraph("Calibration of the predicted maximum (calibrated = coverage consistent with "
                       "the nominal level, i.e. the level inside the Wilson interval, and the "

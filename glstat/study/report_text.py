@@ -9,7 +9,7 @@ import math
 from .analysis import SAMPLE_LABELS
 from .answer import case_label
 from .report_document import fmt_cell
-from .report_numbers import KINDS, damage_verdict, truncation_summary
+from .report_numbers import SAMPLE_ORDER, damage_verdict, truncation_summary
 
 __all__ = ["PAPER_PRESSURES", "calibration_verdict", "damage_sentence", "fmt_interval",
            "truncation_caption", "truncation_matches", "truncation_paragraphs"]
@@ -49,7 +49,8 @@ def damage_sentence(settings, analysis: dict, hardness: float, level: int) -> st
         when a case has no estimate; :func:`glstat.study.report_numbers.damage_verdict`).
     """
     parts = [f"{case_label(settings, ih, il)}: "
-             + ", ".join(f"{fmt_interval(r[kind].damage)} ({SAMPLE_LABELS[kind]})" for kind in KINDS)
+             + ", ".join(f"{fmt_interval(r[sample].damage)} ({SAMPLE_LABELS[sample]})"
+                         for sample in SAMPLE_ORDER)
              for (ih, il), r in analysis.items()]
     text = (f"Damage probability at the hardness {hardness:g} MPa on one analysed area (estimate "
             f"[{level} % bootstrap interval]): " + "; ".join(parts) + ".")

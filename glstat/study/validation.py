@@ -117,7 +117,7 @@ def hardness_levels(maxima: np.ndarray, hardness: float, n_levels: int) -> np.nd
     return np.unique(np.array([float(f"{v:.3g}") for v in levels]))
 
 
-def validate_sample(per: list, kind: str, a: AnalysisSettings, ih: int, il: int, param: str, method: str,
+def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: int, param: str, method: str,
               levels: np.ndarray) -> Validation:
     """Two-fold validation: fits on the even surfaces predict the odd ones and vice versa."""
     import pandas as pd
@@ -133,14 +133,14 @@ def validate_sample(per: list, kind: str, a: AnalysisSettings, ih: int, il: int,
         if x.size < 5:
             return Validation(error=f"only {x.size} values in a fitting fold (at least 5 needed)")
         p, m, order = param, method, None
-        if kind == "asperity":
+        if sample == "asperity":
             ch = choose_fit([per[i] for i in train])
             p, m, order = ch.param, ch.method, ch.order()
-        grouped = kind == "asperity"
-        pred = predict_sample(x, a, sample_rng(a, ih, il, 1 if kind == "grid" else 2, f),
+        grouped = sample == "asperity"
+        pred = predict_sample(x, a, sample_rng(a, ih, il, 1 if sample == "grid" else 2, f),
                               fit_order(a, p, m, order), groups=labels if grouped else None,
                               n=None if grouped else max(float(counts.mean()), 1.0),
-                              n_resamples=a.grid_resamples if kind == "grid" else None)
+                              n_resamples=a.grid_resamples if sample == "grid" else None)
         bf = pred.boot
         if bf is None:
             return Validation(error=f"no {p.upper()} {m} fit of a fitting fold: {pred.note}")
@@ -149,7 +149,7 @@ def validate_sample(per: list, kind: str, a: AnalysisSettings, ih: int, il: int,
         if tested:
             ns = np.array([per[i][1] for i in tested], dtype=float)
             obs = np.array([per[i][2] for i in tested])
-            v = sample_rng(a, ih, il, 3 if kind == "grid" else 4, f).random((bf.n_successful, len(tested)))
+            v = sample_rng(a, ih, il, 3 if sample == "grid" else 4, f).random((bf.n_successful, len(tested)))
             draws = bf.maximum_quantiles(ns[None, :], v)
             alpha = 1 - a.confidence_level
             lo, hi = np.nanquantile(draws, [alpha / 2, 1 - alpha / 2], axis=0)
