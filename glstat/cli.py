@@ -385,11 +385,12 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
     from .formatting import fmt_mpa, fmt_probability
     from .formatting import fmt_number as _num
     from .study.answer import case_name, degenerate_scene, overlap_note
+    from .study.report_surfaces import area_text
 
     table = res.summary()
     lvl = round(100 * asettings.confidence_level)
     print(f"Probability that the contact pressure exceeds {hardness:g} MPa somewhere on one "
-          f"{settings.length * 1e3:g} x {settings.length * 1e3:g} mm² area ({lvl} % interval):")
+          f"{area_text(settings)} area ({lvl} % interval):")
     for _, r in table[table["sample"] == "asperity"].iterrows():
         model = "asperity model" if r["model"] == "asperity" else "elastic BEM   "
         check = ("" if r["coverage"] != r["coverage"] else

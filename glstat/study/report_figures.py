@@ -62,6 +62,18 @@ def _log_norm(positive: np.ndarray):
     return None
 
 
+def _extent(settings) -> list[float]:
+    """The image extent of one surface, [0, Lx, 0, Ly] in mm."""
+    lx, ly = settings.size
+    return [0.0, lx * 1e3, 0.0, ly * 1e3]
+
+
+def _spacing_mm(settings) -> tuple[float, float]:
+    """The grid spacing (dx, dy) of one surface in mm."""
+    dx, dy = settings.spacing
+    return dx * 1e3, dy * 1e3
+
+
 def _zoom(a: np.ndarray, grid: int) -> tuple[slice, slice]:
     """The window of ``grid // 16`` points (at least 8) each side of the maximum of ``a``."""
     i0, j0 = np.unravel_index(np.argmax(a), a.shape)
@@ -69,10 +81,13 @@ def _zoom(a: np.ndarray, grid: int) -> tuple[slice, slice]:
     return slice(max(0, i0 - h), i0 + h), slice(max(0, j0 - h), j0 + h)
 
 
-def _zoom_panel(fig, ax, sub, sl, dx: float, norm, title: str, **title_kw) -> None:
-    """One panel of a zoomed pressure map (MPa, masked where there is no contact)."""
+def _zoom_panel(fig, ax, sub, sl, spacing: tuple[float, float], norm, title: str,
+                **title_kw) -> None:
+    """One panel of a zoomed pressure map (MPa, masked where there is no contact); ``spacing``
+    is (dx, dy) in mm."""
+    dx, dy = spacing
     ext = [sl[0].start * dx, (sl[0].start + sub.shape[0]) * dx,
-           sl[1].start * dx, (sl[1].start + sub.shape[1]) * dx]
+           sl[1].start * dy, (sl[1].start + sub.shape[1]) * dy]
     im = ax.imshow(sub.T, origin="lower", extent=ext, cmap="magma", norm=norm, interpolation="nearest")
     ax.set_facecolor("#dde")
     ax.set_title(title, **title_kw)
@@ -140,7 +155,7 @@ def surfaces_figure(settings, examples: list):
     """The heights (µm) of the example surfaces, ``examples`` a list of ((ih, il), result)."""
     fig, axes = pyplot().subplots(1, len(examples), figsize=(4.6 * len(examples), 3.6),
                                   squeeze=False, layout="constrained")
-    ext = [0, settings.length * 1e3, 0, settings.length * 1e3]
+    ext = _extent(settings)
     for ax, ((ih, il), r) in zip(axes[0], examples, strict=True):
         im = ax.imshow(display_map(np.asarray(r["heights"], dtype=float), "mean").T * 1e6,
                        origin="lower", extent=ext, cmap="viridis")
@@ -156,8 +171,8 @@ def pressure_maps_figure(settings, examples: list):
     pressure, ``examples`` a list of ((ih, il), result)."""
     fig, axes = pyplot().subplots(2, len(examples), figsize=(4.6 * len(examples), 7.4),
                                   squeeze=False, layout="constrained")
-    ext = [0, settings.length * 1e3, 0, settings.length * 1e3]
-    dx = settings.length / settings.grid * 1e3
+    ext = _extent(settings)
+    mm = _spacing_mm(settings)
     for col, ((ih, il), r) in enumerate(examples):
         p = r["pressure"].astype(float) / 1e6
         norm = _log_norm(p[p > 0])
@@ -170,7 +185,7 @@ def pressure_maps_figure(settings, examples: list):
         ax.set_ylabel("y (mm)")
         fig.colorbar(im, ax=ax, label="pressure (MPa)")
         sl = _zoom(p, settings.grid)
-        _zoom_panel(fig, axes[1, col], np.ma.masked_less_equal(p, 0)[sl], sl, dx, norm,
+        _zoom_panel(fig, axes[1, col], np.ma.masked_less_equal(p, 0)[sl], sl, mm, norm,
                     "zoom on the highest pressure")
     return fig
 
@@ -346,13 +361,13 @@ def bem_maps_figure(settings, cases: list, maps: dict, labels: dict):
 
     fig, axes = pyplot().subplots(2, len(cases), figsize=(4.6 * len(cases), 7.4), squeeze=False,
                                   layout="constrained")
-    dx = settings.length / settings.grid * 1e3
+    mm = _spacing_mm(settings)
     for col, c in enumerate(cases):
         mp = {m: maps[c][m] / 1e6 for m in MODELS}
         norm = _log_norm(np.concatenate([x[x > 0] for x in mp.values()]))
         sl = _zoom(mp["bem"], settings.grid)
         for row, m in enumerate(MODELS):
-            _zoom_panel(fig, axes[row, col], np.ma.masked_less_equal(mp[m][sl], 0), sl, dx, norm,
+            _zoom_panel(fig, axes[row, col], np.ma.masked_less_equal(mp[m][sl], 0), sl, mm, norm,
                         f"{labels[c]}: {MODEL_LABELS[m]}", fontsize=9)
     return fig
 

@@ -27,6 +27,7 @@ from .report_numbers import (
     sample_moments,
     validation_records,
 )
+from .report_surfaces import area_text
 
 __all__ = ["damage_section", "fit_section", "maximum_section", "validation_section"]
 
@@ -139,7 +140,7 @@ def damage_section(settings, asettings, analysis: dict) -> Blocks:
             for ih, il, sample, n, d in damage_records(analysis)]
     out.table(["case", "sample", "n", "damage probability", f"{lvl} % low", f"{lvl} % high"], rows,
               f"1 − F(Pd)^n at Pd = {hard:g} MPa on one analysed area "
-              f"({settings.length * 1e3:g} × {settings.length * 1e3:g} mm²).")
+              f"({area_text(settings)}).")
 
     out.heading("Integrity against area")
     out.figure("integrity_vs_area", integrity_figure(settings, asettings, analysis),

@@ -14,7 +14,7 @@ from .report_figures import (
     surfaces_figure,
 )
 from .report_numbers import SAMPLE_ORDER, model_error_factors
-from .report_surfaces import scene_sentence, surface_rows
+from .report_surfaces import area_text, scene_sentence, surface_rows
 from .report_text import (
     calibration_verdict,
     damage_sentence,
@@ -45,7 +45,7 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     rows, columns = first_screen_rows(settings, asettings, analysis, bem, info.get("bem_analysis"))
     out.table(columns, rows,
               f"Probability that the contact pressure exceeds the hardness {hard:g} MPa somewhere on "
-              f"one analysed area ({settings.length * 1e3:g} × {settings.length * 1e3:g} mm²), "
+              f"one analysed area ({area_text(settings)}), "
               f"predicted from the peak pressures of the asperities in contact with their number "
               f"per surface as a random count (docs/method.md §6), with its {lvl} % bootstrap "
               f"interval (surfaces resampled). 'Check' is the prediction tested on held-out "

@@ -10,6 +10,7 @@ from .analysis import SAMPLE_LABELS
 from .answer import case_label
 from .report_document import fmt_cell
 from .report_numbers import SAMPLE_ORDER, damage_verdict, truncation_summary
+from .report_surfaces import area_text, grid_text
 
 __all__ = ["PAPER_PRESSURES", "calibration_verdict", "damage_sentence", "fmt_interval",
            "truncation_caption", "truncation_matches", "truncation_paragraphs"]
@@ -66,7 +67,7 @@ def truncation_matches(settings, reference: dict | None) -> bool:
     """True when the run has the grid, size and Rq of the stored truncation measurement."""
     if not reference:
         return False
-    return (int(settings.grid) == int(reference["grid"])
+    return (settings.square and int(settings.grid) == int(reference["grid"])
             and math.isclose(settings.length, reference["length"], rel_tol=1e-9)
             and math.isclose(settings.rq, reference["rq"], rel_tol=1e-9))
 
@@ -86,8 +87,7 @@ def truncation_caption(settings, reference: dict | None) -> str:
             f"glstat.study.truncation_table() on {reference_label(reference)}), not computed in "
             "this run; means over surfaces.")
     if not truncation_matches(settings, reference):
-        text += (f" This run's settings ({settings.grid}², {settings.length * 1e3:g} × "
-                 f"{settings.length * 1e3:g} mm², Rq = "
+        text += (f" This run's settings ({grid_text(settings)}, {area_text(settings)}, Rq = "
                  f"{settings.rq * 1e6:g} µm) differ, so the table does not describe it.")
     return text
 
