@@ -12,9 +12,11 @@ surface, in the same run and on one core:
 * the rest of :func:`glstat.study.bem.simulate_bem`: the asperity model and the contact
   records of both solutions.
 
-Times are the best of ``--repeat`` runs (s). The pressure fields of the two BEM solves are
+Times are the best of ``--repeat`` interleaved runs: wall seconds, and CPU seconds of the
+process (less sensitive to other jobs on a shared machine). The pressure fields of the two BEM solves are
 compared by their relative max-norm and L1 differences. The estimate of the campaign's BEM
 stage is the mean time of a whole :func:`simulate_bem` times the surfaces over the workers.
+Last, one convolution of each operator is timed on a solution's pressure and on a dense one.
 
 Usage::
 
@@ -34,7 +36,7 @@ import scipy.fft as sfft
 
 import contact
 from contact._constrained_cg import initial_pressure, polonsky_keer
-from contact._influence import love_coefficients
+from contact._influence import NonPeriodicOperator, love_coefficients
 from contact.material import effective_modulus
 from glstat.study.bem import BEMSettings, simulate_bem
 from glstat.study.campaign import CampaignSettings, campaign_surface
@@ -105,14 +107,22 @@ def baseline_solve(surface, pressure: float, e_star: float, tol: float, max_iter
     return out.pressure, out.n_iterations
 
 
-def best(fn, repeat: int):
-    """(best wall time in s, last result) of ``repeat`` calls of ``fn``."""
-    t_best, res = np.inf, None
+def timed(fn):
+    """(wall s, CPU s of this process, result) of one call of ``fn``."""
+    w, c = time.perf_counter(), time.process_time()
+    res = fn()
+    return time.perf_counter() - w, time.process_time() - c, res
+
+
+def convolution_ms(op, p: np.ndarray, repeat: int = 20) -> float:
+    """Best wall time (ms) of ``op.apply(p, out=...)``."""
+    out = np.empty(p.shape)
+    best = np.inf
     for _ in range(repeat):
         t = time.perf_counter()
-        res = fn()
-        t_best = min(t_best, time.perf_counter() - t)
-    return t_best, res
+        op.apply(p, out=out)
+        best = min(best, time.perf_counter() - t)
+    return 1e3 * best
 
 
 def main() -> None:
@@ -126,36 +136,42 @@ def main() -> None:
     pressure = s.pressures[0]
     keys = [(ih, 0, i) for ih in range(len(s.hurst)) for i in range(args.surfaces)]
     simulate_bem(s, b, 0, 0, s.n_surfaces - 1)  # compile the kernels, fill the cache
-    print("| H | surface | it. | baseline BEM (s) | solve_bem (s) | speed-up | rel. max diff. "
-          "| rel. L1 diff. | asperity model + records (s) | simulate_bem (s) |")
+    print("| H | surface | it. | baseline BEM: wall s (CPU s) | solve_bem: wall s (CPU s) | speed-up "
+          "(CPU) | rel. max diff. | rel. L1 diff. | asperity model + records (s) | simulate_bem (s) |")
     print("|---|---|---|---|---|---|---|---|---|---|")
-    whole, base_t, new_t = [], [], []
+    rows = []
     for key in keys:
         surf = campaign_surface(s, *key)
-        tb, (pb, itb) = best(lambda surf=surf: baseline_solve(surf, pressure, e_star, b.tol, b.max_iter),
-                             args.repeat)
-        tn, res = best(lambda surf=surf: contact.solve_bem(surf, pressure, s.E, s.nu, tol=b.tol,
-                                                 max_iter=b.max_iter, workers=1), args.repeat)
-        ts, rest = np.inf, np.inf
-        for _ in range(args.repeat):
-            t = time.perf_counter()
-            rec = simulate_bem(s, b, *key)
-            whole_t = time.perf_counter() - t
-            ts, rest = min(ts, whole_t), min(rest, whole_t - float(rec["seconds_bem"]))
+        t = np.full((6, args.repeat), np.inf)
+        for k in range(args.repeat):  # interleaved: the machine's load hits both alike
+            t[0, k], t[1, k], (pb, itb) = timed(
+                lambda surf=surf: baseline_solve(surf, pressure, e_star, b.tol, b.max_iter))
+            t[2, k], t[3, k], res = timed(lambda surf=surf: contact.solve_bem(
+                surf, pressure, s.E, s.nu, tol=b.tol, max_iter=b.max_iter, workers=1))
+            t[4, k], _, rec = timed(lambda key=key: simulate_bem(s, b, *key))
+            t[5, k] = t[4, k] - float(rec["seconds_bem"])
+        tb, cb, tn, cn, ts, rest = t.min(axis=1)
         pn = res.pressure
         dmax = float(np.abs(pn - pb).max() / np.abs(pb).max())
         dl1 = float(np.abs(pn - pb).sum() / np.abs(pb).sum())
-        whole.append(ts)
-        base_t.append(tb)
-        new_t.append(tn)
-        print(f"| {s.hurst[key[0]]:g} | {key[2]} | {res.n_iterations} ({itb}) | {tb:.2f} | {tn:.2f} "
-              f"| {tb / tn:.2f} | {dmax:.1e} | {dl1:.1e} | {rest:.2f} | {ts:.2f} |", flush=True)
+        rows.append((tb, cb, tn, cn, ts))
+        print(f"| {s.hurst[key[0]]:g} | {key[2]} | {res.n_iterations} ({itb}) | {tb:.2f} ({cb:.2f}) "
+              f"| {tn:.2f} ({cn:.2f}) | {tb / tn:.2f} ({cb / cn:.2f}) | {dmax:.1e} | {dl1:.1e} "
+              f"| {rest:.2f} | {ts:.2f} |", flush=True)
+    tb, cb, tn, cn, ts = np.mean(rows, axis=0)
     n_all = len(s.hurst) * len(s.pressures) * s.n_surfaces
-    mean_whole = float(np.mean(whole))
-    print(f"\nmean: baseline BEM {np.mean(base_t):.2f} s, solve_bem {np.mean(new_t):.2f} s, "
-          f"simulate_bem {mean_whole:.2f} s per surface; BEM stage of the campaign "
-          f"≈ {n_all} × {mean_whole:.2f} / {args.workers} = {n_all * mean_whole / args.workers:.0f} s "
-          f"(baseline ≈ {n_all * (mean_whole - np.mean(new_t) + np.mean(base_t)) / args.workers:.0f} s)")
+    print(f"\nmean per surface: baseline BEM {tb:.2f} s ({cb:.2f} CPU s), solve_bem {tn:.2f} s "
+          f"({cn:.2f} CPU s), simulate_bem {ts:.2f} s; BEM stage of the campaign "
+          f"≈ {n_all} × {ts:.2f} / {args.workers} = {n_all * ts / args.workers:.0f} s "
+          f"(with the baseline BEM ≈ {n_all * (ts - tn + tb) / args.workers:.0f} s)")
+    surf = campaign_surface(s, *keys[0])
+    p = contact.solve_bem(surf, pressure, s.E, s.nu, tol=b.tol, workers=1).pressure
+    new_op = NonPeriodicOperator(p.shape, surf.dx, surf.dy, e_star)
+    old_op = BaselineOperator(p.shape, surf.dx, surf.dy, e_star)
+    dense = np.random.default_rng(0).random(p.shape)
+    for name, q in (("the solution's pressure", p), ("a dense pressure", dense)):
+        print(f"one convolution at {p.shape[0]}x{p.shape[1]}, {name}: baseline "
+              f"{convolution_ms(old_op, q):.1f} ms, operator {convolution_ms(new_op, q):.1f} ms")
 
 
 if __name__ == "__main__":

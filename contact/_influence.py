@@ -22,6 +22,7 @@ from collections import OrderedDict
 from collections.abc import Callable
 from typing import Protocol
 
+import numba as nb
 import numpy as np
 import scipy.fft as sfft
 
@@ -213,6 +214,27 @@ def _periodic_kernel(nx: int, ny: int, dx: float, dy: float, e_star: float
     return k, float(sfft.irfft2(k, s=(nx, ny))[0, 0])
 
 
+@nb.njit(cache=True, nogil=True)
+def _scale_spectrum(spec, kernel):  # pragma: no cover - compiled
+    """``spec *= kernel`` in place: a C-contiguous complex array by a real one of its shape."""
+    s = spec.reshape(-1).view(np.float64)
+    k = kernel.reshape(-1)
+    for i in range(k.size):
+        s[2 * i] *= k[i]
+        s[2 * i + 1] *= k[i]
+
+
+@nb.njit(cache=True, nogil=True)
+def _transpose_into(spec, out):  # pragma: no cover - compiled
+    """``out[i, j] = spec[j, i]`` for the ``nx`` rows of ``out``, by bands of 16 columns."""
+    nx, m = out.shape
+    for j0 in range(0, m, 16):
+        j1 = min(j0 + 16, m)
+        for i in range(nx):
+            for j in range(j0, j1):
+                out[i, j] = spec[j, i]
+
+
 def _rfft_rows(p: np.ndarray, ny: int, out: np.ndarray) -> None:
     """``out = rfft(p, n=2 ny, axis=1)``, transforming only the rows of ``p`` that hold a
     non-zero value (the others give zero); ``out`` is C-contiguous complex, ``(nx, ny + 1)``.
@@ -330,9 +352,9 @@ class NonPeriodicOperator:
             spec[:, :nx] = half.T
             spec[:, nx:] = 0.0
             np.fft.fft(spec, axis=1, out=spec)
-            np.multiply(spec, self._kernel_hat_t, out=spec)
+            _scale_spectrum(spec, self._kernel_hat_t)
             np.fft.ifft(spec, axis=1, out=spec)
-            half[...] = spec[:, :nx].T
+            _transpose_into(spec, half)
             np.fft.irfft(half, n=2 * ny, axis=1, out=self._wide)
             res = self._wide[:, :ny]
         else:
