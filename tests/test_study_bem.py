@@ -98,7 +98,7 @@ def test_report_section(study):
             assert float(z[f"{m}_mean_pressure"]) * float(z[f"{m}_contact_fraction"]) == \
                 pytest.approx(20e6, rel=1e-6)
     # GLD and damage table: one row per (H, model)
-    fits = _tables(sec, "| case | model | n pooled | n per surface | fit | λ1 | λ2 | λ3 | λ4 | "
+    fits = _tables(sec, "| case | model | spot peaks pooled | spots per surface | fit | λ1 | λ2 | λ3 | λ4 | "
                         "damage probability | 90 % low | 90 % high |")
     assert len(fits) == 1 and len(fits[0]) == 6
     assert [(r[0], r[1]) for r in fits[0]] == [(c, m) for c in CASES

@@ -108,10 +108,12 @@ def bem_section(settings, asettings, comps: dict, bsettings, maps: dict) -> Bloc
             rows.append([labels[c], MODEL_LABELS[f["model"]], f["n"], f["n_ref"], f["fit"],
                          f["lambda1"], f["lambda2"], f["lambda3"], f["lambda4"], f["damage"],
                          f["damage_low"], f["damage_high"]])
-    out.table(["case", "model", "n pooled", "n per surface", "fit", "λ1", "λ2", "λ3", "λ4",
-               "damage probability", f"{lvl} % low", f"{lvl} % high"], rows,
-              f"GLD of each model's grid-point pressures (MPa; λ1 in MPa, λ2 in 1/MPa) and the damage "
-              f"probability 1 − F(Pd)^n at Pd = {hard:g} MPa on one analysed area.")
+    out.table(["case", "model", "spot peaks pooled", "spots per surface", "fit", "λ1", "λ2", "λ3",
+               "λ4", "damage probability", f"{lvl} % low", f"{lvl} % high"], rows,
+              f"GLD of each model's contact-spot peak pressures (the highest pressure of every "
+              f"8-connected contact spot inside the patch; MPa, λ1 in MPa, λ2 in 1/MPa) and the "
+              f"damage probability 1 − E[F(Pd)^N] at Pd = {hard:g} MPa on one analysed area, N "
+              f"the spots of a surface (surfaces resampled by the bootstrap).")
     notes = [f"{labels[c]}, {MODEL_LABELS[m]}: {v.fits[m].note}" for c, v in comps.items()
              for m in MODELS if v.fits[m].note]
     if notes:
