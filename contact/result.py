@@ -13,9 +13,10 @@ if TYPE_CHECKING:
 __all__ = ["ContactResult"]
 
 
-@dataclass
+@dataclass(frozen=True)
 class ContactResult:
-    """Contact of a rigid flat (or elastic counter-face) with a rough surface.
+    """Contact of a rigid flat (or elastic counter-face) with a rough surface (read-only:
+    ``dataclasses.replace`` makes a changed copy).
 
     Attributes
     ----------
