@@ -156,11 +156,30 @@ class TabulatedCount(CountDistribution):
         The counts n_j (>= 0).
     weights : array_like
         Their probabilities (normalised here; zero weights are dropped).
+
+    Raises
+    ------
+    ValueError
+        Values that are not integers >= 0, negative or non-finite weights, lengths that differ,
+        or no value of positive weight.
     """
 
     def __init__(self, values, weights):
-        values = np.asarray(values, dtype=float)
-        weights = np.asarray(weights, dtype=float)
+        values = np.asarray(values, dtype=float).ravel()
+        weights = np.asarray(weights, dtype=float).ravel()
+        if values.size != weights.size:
+            raise ValueError(f"values and weights must have the same length, got {values.size} "
+                             f"and {weights.size}")
+        if not (np.all(np.isfinite(values)) and np.all(np.isfinite(weights))):
+            raise ValueError("values and weights must be finite")
+        if np.any(values < 0) or np.any(values != np.round(values)):
+            bad = values[(values < 0) | (values != np.round(values))][0]
+            raise ValueError(f"count values must be integers >= 0; got {bad:g}")
+        if np.any(weights < 0):
+            raise ValueError(f"weights must be >= 0; got {weights[weights < 0][0]:g}")
+        if not np.any(weights > 0):
+            raise ValueError("the count has no value of positive weight: give at least one "
+                             "value with a weight > 0")
         keep = weights > 0
         self.values = values[keep]
         w = weights[keep]
@@ -299,6 +318,9 @@ def as_count(count) -> CountDistribution:
             mu = count.args[0] if count.args else count.kwds["mu"]
             return PoissonCount(float(mu))
         lo, hi = (float(v) for v in count.support())
+        if not (math.isfinite(lo) and lo <= hi):
+            raise ValueError(f"count {name} has no valid support (its parameters are invalid: "
+                             f"{count.args or count.kwds})")
         if lo < 0:
             raise ValueError(f"count must take values >= 0; {name} starts at {lo:g}")
         mean, var = (float(v) for v in count.stats("mv"))

@@ -158,3 +158,19 @@ def test_count_and_n_are_exclusive_and_raw_lists_refused():
         glstat.maximum(EXPON, count=[1, 2, 3])
     with pytest.raises(ValueError, match="mu"):
         glstat.PoissonCount(-1.0)
+
+
+@pytest.mark.parametrize("values, weights, match", [
+    ([], [], "no value of positive weight"), ([1, -2], [1, 1], "integers >= 0"),
+    ([1.5], [1], "integers >= 0"), ([1, 2], [0, 0], "no value of positive weight"),
+    ([1, 2], [1], "same length"), ([1, 2], [1, -1], "weights must be >= 0"),
+    ([1, 2], [1, np.nan], "finite")])
+def test_bad_tabulated_counts_are_refused(values, weights, match):
+    with pytest.raises(ValueError, match=match):
+        glstat.counts.TabulatedCount(values, weights)
+
+
+def test_scipy_count_with_invalid_parameters_is_refused():
+    # randint(5, 5) has no values: scipy reports its support as NaN.
+    with pytest.raises(ValueError, match="no valid support"):
+        glstat.damage_probability(EXPON, 1.0, count=st.randint(5, 5))
