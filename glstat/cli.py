@@ -387,18 +387,24 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
     from .study.answer import case_name, degenerate_scene, overlap_note
     from .study.report_surfaces import area_text
 
+    def _damage(p) -> str:
+        return "no fit" if p is None or p != p else fmt_probability(p)
+
     table = res.summary()
     lvl = round(100 * asettings.confidence_level)
     print(f"Probability that the contact pressure exceeds {hardness:g} MPa somewhere on one "
           f"{area_text(settings)} area ({lvl} % interval):")
-    for _, r in table[table["sample"] == "asperity"].iterrows():
-        model = "asperity model" if r["model"] == "asperity" else "elastic BEM   "
+    rows = table[table["sample"] == "asperity"]
+    labels = [("measured" if settings.measured else f"H = {r['hurst']:g}") + ", "
+              + ("asperity model" if r["model"] == "asperity" else "elastic BEM")
+              for _, r in rows.iterrows()]
+    width = max((len(label) for label in labels), default=0)
+    for label, (_, r) in zip(labels, rows.iterrows(), strict=True):
         check = ("" if r["coverage"] != r["coverage"] else
                  "  no GLD could be fitted (report: Moments and fitted GLD)" if r["damage"] != r["damage"]
                  else ("  check on held-out surfaces: passed" if r["passes_check"] else
                        "  check on held-out surfaces: failed"))
-        case = "measured" if settings.measured else f"H = {r['hurst']:g}"
-        print(f"  {case}, {model}: {fmt_probability(r['damage'])} "
+        print(f"  {label + ':':<{width + 1}} {fmt_probability(r['damage'])} "
               f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}]; observed "
               f"{fmt_probability(r['observed_damage'])} of {r['n_surfaces']} surfaces; mean contact "
               f"pressure {fmt_mpa(r['mean_pressure_mpa'])}{check}")
@@ -414,8 +420,8 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
             print(f"{case_name(settings, ih)}, {settings.pressures[il] / 1e6:g} MPa: asperity / BEM "
                   f"contact fraction {_num(r['contact_fraction'], '.3g')}, mean pressure "
                   f"{_num(r['mean_pressure_MPa'], '.3g')}, max pressure "
-                  f"{_num(r['max_pressure_MPa'], '.3g')}; damage P {_num(fits['asperity'], '.4g')} "
-                  f"(asperity) vs {_num(fits['bem'], '.4g')} (BEM)")
+                  f"{_num(r['max_pressure_MPa'], '.3g')}; damage probability from the contact-spot "
+                  f"peaks {_damage(fits['asperity'])} (asperity) vs {_damage(fits['bem'])} (BEM)")
     print(f"report: {res.report_html}  (and {res.report_md})")
 
 

@@ -46,10 +46,29 @@ def fmt_number(value, spec: str = ".3g", factor: float = 1.0, unit: str = "",
 
 
 def fmt_mpa(v: float) -> str:
-    """A pressure in MPa with three significant digits ('—' when missing)."""
+    """A pressure given in MPa, as text with three significant digits, in MPa below 1 GPa and
+    in GPa from there ('—' when missing).
+
+    Examples
+    --------
+    >>> from glstat.formatting import fmt_mpa
+    >>> fmt_mpa(1797.2), fmt_mpa(31000.0), fmt_mpa(20.0), fmt_mpa(999.7)
+    ('1.80 GPa', '31.0 GPa', '20.0 MPa', '1.00 GPa')
+    """
     if v is None or not math.isfinite(v):
         return "—" if v is None or math.isnan(v) else ("∞" if v > 0 else "−∞")
-    return f"{v:.3g} MPa" if abs(v) < 1000 else f"{v / 1000:.3g} GPa"
+    rounded = float(f"{v:.3g}")
+    if rounded == 0:
+        return "0 MPa"
+    if abs(rounded) < 1000:
+        return f"{_three_digits(rounded)} MPa"
+    return f"{_three_digits(rounded / 1000)} GPa"
+
+
+def _three_digits(v: float) -> str:
+    """``v`` with three significant digits, trailing zeros kept ('1.80', '31.0', '100')."""
+    text = f"{v:#.3g}"
+    return text[:-1] if text.endswith(".") else text
 
 
 def fmt_probability(p: float) -> str:

@@ -92,7 +92,16 @@ def test_study_report_contents(tiny_study):
     assert len(dmg) == 6
     for r in dmg:
         if r[3] != "—":
-            assert 0.0 <= float(r[3]) <= 1.0
+            assert r[3].endswith(" %") and 0.0 <= float(r[3].split()[0].replace("e", "E")) <= 100.0
+    # probabilities in percent, counts as whole numbers; integrity against area on the first screen
+    for r in main_rows:
+        assert all(c == "—" or (c.endswith("]") and "%" in c) for c in (r[6], r[8]))
+        assert re.fullmatch(r"[\d,]+", r[3])
+    answer_part = md.split("## Main results")[0]
+    assert "Integrity against area: the probability that no point of k analysed areas" in answer_part
+    integrity = _md_table(answer_part, "case | integrity, 1 area [90 % interval]")
+    assert [r[0] for r in integrity] == ["H = 0", "H = 0.5", "H = 1"]
+    assert all(c == "—" or "%" in c for r in integrity for c in r[1:])
     assert "Wilson" in md and "t-test" in md
     assert "n_terms" in md and "Nyquist" in md
     settings_rows = dict((r[0], r[1]) for r in _md_table(md, "setting"))
@@ -408,10 +417,10 @@ def test_damage_sentence_is_computed():
     settings = CampaignSettings(hurst=(0.0, 1.0), n_terms=(6,))
     certain = damage_sentence(settings, _fake_analysis([((1.0, 1.0, 1.0), (1.0, 1.0, 1.0))] * 2),
                               2050, 90)
-    assert "certain" in certain and "H = 0, 20 MPa: 1 [1, 1]" in certain
+    assert "certain" in certain and "H = 0, 20 MPa: 100 % [100 %, 100 %]" in certain
     near = damage_sentence(settings, _fake_analysis([((1.0, 1.0, 1.0), (0.9983, 0.9964, 1.0))] * 2),
                            2050, 90)
-    assert "certain" not in near and "0.9983 [0.9964, 1]" in near
+    assert "certain" not in near and "99.8 % [99.6 %, 100 %]" in near
     none = damage_sentence(settings, _fake_analysis([((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))] * 2),
                            2e5, 90)
     assert "certain" not in none and "negligible" in none and "200000 MPa" in none
@@ -457,7 +466,7 @@ def test_report_with_hardness_far_above_the_pressures(tmp_path, capsys):
     assert "77 GPa" not in md and "3.4 TPa" not in md
     assert "Damage probability at the hardness 200000 MPa" in md
     dmg = [r[3] for r in _md_table(md, "case | sample | n | damage probability") if r[3] != "—"]
-    assert dmg and all(float(v) < 1e-3 for v in dmg)
+    assert dmg and all(v.endswith(" %") and float(v.split()[0]) < 0.1 for v in dmg)
     assert "Stored reference measurement" in md and "does not describe" in md
 
 

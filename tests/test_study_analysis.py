@@ -54,6 +54,19 @@ def test_choose_fit_prefers_fits_whose_support_holds_the_held_out_maxima():
     assert "beyond its support" in ch.reason
 
 
+def test_choice_reason_names_denser_candidates_ranked_lower_by_the_support():
+    # a candidate with a higher mean log density but more held-out maxima beyond its support
+    # is ranked lower; the reason says why, so it never contradicts its own numbers
+    rng = np.random.default_rng(2)
+    per = _surfaces(rng, 30, lambda r, k: r.uniform(1000.0, 2000.0, k))
+    ch = choose_fit(per)
+    best = next(iter(ch.scores))
+    denser = [k for k, v in ch.scores.items() if v > ch.scores[best]]
+    assert denser, "the sample no longer gives the case this test is about"
+    for k in denser:
+        assert k in ch.reason and "beyond its support" in ch.reason.split(k, 1)[1]
+
+
 def test_hardness_levels_span_the_maxima_and_include_the_hardness():
     maxima = np.random.default_rng(2).gamma(5.0, 500.0, 100)
     lv = hardness_levels(maxima, 2050.0, 7)
@@ -98,7 +111,8 @@ def test_end_note_and_formats():
     assert "within 10 %" in _end_note(sa, 2050.0)
     sa.upper_end = math.inf
     assert _end_note(sa, 2050.0) == ""
-    assert fmt_mpa(1797.3) == "1.8 GPa" and fmt_mpa(512.0) == "512 MPa"
+    assert fmt_mpa(1797.3) == "1.80 GPa" and fmt_mpa(512.0) == "512 MPa"
+    assert fmt_mpa(31000.0) == "31.0 GPa" and fmt_mpa(999.96) == "1.00 GPa" and fmt_mpa(0.0) == "0 MPa"
     assert fmt_probability(0.5829) == "58.3 %" and fmt_probability(1.2e-7) == "1.2e-05 %"
     assert fmt_probability(0.0) == "0 %" and fmt_probability(float("nan")) == "—"
 

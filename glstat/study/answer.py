@@ -236,6 +236,76 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
     return rows, columns + (["paper: damage", "paper: mean pressure"] if simulated else [])
 
 
+#: The rms height printed in the paper, m.
+PAPER_RQ = 50e-6
+
+
+def scene_choice_sentence(settings, analysis: dict | None) -> str:
+    """Why a simulated scene's Rq is not the paper's printed 50 µm, from this run's mean
+    pressures next to Table 1's ("" for measured surfaces or when no H of Table 1 was run)."""
+    if getattr(settings, "topographies", ()) or getattr(settings, "measured", False) or not analysis:
+        return ""
+    pairs = [(settings.hurst[ih], r["summary"]["mean_pressure"]) for (ih, il), r in analysis.items()
+             if settings.hurst[ih] in PAPER_MEAN_MPA and len(settings.pressures) == 1]
+    if not pairs:
+        return ""
+    ratio = PAPER_RQ / settings.rq
+    ours = " / ".join(f"{m:.0f}" for _, m in pairs)
+    theirs = " / ".join(f"{PAPER_MEAN_MPA[h]:.0f}" for h, _ in pairs)
+    hs = " / ".join(f"{h:g}" for h, _ in pairs)
+    text = (f"The scene: this run's Rq = {settings.rq * 1e6:.3g} µm gives mean contact pressures "
+            f"{ours} MPa for H = {hs}, against Table 1's {theirs} MPa. ")
+    if abs(ratio - 1) < 1e-9:
+        return text + ("This is the paper's printed Rq; docs/method.md §10 explains why the "
+                       "printed value does not reproduce the printed pressures.")
+    return text + (
+        f"The paper prints Rq = 50 µm, which at the same spectrum makes every slope "
+        f"{ratio:.3g} times {'steeper' if ratio > 1 else 'shallower'}; the pressures of Table 1 "
+        f"need slopes of a few percent (above), so the printed Rq and the printed pressures "
+        f"cannot both hold, and the study places its scene at the pressures (docs/method.md §10; "
+        f"`--rq 50` runs the printed value, `--target-pressure` or "
+        f"glstat.study.rq_for_pressure another level).")
+
+
+#: Area factors quoted in the first screen's integrity sentence.
+INTEGRITY_FACTORS = (1.0, 10.0, 100.0)
+
+
+def _readable(p: float) -> str:
+    """A probability in percent for a reader, "< 0.001 %" below 1e-5."""
+    return "< 0.001 %" if 0 <= p < 1e-5 else fmt_probability(p)
+
+
+def integrity_rows(settings, asettings, analysis: dict) -> tuple[list[list[str]], list[str]]:
+    """Integrity against area for the first screen: per case, the probability that no point
+    of k analysed areas exceeds the hardness (per-asperity predictor, with its interval) at
+    k = 1, 10 and 100; no rows when no case has an integrity curve."""
+    rows = []
+    for (ih, il), r in analysis.items():
+        it = r["asperity"].integrity
+        if it is None:
+            continue
+        k = np.asarray(it.area_factor, dtype=float).ravel()
+        est, low, high = (np.asarray(v, dtype=float).ravel() for v in (it.estimate, it.low, it.high))
+        row = [case_name(settings, ih) + (f", {settings.pressures[il] / 1e6:g} MPa"
+                                          if len(settings.pressures) > 1 else "")]
+        for factor in INTEGRITY_FACTORS:
+            j = np.flatnonzero(np.isclose(k, factor))
+            if not j.size:
+                row.append("—")
+                continue
+            i = int(j[0])
+            if high[i] < 1e-5:
+                row.append("< 0.001 %")
+            else:
+                row.append(f"{_readable(est[i])} [{_readable(low[i])}, {_readable(high[i])}]")
+        rows.append(row)
+    lvl = round(100 * asettings.confidence_level)
+    columns = ["case", *(f"integrity, {f:g} area{'s' if f != 1 else ''} [{lvl} % interval]"
+                         for f in INTEGRITY_FACTORS)]
+    return rows, columns
+
+
 def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = None
                ) -> tuple[list[list[Any]], list[str]]:
     """Rows of the table of checks on held-out surfaces: one per (H, load, model, sample)."""

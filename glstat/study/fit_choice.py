@@ -107,11 +107,26 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
     p, m = best.split(" ", 1)
     ranked = sorted(names, key=lambda k: (outside[k], -scores[k], names.index(k)))
     runner = next((k for k in ranked if k != best), None)
-    why = (f"{best} predicts the held-out half's maxima best (mean log density "
-           f"{scores[best]:.3g}" + (f" against {scores[runner]:.3g} for {runner})" if runner else ")"))
-    if outside[best]:
+    if runner is not None and outside[runner] > outside[best]:
+        # ranked first on the maxima outside the support, not on the density
+        n_out = outside[runner]
+        why = (f"{best} predicts the held-out half's maxima best: "
+               + (f"{outside[best]} of them lie" if outside[best] else "none lies")
+               + f" beyond its support against {n_out} for {runner} (mean log density of the "
+               f"others {scores[best]:.3g} against {scores[runner]:.3g})")
+    else:
+        why = (f"{best} predicts the held-out half's maxima best (mean log density "
+               f"{scores[best]:.3g}" + (f" against {scores[runner]:.3g} for {runner})" if runner
+                                         else ")"))
+    if outside[best] and not (runner is not None and outside[runner] > outside[best]):
         why += (f"; {outside[best]} held-out maxima lie beyond its support (fewest of the "
                 f"candidates)")
+    denser = [k for k in ranked if k != best and k != runner and scores[k] > scores[best]
+              and outside[k] > outside[best]]
+    if denser:
+        why += "; " + ", ".join(
+            f"{k} has a higher mean log density ({scores[k]:.3g}) but {outside[k]} held-out "
+            f"maxim{'um' if outside[k] == 1 else 'a'} beyond its support" for k in denser)
     return FitChoice(p.lower(), m, {k: scores[k] for k in ranked}, why)
 
 

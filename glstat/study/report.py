@@ -67,7 +67,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
     rep = Report(TITLE)
     rep.extend(answer_section(settings, asettings, analysis, info),
                checks_section(settings, asettings, analysis, info),
-               paper_section(info),
+               paper_section(info, settings, analysis),
                main_results_section(settings, asettings, analysis))
     if settings.measured:
         rep.extend(measured_section(settings, results))

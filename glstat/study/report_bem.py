@@ -36,12 +36,14 @@ def _method(settings, asettings, bsettings) -> str:
            "isolated patch on an unloaded half-space (the Weierstrass frequencies γ^n/L, γ = "
            f"{settings.gamma:g}, are not integer multiples of 1/L, so the surfaces do not repeat "
            "on the grid; the asperity model sees an isolated patch too)")
-        + f". The grid-point pressures of each model, pooled over the {k} surface"
-        f"{plural}, get the study's "
-        f"GLD fit ({asettings.param.upper()} {asettings.method}, fallbacks as above) with B = "
-        f"{asettings.n_resamples} bootstrap resamples, and the damage probability at "
-        f"{asettings.hardness:g} MPa is 1 − F(Pd)^n with n = that model's mean number of points in "
-        f"contact per surface ({round(100 * asettings.confidence_level)} % bootstrap interval). "
+        + f". The contact-spot peak pressures of each model (the highest pressure of every "
+        f"8-connected contact spot inside the patch), pooled over the {k} surface{plural}, get "
+        f"the study's GLD fit ({asettings.param.upper()} {asettings.method}, fallbacks as above) "
+        f"with B = "
+        f"{asettings.n_resamples} bootstrap resamples of whole surfaces, and the damage "
+        f"probability at {asettings.hardness:g} MPa is 1 − E[F(Pd)^N] with N the number of "
+        f"contact spots of a surface, a random count "
+        f"({round(100 * asettings.confidence_level)} % bootstrap interval). "
         f"Ratios are asperity model / BEM (1: no error); ± is the "
         f"standard deviation over the surfaces, the range their minimum and maximum.")
 
@@ -99,7 +101,7 @@ def bem_section(settings, asettings, comps: dict, bsettings, maps: dict) -> Bloc
     for c, v in comps.items():
         _quantity_table(out, v, labels[c], k)
     out.figure("bem_histograms", bem_histograms_figure(comps, labels, hard),
-               f"Grid-point pressures of the asperity model (blue) and of the elastic BEM (red), "
+               f"Contact-spot peak pressures of the asperity model (blue) and of the elastic BEM (red), "
                f"pooled over the {k} compared surface{'s' if k > 1 else ''} of each case (log bins, "
                f"densities per MPa), with each model's fitted GLD density (dashed).")
     rows = []

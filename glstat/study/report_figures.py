@@ -309,7 +309,8 @@ def integrity_figure(settings, asettings, analysis: dict):
 
 
 def _bem_histogram_panel(ax, comparison, hardness: float, title: str) -> None:
-    """Grid-point pressures of both models of one comparison on log axes, with their GLDs."""
+    """Contact-spot peak pressures of both models of one comparison on log axes, with their
+    GLDs."""
     from .bem import MODEL_LABELS, MODELS
 
     colours = {"asperity": "tab:blue", "bem": "tab:red"}
@@ -338,15 +339,15 @@ def _bem_histogram_panel(ax, comparison, hardness: float, title: str) -> None:
     hv = np.concatenate(heights) if heights else np.empty(0)
     if hv.size:  # the GLD densities vanish at bounded supports: keep the histograms in view
         ax.set_ylim(hv.min() / 5, hv.max() * 5)
-    ax.set_xlabel("grid-point pressure (MPa)")
+    ax.set_xlabel("contact-spot peak pressure (MPa)")
     ax.set_ylabel("density (1/MPa)")
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7)
 
 
 def bem_histograms_figure(comparisons: dict, labels: dict, hardness: float):
-    """Grid-point pressures of the asperity model and of the elastic BEM with their fitted
-    GLD densities, one panel per case (``labels``: case -> title)."""
+    """Contact-spot peak pressures of the asperity model and of the elastic BEM with their
+    fitted GLD densities, one panel per case (``labels``: case -> title)."""
     nc = len(comparisons)
     fig, axes = pyplot().subplots(1, nc, figsize=(4.6 * nc, 3.8), squeeze=False, layout="constrained")
     for ax, (c, v) in zip(axes[0], comparisons.items(), strict=True):

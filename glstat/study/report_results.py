@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 
+from ..formatting import fmt_probability
 from .analysis import SAMPLE_LABELS
 from .answer import case_label
 from .report_document import Blocks
@@ -136,7 +137,8 @@ def damage_section(settings, asettings, analysis: dict) -> Blocks:
     hard, lvl = asettings.hardness, round(100 * asettings.confidence_level)
     out = Blocks()
     out.heading("Damage probability at the hardness")
-    rows = [[case_label(settings, ih, il), SAMPLE_LABELS[sample], n, *(("—",) * 3 if d is None else d)]
+    rows = [[case_label(settings, ih, il), SAMPLE_LABELS[sample], n,
+             *(("—",) * 3 if d is None else (fmt_probability(float(v)) for v in d))]
             for ih, il, sample, n, d in damage_records(analysis)]
     out.table(["case", "sample", "n", "damage probability", f"{lvl} % low", f"{lvl} % high"], rows,
               f"1 − F(Pd)^n at Pd = {hard:g} MPa on one analysed area "

@@ -4,8 +4,18 @@ surfaces. Each function returns its section as :class:`~glstat.study.report_docu
 
 from __future__ import annotations
 
+from ..formatting import fmt_number
 from .analysis import SAMPLE_LABELS
-from .answer import case_label, case_name, check_rows, degenerate_scene, first_screen_rows, overlap_note
+from .answer import (
+    case_label,
+    case_name,
+    check_rows,
+    degenerate_scene,
+    first_screen_rows,
+    integrity_rows,
+    overlap_note,
+    scene_choice_sentence,
+)
 from .report_document import Blocks, fmt_cell
 from .report_figures import (
     damage_curve_figure,
@@ -52,6 +62,12 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
               f"surfaces (coverage of the maximum, centring, and the damage probability at "
               f"{asettings.n_levels}+ hardness levels). The elastic BEM column is the same "
               f"predictor on the elastic solution of the first surfaces (per contact spot).")
+    rows, columns = integrity_rows(settings, asettings, analysis)
+    if rows:
+        out.table(columns, rows,
+                  f"Integrity against area: the probability that no point of k analysed areas "
+                  f"exceeds {hard:g} MPa (per-asperity predictor; the figure \"Integrity against "
+                  f"area\" below draws it for k = 1 to 1000).")
     if bem:
         ratios = [f"{case_name(settings, ih)}: mean pressure ×{mean:.2g}, maximal pressure ×{peak:.2g}"
                   for ih, _, mean, peak in model_error_factors(bem)]
@@ -114,9 +130,9 @@ def checks_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     return out
 
 
-def paper_section(info: dict) -> Blocks:
-    """"Consistency with the paper": the findings computed from the paper's Table 1 (empty
-    when the run has none)."""
+def paper_section(info: dict, settings=None, analysis: dict | None = None) -> Blocks:
+    """"Consistency with the paper": the findings computed from the paper's Table 1 and, for
+    a simulated scene, why its Rq is not the printed one (empty when the run has no findings)."""
     out = Blocks()
     paper = info.get("paper_findings")
     if paper:
@@ -124,6 +140,9 @@ def paper_section(info: dict) -> Blocks:
         out.paragraph("Computed from the paper's Table 1 by this run (docs/method.md §11):")
         for line in paper:
             out.paragraph("• " + line)
+        scene = scene_choice_sentence(settings, analysis) if settings is not None else ""
+        if scene:
+            out.paragraph("• " + scene)
     return out
 
 
@@ -149,8 +168,8 @@ def main_results_section(settings, asettings, analysis: dict) -> Blocks:
     rows = []
     for (ih, il), r in analysis.items():
         s = r["summary"]
-        row = [case_label(settings, ih, il), s["mean_pressure"], s["contact_fraction"], s["n_contact"],
-               s["n_asperities"], s["max_pressure"]]
+        row = [case_label(settings, ih, il), s["mean_pressure"], s["contact_fraction"],
+               fmt_number(s["n_contact"], ",.0f"), s["n_asperities"], s["max_pressure"]]
         for sample in SAMPLE_ORDER:
             row += [fmt_interval(r[sample].damage), _coverage(r[sample].validation)]
         rows.append(row)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 
+from ..formatting import fmt_probability
 from .analysis import SAMPLE_LABELS
 from .answer import case_label
 from .report_document import fmt_cell
@@ -20,10 +21,11 @@ PAPER_PRESSURES = (1100.0, 1700.0)
 
 
 def fmt_interval(d) -> str:
-    """``estimate [low, high]`` of a bootstrap probability, or "—" for None."""
+    """``estimate [low, high]`` of a bootstrap probability in percent, or "—" for None."""
     if d is None:
         return "—"
-    return f"{fmt_cell(float(d.estimate))} [{fmt_cell(float(d.low))}, {fmt_cell(float(d.high))}]"
+    return (f"{fmt_probability(float(d.estimate))} [{fmt_probability(float(d.low))}, "
+            f"{fmt_probability(float(d.high))}]")
 
 
 def damage_sentence(settings, analysis: dict, hardness: float, level: int) -> str:
