@@ -18,20 +18,25 @@ cache locator for the files of these two packages only (other code keeps numba's
 
 The installed package is never written to. No environment variable or numba setting of the
 process is changed; ``NUMBA_CACHE_LOCATOR_CLASSES``, when set, takes precedence over this
-module as numba documents. :func:`cache_dir` tells where the cache is and
-:func:`cache_is_cold` whether it holds no compiled kernel yet.
+module as numba documents. :func:`cache_dir` tells where the cache is, :func:`kernel_dir` the
+folder of the current sources' kernels inside it (one per version of the kernel sources, since
+numba does not notice a change in a called kernel's file), and :func:`cache_is_cold` whether
+it holds no compiled kernel yet.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
+import shutil
 import stat
 import sys
 import tempfile
+import time
 from pathlib import Path
 from typing import Any
 
-__all__ = ["cache_dir", "cache_is_cold", "compile_note", "package_dirs"]
+__all__ = ["cache_dir", "cache_is_cold", "compile_note", "kernel_dir", "package_dirs"]
 
 #: Folders whose numba functions this module places (``glstat`` and ``contact``).
 _ROOT = Path(__file__).resolve().parent.parent
@@ -116,16 +121,77 @@ def cache_dir() -> str | None:
     return _CHOSEN[0]
 
 
+_PREFIX = "src-"
+#: Fingerprint folders of other sources unused for this many days are removed.
+_PRUNE_DAYS = 30
+_KERNEL_DIR: list[str | None] = []  # memo of kernel_dir() ([] until the first look-up)
+
+
+def _fingerprint() -> str:
+    """A digest of the kernel sources: path, size and modification time of every file of the
+    two packages that holds a cached kernel (``cache=True``)."""
+    digest = hashlib.sha1()
+    for pkg in _PACKAGES:
+        for py in sorted(Path(pkg).rglob("*.py")):
+            try:
+                if b"cache=True" not in py.read_bytes():
+                    continue
+                st = py.stat()
+            except OSError:
+                continue
+            digest.update(f"{py.relative_to(_ROOT)}|{st.st_size}|{st.st_mtime_ns}\n".encode())
+    return _PREFIX + digest.hexdigest()[:16]
+
+
+def _prune(root: Path, keep: str) -> None:
+    """Remove fingerprint folders of other sources that were not written to for
+    ``_PRUNE_DAYS`` days (failures are ignored: another process may use or remove them)."""
+    limit = time.time() - _PRUNE_DAYS * 86400
+    try:
+        for p in root.iterdir():
+            if p.name.startswith(_PREFIX) and p.name != keep and p.is_dir():
+                newest = max((f.stat().st_mtime for f in p.rglob("*")), default=p.stat().st_mtime)
+                if newest < limit:
+                    shutil.rmtree(p, ignore_errors=True)
+    except OSError:
+        pass
+
+
+def kernel_dir() -> str | None:
+    """The folder of the compiled kernels of the current sources: a subfolder of
+    :func:`cache_dir` named by a fingerprint of the kernel sources.
+
+    numba checks a cached kernel against its own source file only, not against the files of
+    the kernels it calls: a kernel whose callee changed (an update of one file of the package)
+    would keep the old callee compiled into it. Each version of the sources therefore gets
+    its own folder, and any change of a kernel file compiles every kernel again.
+
+    Returns
+    -------
+    str or None
+        The folder, or None when :func:`cache_dir` is None.
+    """
+    if not _KERNEL_DIR:
+        root = cache_dir()
+        if root is None:
+            _KERNEL_DIR.append(None)
+        else:
+            name = _fingerprint()
+            _prune(Path(root), name)
+            _KERNEL_DIR.append(os.path.join(root, name))
+    return _KERNEL_DIR[0]
+
+
 def cache_is_cold() -> bool:
     """Whether no compiled kernel of this Python version is cached yet (the first run compiles).
 
     Returns
     -------
     bool
-        True when :func:`cache_dir` holds no numba index file for this Python version, or
+        True when :func:`kernel_dir` holds no numba index file for this Python version, or
         when there is no cache folder.
     """
-    path = cache_dir()
+    path = kernel_dir()
     if path is None:
         return True
     tag = f"py{sys.version_info.major}{sys.version_info.minor}.nbi"
@@ -139,19 +205,27 @@ def cache_is_cold() -> bool:
 
 
 def compile_note() -> str | None:
-    """A sentence for the command line when the kernels must first be compiled, else None.
+    """A sentence for the command line when kernels must be compiled first, else None.
 
     Returns
     -------
     str or None
-        Says that numba compiles the kernels once (about a minute) and where they are kept,
-        when :func:`cache_is_cold`; None otherwise.
+        When :func:`cache_is_cold`: numba compiles the kernels (about a minute), because this
+        is the first run or because the kernels' sources changed since they were cached, and
+        where they are kept; None otherwise.
     """
     if not cache_is_cold():
         return None
-    where = cache_dir()
+    where = kernel_dir()
     kept = f"kept in {where} for the next runs" if where else "not cached: no writable folder"
-    return f"first run: compiling the numerical kernels with numba (about a minute; {kept})"
+    root = cache_dir()
+    try:  # kernels of other sources in the cache: the package changed since they were compiled
+        changed = root is not None and any(p.name != os.path.basename(where or "") and p.is_dir()
+                                           for p in Path(root).iterdir())
+    except OSError:
+        changed = False
+    why = "the kernels changed since they were cached" if changed else "first run"
+    return f"{why}: compiling the numerical kernels with numba (about a minute; {kept})"
 
 
 def _install() -> None:
@@ -178,7 +252,7 @@ def _install() -> None:
         def __init__(self, py_func, py_file):
             self._py_file = py_file
             self._lineno = py_func.__code__.co_firstlineno
-            self._cache_path = os.path.join(cache_dir(), self.get_suitable_cache_subpath(py_file))
+            self._cache_path = os.path.join(kernel_dir(), self.get_suitable_cache_subpath(py_file))
 
         def get_cache_path(self):
             return self._cache_path

@@ -119,3 +119,37 @@ def test_loaded_kernels_are_cached_outside_the_packages():
         path = os.path.realpath(k._cache.cache_path)
         assert not path.startswith(_numba_cache.package_dirs()), path
         assert path.startswith(os.path.realpath(_numba_cache.cache_dir()))
+
+
+def test_kernel_folder_follows_the_kernel_sources(tmp_path, monkeypatch):
+    """A change of any file holding a cached kernel gives a new kernel folder (numba does not
+    notice a change in a called kernel's file); other files do not count."""
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    kernel, other = pkg / "kernel.py", pkg / "other.py"
+    kernel.write_text("@njit(cache=True)\ndef f(x):\n    return x\n")
+    other.write_text("x = 1\n")
+    monkeypatch.setattr(_numba_cache, "_ROOT", tmp_path)
+    monkeypatch.setattr(_numba_cache, "_PACKAGES", (str(pkg) + os.sep,))
+    first = _numba_cache._fingerprint()
+    os.utime(other, ns=(1, 1))
+    assert _numba_cache._fingerprint() == first
+    os.utime(kernel, ns=(2_000_000_000, 2_000_000_000))
+    second = _numba_cache._fingerprint()
+    assert second != first and second.startswith("src-")
+
+
+def test_old_kernel_folders_are_pruned(tmp_path):
+    """Folders of other sources unused for 30 days go; recent ones and the current one stay."""
+    import time
+
+    old, recent, current = (tmp_path / n for n in ("src-old", "src-recent", "src-current"))
+    for d in (old, recent, current):
+        (d / "sub").mkdir(parents=True)
+        (d / "sub" / "k.nbi").write_bytes(b"")
+    stale = time.time() - 40 * 86400
+    for p in (old / "sub" / "k.nbi", old / "sub", old):
+        os.utime(p, (stale, stale))
+    os.utime(current, (stale, stale))
+    _numba_cache._prune(tmp_path, "src-current")
+    assert not old.exists() and recent.exists() and current.exists()
