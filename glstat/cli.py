@@ -342,6 +342,7 @@ def study_main(argv: list[str]) -> int:
         return status
     print(f"study finished in {time.perf_counter() - t0:.1f} s "
           f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
+    print("phases (s): " + ", ".join(f"{name} {seconds:.1f}" for name, seconds in _phases(res.timings)))
     _print_answer(res, settings, asettings, args.hardness)
     return 0
 
@@ -377,6 +378,15 @@ def _run_locked(args, argv: list[str], settings, asettings, out: str):
     finally:
         if shutdown is not None:
             shutdown()
+
+
+def _phases(timings: dict) -> list[tuple[str, float]]:
+    """(phase, wall seconds) of a study's timings, in the order they ran (counts left out)."""
+    names = {"campaign (this run)": "surfaces", "loading results": "loading",
+             "analysis (fits, bootstrap, validation)": "analysis",
+             "BEM comparison: both models on K surfaces per case (this run)": "BEM solves",
+             "BEM comparison: GLD fits and bootstrap": "BEM fits", "report": "report"}
+    return [(short, float(timings[key])) for key, short in names.items() if key in timings]
 
 
 def _print_answer(res, settings, asettings, hardness: float) -> None:

@@ -309,16 +309,17 @@ def run_study(
                           progress=progress)
         bem_wall = time.perf_counter() - tb
     t1 = time.perf_counter()
-    results = load_results(out, settings)
-    examples = [(ih, il, i) for ih in range(len(settings.hurst)) for il in range(len(settings.pressures))
-                for i in range(min(1, settings.n_examples))]
-    results.update(load_results(out, settings, examples, maps=True))
-    t2 = time.perf_counter()
 
     def say(text):
         if progress:
             print(f"{text} ...", file=sys.stderr, flush=True)
 
+    say("loading the surfaces' results")
+    results = load_results(out, settings)
+    examples = [(ih, il, i) for ih in range(len(settings.hurst)) for il in range(len(settings.pressures))
+                for i in range(min(1, settings.n_examples))]
+    results.update(load_results(out, settings, examples, maps=True))
+    t2 = time.perf_counter()
     an = analyse(results, settings, analysis, progress=say)
     bem_an = None
     if model != "asperity":
@@ -378,8 +379,7 @@ def run_study(
         info["bem"] = bem
         info["bem_settings"] = bsettings
         info["bem_maps"] = load_bem_maps(out, settings)
-    say("report: tables and figures")
-    rep = build_report(settings, analysis, results, an, info)
+    rep = build_report(settings, analysis, results, an, info, progress=say)
     timings["report"] = time.perf_counter() - t3
     timings["total"] = time.perf_counter() - t0
     html, md = rep.write(out)

@@ -40,7 +40,8 @@ __all__ = ["PAPER_PRESSURES", "Report", "build_report", "calibration_verdict", "
 TITLE = "Mechanical integrity of rough surfaces in contact — study report"
 
 
-def build_report(settings, asettings, results: dict, analysis: dict, info: dict) -> Report:
+def build_report(settings, asettings, results: dict, analysis: dict, info: dict,
+                 progress=None) -> Report:
     """Assemble the study report.
 
     Parameters
@@ -58,28 +59,41 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict)
         ``workers`` (str); optionally ``bem``, ``bem_settings``, ``bem_maps`` (the BEM
         comparison), ``bem_analysis`` and ``bem_left_out`` (the whole method on the elastic
         BEM), ``paper_findings`` (list of str) and ``like`` (the measured template).
+    progress : callable, optional
+        Called with a short text before each group of sections (e.g. to print it).
 
     Returns
     -------
     Report
     """
     pyplot()
+    say = progress or (lambda text: None)
     rep = Report(TITLE)
-    rep.extend(answer_section(settings, asettings, analysis, info),
-               checks_section(settings, asettings, analysis, info),
-               paper_section(info, settings, analysis),
-               main_results_section(settings, asettings, analysis))
-    if settings.measured:
-        rep.extend(measured_section(settings, results))
-    if info.get("like") is not None:
-        rep.extend(like_section(settings, info["like"]))
-    rep.extend(settings_section(settings, asettings, info),
-               examples_section(settings, analysis, results),
-               fit_section(settings, asettings, analysis),
-               maximum_section(settings, asettings, analysis),
-               validation_section(settings, asettings, analysis),
-               damage_section(settings, asettings, analysis))
-    if info.get("bem"):
-        rep.extend(bem_section(settings, asettings, info["bem"], info["bem_settings"],
-                               info.get("bem_maps") or {}))
+    sections = [
+        ("the answer and its checks", lambda: (answer_section(settings, asettings, analysis, info),
+                                               checks_section(settings, asettings, analysis, info))),
+        ("the paper and the main results", lambda: (paper_section(info, settings, analysis),
+                                                    main_results_section(settings, asettings,
+                                                                         analysis))),
+        ("measured surfaces", lambda: ((measured_section(settings, results),)
+                                       if settings.measured else ())),
+        ("measured template", lambda: ((like_section(settings, info["like"]),)
+                                       if info.get("like") is not None else ())),
+        ("settings and example surfaces", lambda: (settings_section(settings, asettings, info),
+                                                   examples_section(settings, analysis, results))),
+        ("fits and maxima", lambda: (fit_section(settings, asettings, analysis),
+                                     maximum_section(settings, asettings, analysis))),
+        ("validation, damage and integrity", lambda: (validation_section(settings, asettings, analysis),
+                                                      damage_section(settings, asettings, analysis))),
+        ("asperity model vs elastic BEM", lambda: ((bem_section(
+            settings, asettings, info["bem"], info["bem_settings"], info.get("bem_maps") or {}),)
+            if info.get("bem") else ())),
+    ]
+    for label, make in sections:
+        if label.startswith("measured") and not (settings.measured or info.get("like") is not None):
+            continue
+        if label.startswith("asperity model vs") and not info.get("bem"):
+            continue
+        say(f"report: {label}")
+        rep.extend(*make())
     return rep
