@@ -31,3 +31,23 @@ def test_each_model_is_its_own_family():
     got = _holm_across_cases(items)
     assert got[(0, 0, ", asperity model", "asperity")] == pytest.approx(0.01)  # a family of one
     assert got[(0, 0, ", elastic BEM", "asperity")] == pytest.approx(0.01)
+
+
+def test_validation_figure_draws_intervals_that_exclude_the_point_prediction():
+    # a point prediction outside its interval (possible for a mixture's bootstrap interval)
+    # is drawn, not refused as a negative error bar
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from glstat.study import AnalysisSettings, CampaignSettings
+    from glstat.study.report_figures import validation_figure
+
+    t = pd.DataFrame({"surface": [0, 1, 2], "predicted": [5.0, 6.0, 7.0], "low": [5.5, 4.0, 5.0],
+                      "high": [8.0, 9.0, 6.5], "observed": [6.0, 3.0, 7.0],
+                      "covered": [True, False, False]})
+    v = SimpleNamespace(table=t, error=None, coverage=1 / 3, coverage_interval=(0.1, 0.7))
+    analysis = {(0, 0): {"asperity": SimpleNamespace(validation=v, note="")}}
+    fig = validation_figure(CampaignSettings(hurst=(0.5,)), AnalysisSettings(), analysis, "asperity")
+    ax = fig.axes[0]
+    assert len(ax.collections) == 1 and len(ax.collections[0].get_segments()) == 3

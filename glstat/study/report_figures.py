@@ -257,9 +257,10 @@ def validation_figure(settings, asettings, analysis: dict, sample: str):
             continue
         t = v.table
         cov = t["covered"].to_numpy()
-        ax.errorbar(t["surface"], t["predicted"],
-                    yerr=[t["predicted"] - t["low"], t["high"] - t["predicted"]],
-                    fmt="none", ecolor="0.6", lw=1, label=f"predicted {lvl} % interval")
+        # the interval as a segment: the point prediction need not lie inside a bootstrap
+        # interval of the maximum (e.g. when the interval is of the mixture's quantiles)
+        ax.vlines(t["surface"], t["low"], t["high"], color="0.6", lw=1,
+                  label=f"predicted {lvl} % interval")
         ax.plot(t["surface"][cov], t["observed"][cov], "o", ms=3, color="tab:blue",
                 label="observed, inside")
         ax.plot(t["surface"][~cov], t["observed"][~cov], "x", ms=4, color="tab:red",
