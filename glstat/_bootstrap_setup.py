@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._validate import check_level, check_method, check_n_resamples, check_param
+from ._validate import check_level, check_method, check_n_resamples, check_param, real_values
 
 __all__ = ["COMPILED", "KINDS", "Arguments", "Groups", "check_arguments", "draw_entropy",
            "group_choices", "resample_seeds", "stream_seed"]
@@ -79,12 +79,12 @@ def check_arguments(data, param, method, n_resamples, confidence_level, kind, na
 
 def group_layout(data, groups) -> Groups:
     """The groups of ``groups`` (one label per data value) over the sorted finite data."""
-    values = np.asarray(data, dtype=float).ravel()
+    values, unmasked = real_values(data)
     labels = np.asarray(groups).ravel()
     if labels.size != values.size:
         raise ValueError(f"groups must give one label per data value: {labels.size} labels for "
                          f"{values.size} values")
-    keep = np.isfinite(values)
+    keep = np.isfinite(values) if unmasked is None else np.isfinite(values) & unmasked
     values, labels = values[keep], labels[keep]
     order = np.argsort(values, kind="stable")
     _, inverse = np.unique(labels[order], return_inverse=True)

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from scipy import stats
 
-from ._validate import check_n_resamples
+from ._validate import check_n_resamples, real_values
 from .fitting import GLDFit
 from .fitting import fit as _gld_fit
 from .gld import GLD
@@ -34,12 +34,14 @@ NAN_POLICIES = ("raise", "omit", "propagate")
 # the sample
 # ---------------------------------------------------------------------------------------------
 def as_float_array(data) -> np.ndarray:
-    """Numeric data of any shape as a flat float array (a new array; non-finite values kept).
+    """Numeric data of any shape as a flat float array (a new array; non-finite values kept,
+    masked entries of a :class:`numpy.ma.MaskedArray` left out as missing values).
 
     Parameters
     ----------
     data : array_like
-        Booleans, integers or reals, or an object array holding numbers.
+        Integers or reals, an object array holding numbers, or a pandas Series of a numeric
+        dtype.
 
     Returns
     -------
@@ -49,17 +51,11 @@ def as_float_array(data) -> np.ndarray:
     Raises
     ------
     TypeError
-        Data that are not real numbers (strings, complex numbers, dates, ``None``, ...).
+        Data that are not real numbers (booleans, strings, complex numbers, dates, ``None``,
+        ...).
     """
-    arr = np.asarray(data)
-    if arr.dtype.kind not in "biuf":
-        if arr.dtype.kind == "O":
-            try:
-                return arr.astype(float).ravel()
-            except (TypeError, ValueError):
-                pass
-        raise TypeError(f"data must be numeric (real numbers), got an array of dtype {arr.dtype}")
-    return arr.astype(float).ravel()
+    values, keep = real_values(data)
+    return values if keep is None else values[keep]
 
 
 def prepare_sample(data, nan_policy: str) -> tuple[np.ndarray | None, int]:

@@ -6,7 +6,8 @@ import numbers
 
 import numpy as np
 
-__all__ = ["FIT_METHODS", "PARAMS", "check_level", "check_method", "check_n_resamples", "check_param"]
+__all__ = ["FIT_METHODS", "PARAMS", "check_level", "check_method", "check_n_resamples", "check_param",
+           "real_values"]
 
 #: The parameterisations of the GLD.
 PARAMS = ("rs", "fkml")
@@ -51,3 +52,63 @@ def check_method(method) -> str:
     if method not in FIT_METHODS:
         raise ValueError(f"method must be one of {FIT_METHODS}, got {method!r}")
     return method
+
+
+def real_values(data, name: str = "data") -> tuple[np.ndarray, np.ndarray | None]:
+    """A flat float copy of data that must be real numbers, and which entries are not masked.
+
+    Parameters
+    ----------
+    data : array_like
+        Integers or reals of any shape: a NumPy array, a list, a pandas Series of a numeric
+        dtype (nullable dtypes included: ``pd.NA`` becomes NaN), an object array holding
+        numbers, or a :class:`numpy.ma.MaskedArray` (masked entries are missing values).
+    name : str
+        The argument's name in messages.
+
+    Returns
+    -------
+    values : ndarray
+        1-d float array, a new array (the caller's data are never modified); non-finite values
+        are kept, masked entries included with their underlying value.
+    keep : ndarray of bool or None
+        For a masked array, True where the entry is not masked; None otherwise.
+
+    Raises
+    ------
+    TypeError
+        Complex numbers, dates or times, booleans, strings, or objects that are not real
+        numbers (``None``, ``pandas.NA`` in an object array, ...).
+    """
+    keep = None
+    if isinstance(data, np.ma.MaskedArray):
+        keep = ~np.ma.getmaskarray(data).ravel()
+        data = np.ma.getdata(data)
+    elif hasattr(data, "to_numpy") and hasattr(data, "dtype") and not isinstance(data, np.ndarray):
+        if getattr(data.dtype, "kind", "O") in "iuf":  # pandas numeric data: NA becomes NaN
+            data = data.to_numpy(dtype=float, na_value=np.nan)
+    arr = np.asarray(data)
+    kind = arr.dtype.kind
+    if kind == "c":
+        raise TypeError(f"{name} are complex ({arr.dtype}); pass real numbers: the real part, the "
+                        "modulus or another real quantity, explicitly")
+    if kind in "mM":
+        raise TypeError(f"{name} are dates or times ({arr.dtype}), not numbers; convert them to a "
+                        "real quantity (e.g. durations in seconds) first")
+    if kind in "bSUV":
+        raise TypeError(f"{name} must be real numbers, got an array of dtype {arr.dtype}")
+    if kind == "O":
+        try:
+            values = np.array(arr, dtype=float).ravel()
+        except (TypeError, ValueError):
+            flat = arr.ravel()
+            bad = next((v for v in flat if not isinstance(v, int | float | np.integer | np.floating)
+                        or isinstance(v, bool)), None)
+            raise TypeError(f"{name} must be real numbers, got an object array holding {bad!r} "
+                            f"({type(bad).__name__}); convert missing values to NaN first (e.g. "
+                            "series.to_numpy(dtype=float, na_value=np.nan))") from None
+        if any(isinstance(v, bool | np.bool_) for v in arr.ravel()):
+            raise TypeError(f"{name} must be real numbers, got booleans in an object array")
+    else:
+        values = np.array(arr, dtype=float, copy=True).ravel()
+    return values, keep

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
+from ._validate import real_values
 from .errors import FitError
 
 if TYPE_CHECKING:
@@ -238,7 +239,15 @@ def predict_maximum(
     if n is None and count is None and groups is None:
         raise ValueError("give the number of draws of one analysed area: n, count, or groups "
                          "(whose sizes are the counts)")
-    x = np.asarray(data, dtype=float).ravel()
+    x, keep = real_values(data)
+    if keep is not None:  # masked entries are missing values, with their group labels
+        x = x[keep]
+        if groups is not None:
+            groups = np.asarray(groups).ravel()
+            if groups.size != keep.size:
+                raise ValueError(f"groups must give one label per data value: {groups.size} "
+                                 f"labels for {keep.size} values")
+            groups = groups[keep]
     k = np.asarray(area_factor, dtype=float)
     bf, p, m, note, caught = _bootstrap_first_fit(
         x, list(fits), n_resamples=n_resamples, likelihood_resamples=likelihood_resamples,

@@ -172,6 +172,44 @@ def test_fits_refuse_values_that_are_not_real_numbers():
     assert y[0] == 1e9  # the caller's data are untouched
 
 
+@pytest.mark.parametrize("entry", ["predict_maximum", "gof_report", "edf_statistics",
+                                   "compare_families"])
+def test_every_data_entry_point_refuses_values_that_are_not_real_numbers(entry):
+    import pandas as pd
+
+    import glstat
+
+    x = np.random.default_rng(0).gamma(3.0, size=200)
+    dist = glstat.GLD(*glstat.fit(x).lambdas)
+    call = {"predict_maximum": lambda d: glstat.predict_maximum(d, n=10, n_resamples=20, rng=1),
+            "gof_report": lambda d: glstat.gof_report(d, dist, n_resamples=0),
+            "edf_statistics": lambda d: glstat.edf_statistics(d, dist),
+            "compare_families": lambda d: glstat.compare_families(d)}[entry]
+    for bad, match in ((x + 0j, "complex"), (x.astype("datetime64[s]"), "dates or times"),
+                       (np.array([*x[:20], pd.NA], dtype=object), "object array holding <NA>"),
+                       (x > 3.0, "dtype bool")):
+        with pytest.raises(TypeError, match=match):
+            call(bad)
+
+
+def test_masked_values_are_missing_in_predictions_and_goodness_of_fit():
+    import glstat
+
+    x = np.random.default_rng(1).gamma(3.0, size=200)
+    y = np.r_[x, np.full(5, 1e9)]
+    masked = np.ma.masked_array(y, mask=np.r_[np.zeros(200, bool), np.ones(5, bool)])
+    p_masked = glstat.predict_maximum(masked, n=10, n_resamples=20, rng=1)
+    p_plain = glstat.predict_maximum(x, n=10, n_resamples=20, rng=1)
+    assert p_masked.boot.fit.lambdas == p_plain.boot.fit.lambdas
+    groups = np.repeat(np.arange(41), 5)
+    g_masked = glstat.predict_maximum(masked, groups=groups, n_resamples=20, rng=1)
+    g_plain = glstat.predict_maximum(x, groups=groups[:200], n_resamples=20, rng=1)
+    assert g_masked.boot.lambdas.equals(g_plain.boot.lambdas)
+    dist = glstat.GLD(*p_plain.boot.fit.lambdas)
+    assert glstat.edf_statistics(masked, dist) == glstat.edf_statistics(x, dist)
+    assert y[-1] == 1e9  # the caller's data are untouched
+
+
 def test_one_hurst_exponent_takes_one_default_n_terms():
     from glstat.study import CampaignSettings
 

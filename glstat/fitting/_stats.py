@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from .._validate import real_values
 from ..errors import FitError
 from . import _kernels as K
 
@@ -45,37 +46,11 @@ def prepare_data(data, nan_policy: str = "raise") -> tuple[np.ndarray | None, in
     """
     if nan_policy not in _NAN_POLICIES:
         raise ValueError(f"nan_policy must be one of {_NAN_POLICIES}, got {nan_policy!r}")
+    x, keep = real_values(data)
     nmasked = 0
-    if isinstance(data, np.ma.MaskedArray):
-        keep = ~np.ma.getmaskarray(data).ravel()
+    if keep is not None:
         nmasked = int(keep.size - keep.sum())
-        data = np.ma.getdata(data).ravel()[keep]
-    elif hasattr(data, "to_numpy") and hasattr(data, "dtype") and not isinstance(data, np.ndarray):
-        kind = getattr(getattr(data, "dtype", None), "kind", "O")
-        if kind in "iuf":  # pandas numeric data, nullable dtypes included: NA becomes NaN
-            data = data.to_numpy(dtype=float, na_value=np.nan)
-    arr = np.asarray(data)
-    kind = arr.dtype.kind
-    if kind == "c":
-        raise TypeError(f"data are complex ({arr.dtype}); a GLD is fitted to real numbers: pass "
-                        "the real part, the modulus or another real quantity explicitly")
-    if kind in "mM":
-        raise TypeError(f"data are dates or times ({arr.dtype}), not numbers; convert them to a "
-                        "real quantity (e.g. durations in seconds) first")
-    if kind in "bSUV":
-        raise TypeError(f"data must be real numbers, got an array of dtype {arr.dtype}")
-    if kind == "O":
-        try:
-            x = np.array(arr, dtype=float).ravel()
-        except (TypeError, ValueError):
-            flat = arr.ravel()
-            bad = next((v for v in flat if not isinstance(v, int | float | np.integer | np.floating)
-                        or isinstance(v, bool)), None)
-            raise TypeError(f"data must be real numbers, got an object array holding {bad!r} "
-                            f"({type(bad).__name__}); convert missing values to NaN first (e.g. "
-                            "series.to_numpy(dtype=float, na_value=np.nan))") from None
-    else:
-        x = np.array(arr, dtype=float, copy=True).ravel()
+        x = x[keep]
     bad = ~np.isfinite(x)
     nbad = int(bad.sum())
     if nbad:
