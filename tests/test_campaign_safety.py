@@ -147,6 +147,27 @@ def test_read_only_directory_mid_run(tmp_path, monkeypatch):
         run_campaign(more, out, executor=SerialExecutor(), progress=False)
 
 
+def test_disk_full_while_writing_the_report_is_a_campaign_error(tmp_path, monkeypatch):
+    from glstat.study import AnalysisSettings, run_study
+
+    out = tmp_path / "run"
+    settings = CampaignSettings(n_surfaces=6, grid=64, rq=5e-6, n_terms=(6,), hurst=(0.5,),
+                                n_examples=1)
+    real = campaign_mod.atomic_write
+
+    def full(path, data):
+        if Path(path).name.startswith("report"):
+            raise OSError(errno.ENOSPC, "No space left on device", str(path))
+        real(path, data)
+
+    monkeypatch.setattr(campaign_mod, "atomic_write", full)
+    with pytest.raises(CampaignError, match=r"cannot write .*report.* \(No space left on device\): "
+                                            r"free some disk space; the surfaces' results are saved"):
+        run_study(settings, AnalysisSettings(n_resamples=20, grid_resamples=10), out,
+                  executor=SerialExecutor(), progress=False, compare_bem=0)
+    assert len(list(out.glob("H*/surface_*.npz"))) == 6
+
+
 class _LostScheduler(Executor):
     """Futures cancelled by the executor, as when a Dask scheduler goes away."""
 

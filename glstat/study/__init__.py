@@ -382,11 +382,17 @@ def run_study(
     rep = build_report(settings, analysis, results, an, info, progress=say)
     timings["report"] = time.perf_counter() - t3
     timings["total"] = time.perf_counter() - t0
-    html, md = rep.write(out)
-    result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an)
     from .campaign import atomic_write
+    from .errors import CampaignError, write_failure
 
-    atomic_write(Path(out) / "summary.csv", result.summary().to_csv(index=False).encode())
-    atomic_write(Path(out) / "damage_calibration.csv",
-                 result.damage_calibration().to_csv(index=False).encode())
+    try:
+        html, md = rep.write(out)
+        result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an)
+        atomic_write(Path(out) / "summary.csv", result.summary().to_csv(index=False).encode())
+        atomic_write(Path(out) / "damage_calibration.csv",
+                     result.damage_calibration().to_csv(index=False).encode())
+    except OSError as exc:  # disk full or read-only at the end: the computed results are kept
+        raise CampaignError(
+            write_failure(exc, exc.filename or out) + "; the surfaces' results are saved in "
+            f"{out}: rerun the same command to write the report") from exc
     return result
