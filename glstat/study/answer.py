@@ -306,6 +306,29 @@ def integrity_rows(settings, asettings, analysis: dict) -> tuple[list[list[str]]
     return rows, columns
 
 
+def area_scaling_sentence(settings, analysis: dict) -> str:
+    """The area scaling's check in words: per case, at how many hardness levels the predicted
+    damage probability of k analysed areas (per-asperity predictor) lies inside the observed
+    interval of groups of k held-out surfaces, for every k checked besides 1 ("" when none)."""
+    from .analysis_settings import AREA_CHECKS
+
+    parts = []
+    for (ih, il), r in analysis.items():
+        v = r["asperity"].validation
+        counts = [(k, *v.damage_hits(k)) for k in AREA_CHECKS]
+        counts = [(k, hits, m) for k, hits, m in counts if m]
+        if counts:
+            parts.append(f"{case_label(settings, ih, il)}: " + ", ".join(
+                f"k = {k}: {hits} of {m}" for k, hits, m in counts))
+    if not parts:
+        return ""
+    return ("Area scaling (docs/method.md §7), checked by grouping k held-out surfaces: hardness "
+            "levels at which the predicted damage probability of k areas (per-asperity "
+            "predictor) lies inside the observed Wilson interval — " + "; ".join(parts)
+            + ". These are not part of the pass rule, which is for one area: read the "
+            "integrity of larger areas with them.")
+
+
 def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = None
                ) -> tuple[list[list[Any]], list[str]]:
     """Rows of the table of checks on held-out surfaces: one per (H, load, model, sample)."""

@@ -7,6 +7,7 @@ from __future__ import annotations
 from ..formatting import fmt_number
 from .analysis import SAMPLE_LABELS
 from .answer import (
+    area_scaling_sentence,
     case_label,
     case_name,
     check_rows,
@@ -119,6 +120,9 @@ def checks_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
               "adjusts the centring p-values for testing every case (one family per model and "
               "sample; statsmodels' multipletests): it answers whether any case is off-centre, "
               "while each case's check uses its own p.")
+    scaling = area_scaling_sentence(settings, analysis)
+    if scaling:
+        out.paragraph(scaling)
     _answer_figures(out, settings, asettings, analysis)
     left = info.get("bem_left_out") or []
     if left:

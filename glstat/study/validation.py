@@ -89,12 +89,13 @@ class Validation:
     calibration: Any = None
     error: str = ""
 
-    def damage_hits(self) -> tuple[int, int]:
-        """(levels whose prediction lies inside the observed interval, levels) on one area."""
+    def damage_hits(self, area_factor: float = 1) -> tuple[int, int]:
+        """(levels whose prediction lies inside the observed interval, levels) for an area of
+        ``area_factor`` analysed areas (groups of that many held-out surfaces; default one)."""
         c = self.calibration
         if c is None or len(c) == 0:
             return 0, 0
-        one = c[c["area_factor"] == 1]
+        one = c[c["area_factor"] == area_factor]
         inside = (one["predicted"] >= one["observed_low"]) & (one["predicted"] <= one["observed_high"])
         return int(inside.sum()), len(one)
 
