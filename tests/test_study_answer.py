@@ -51,3 +51,30 @@ def test_validation_figure_draws_intervals_that_exclude_the_point_prediction():
     fig = validation_figure(CampaignSettings(hurst=(0.5,)), AnalysisSettings(), analysis, "asperity")
     ax = fig.axes[0]
     assert len(ax.collections) == 1 and len(ax.collections[0].get_segments()) == 3
+
+
+def test_area_scaling_sentence_counts_levels_inside_per_group_size():
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from glstat.study import CampaignSettings
+    from glstat.study.answer import area_scaling_sentence
+    from glstat.study.validation import Validation
+
+    rows = []
+    for k, inside in ((1, 7), (2, 6), (4, 3)):
+        for i in range(8):
+            rows.append({"hardness_mpa": 1000.0 + i, "area_factor": k, "predicted": 0.5,
+                         "observed": 0.5, "observed_low": 0.4 if i < inside else 0.55,
+                         "observed_high": 0.6, "n_surfaces": 50})
+    v = Validation(table=pd.DataFrame({"x": [1]}), coverage=0.9, coverage_interval=(0.8, 0.95),
+                   reject=False, calibration=pd.DataFrame(rows))
+    analysis = {(0, 0): {"asperity": SimpleNamespace(validation=v)}}
+    text = area_scaling_sentence(CampaignSettings(hurst=(0.5,)), analysis)
+    assert "H = 0.5, 20 MPa: k = 2: 6 of 8, k = 4: 3 of 8" in text
+    assert v.damage_hits() == (7, 8) and v.damage_hits(4) == (3, 8)
+    v1 = Validation(table=pd.DataFrame({"x": [1]}), coverage=0.9, coverage_interval=(0.8, 0.95),
+                    reject=False, calibration=pd.DataFrame([r for r in rows if r["area_factor"] == 1]))
+    assert area_scaling_sentence(CampaignSettings(hurst=(0.5,)),
+                                 {(0, 0): {"asperity": SimpleNamespace(validation=v1)}}) == ""
