@@ -40,7 +40,7 @@ class GLD(rv_continuous_frozen):
     >>> from glstat import GLD
     >>> g = GLD(0, 0.197451, 0.134912, 0.134912)   # RS approximation of N(0, 1)
     >>> round(float(g.cdf(1.96)), 4)
-    0.9744
+    0.9745
     """
 
     def __init__(self, l1: float, l2: float, l3: float, l4: float, param: str = "rs"):
