@@ -142,6 +142,7 @@ class _Model:
             "nominal_area": self.nominal_area,
             "n_summits": int(self.sz.size),
             "n_evaluations": self.n_evaluations,
+            "warning": "",
         }
         info.update(extra)
         return ContactResult(
@@ -239,6 +240,7 @@ def solve(
     tol: float = 1e-10,
     max_iter: int = 200,
     jump: str = "nearest",
+    warn: bool = True,
 ) -> ContactResult:
     """Press a flat onto a rough surface until it carries a given nominal pressure.
 
@@ -269,6 +271,10 @@ def solve(
         state without contact), the deeper state, which carries more than the load
         (``"deeper"``), or a force-balanced blend of the two states, which is not a state
         of the model (``"blend"``).
+    warn : bool, default True
+        Issue the :class:`~contact.ContactWarning` of a load inside a jump; False keeps its
+        message in ``info["warning"]`` only (for worker threads, where changing the warning
+        filters is not safe).
 
     Returns
     -------
@@ -281,7 +287,9 @@ def solve(
         holds ``in_jump`` (bool), ``force_jump`` (jump of F relative to the load, 0 outside
         a jump), ``other_force`` (N) and ``other_separation`` (m) of the other limiting
         state (NaN outside a jump), ``separation_bracket`` (m, in a jump), ``jump`` and
-        ``blend_weight`` (the deeper state's weight with ``jump="blend"``, else 1).
+        ``blend_weight`` (the deeper state's weight with ``jump="blend"``, else 1), and
+        ``warning``, the text of the :class:`~contact.ContactWarning` of a load inside a
+        jump (empty otherwise).
 
     Raises
     ------
@@ -367,21 +375,23 @@ def solve(
     )
     d, tab, other_f, other_d = (lo, tab_lo, f_hi, hi) if deeper else (hi, tab_hi, f_lo, lo)
     force = float(tab[:, 5].sum())
-    warnings.warn(
+    message = (
         f"the requested load {target:.6g} N ({nominal_pressure:.6g} Pa nominal) falls inside "
         f"a jump of the asperity model's force at separation {lo:.10g} m: F jumps from "
         f"{f_hi:.6g} N to {f_lo:.6g} N ({force_jump:.3g} of the load) as the plane passes "
         f"it, so no state of the model carries the load exactly; returned the "
         f"{'deeper' if deeper else 'shallower'} state with F = {force:.6g} N "
         f"(force_error = {(force - target) / target:+.3g}); pass jump='blend' for a "
-        "force-balanced mix of the two states that is not a state of the model",
-        ContactWarning,
-        stacklevel=3,  # the caller of solve, past the renamed_keywords wrapper
+        "force-balanced mix of the two states that is not a state of the model"
     )
+    if warn:
+        # stacklevel 3: the caller of solve, past the renamed_keywords wrapper
+        warnings.warn(message, ContactWarning, stacklevel=3)
     return model.result(
         d, [tab], [1.0], target, float(nominal_pressure), "asperity", n_iterations=it,
         jump=jump, in_jump=True, blend_weight=1.0, force_jump=force_jump,
         other_force=other_f, other_separation=other_d, separation_bracket=bracket,
+        warning=message,
     )
 
 

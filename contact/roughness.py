@@ -163,11 +163,14 @@ def hurst_fit(
     )
 
 
-def _physical_hurst(fit: HurstFit, min_r2: float) -> float:
-    """The fitted H when it is physical (in [0, 1]) with R² >= ``min_r2``; else NaN, warned."""
+def _physical_hurst(fit: HurstFit, min_r2: float, warn: bool = True) -> float:
+    """The fitted H when it is physical (in [0, 1]) with R² >= ``min_r2``; else NaN, warned
+    when ``warn``."""
     in_range = 0.0 <= fit.slope_hurst <= 1.0
     if in_range and fit.r2 >= min_r2:
         return fit.slope_hurst
+    if not warn:
+        return float("nan")
     why = (
         "outside the physical range [0, 1]"
         if not in_range
@@ -232,6 +235,7 @@ def roughness_parameters(
     valid: np.ndarray | None = None,
     level: str = "mean",
     hurst_min_r2: float = 0.5,
+    warn: bool = True,
 ) -> pd.Series:
     """ISO 25178-2 field parameters and the Hurst exponent of a height map.
 
@@ -247,6 +251,9 @@ def roughness_parameters(
         Reference surface: the mean height, or the least-squares plane (form removal).
     hurst_min_r2 : float, default 0.5
         Smallest R² of the structure-function fit for which ``hurst`` is reported.
+    warn : bool, default True
+        Warn when the surface has no physical Hurst exponent; False leaves ``hurst`` NaN
+        silently (for worker threads, where changing the warning filters is not safe).
 
     Returns
     -------
@@ -306,7 +313,7 @@ def roughness_parameters(
         spc = float("nan")
     area = valid.sum() * dx * dy
     fit = hurst_fit(z, dx, dy, valid)
-    hurst = _physical_hurst(fit, hurst_min_r2)
+    hurst = _physical_hurst(fit, hurst_min_r2, warn)
     values = {
         "Sa": float(np.mean(np.abs(zv))),
         "Sq": sq,

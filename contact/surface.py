@@ -81,7 +81,8 @@ class Surface:
         lx, ly = self.size
         return lx * ly
 
-    def roughness(self, level: str = "mean", hurst_min_r2: float = 0.5) -> pd.Series:
+    def roughness(self, level: str = "mean", hurst_min_r2: float = 0.5, *,
+                  warn: bool = True) -> pd.Series:
         """ISO 25178-2 roughness parameters and the Hurst exponent.
 
         Parameters
@@ -90,6 +91,9 @@ class Surface:
             Reference surface: the mean height, or the least-squares plane (form removal).
         hurst_min_r2 : float, default 0.5
             Smallest R² of the structure-function fit for which ``hurst`` is reported.
+        warn : bool, default True
+            Warn when there is no physical Hurst exponent (False: NaN without a warning, for
+            worker threads, where changing the warning filters is not safe).
 
         Returns
         -------
@@ -103,10 +107,12 @@ class Surface:
         Warns
         -----
         contact.ContactWarning
-            The Hurst fit is outside [0, 1] or has R² below ``hurst_min_r2``.
+            The Hurst fit is outside [0, 1] or has R² below ``hurst_min_r2`` (unless
+            ``warn=False``).
         """
         h, valid = height_map(self.heights, self.mask)
-        return roughness_parameters(h, self.dx, self.dy, valid, level=level, hurst_min_r2=hurst_min_r2)
+        return roughness_parameters(h, self.dx, self.dy, valid, level=level,
+                                    hurst_min_r2=hurst_min_r2, warn=warn)
 
     def detrend(self, level: str = "plane") -> Surface:
         """A new surface with the mean (``"mean"``) or least-squares plane (``"plane"``)

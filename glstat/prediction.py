@@ -223,6 +223,14 @@ def predict_maximum(
     ValueError
         When both ``n`` and ``count`` are given, or neither and no ``groups``.
 
+    Notes
+    -----
+    The warnings of the fits and of the bootstrap are recorded in ``notes`` with
+    :func:`warnings.catch_warnings`, which changes the process's warning filters while it
+    runs: call it from the main thread, not from worker threads. In worker threads use
+    :func:`glstat.fit` with ``warn=False`` and :func:`glstat.bootstrap`, which never touch the
+    filters.
+
     Examples
     --------
     >>> import numpy as np

@@ -250,3 +250,28 @@ def test_signals_end_glstat_study_with_one_line(tmp_path, sig, status, words):
     assert "Traceback" not in stderr and "Exception ignored" not in stderr and words in stderr
     assert "rerun the same command" in stderr or "are complete" in stderr
     assert json.loads((out / "manifest.json").read_text())["campaign"]["grid"] == 128
+
+
+def test_the_surface_task_never_changes_the_warning_filters(monkeypatch):
+    """A campaign task runs in worker threads too (threads, Dask): neither it nor the contact
+    solver it calls may enter warnings.catch_warnings, which changes the process's filters."""
+    import inspect
+    import warnings
+
+    import contact
+    import glstat
+    from glstat.study.surface_task import simulate_surface
+
+    ours = tuple(str(Path(m.__file__).parent) for m in (glstat, contact))
+    original = warnings.catch_warnings
+
+    def guarded(*args, **kwargs):
+        caller = inspect.stack()[1].filename
+        assert not caller.startswith(ours), f"catch_warnings entered from {caller}"
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(warnings, "catch_warnings", guarded)
+    # H = 0 on a coarse grid: loads inside force jumps, whose ContactWarning is kept in info
+    settings = CampaignSettings(n_surfaces=4, grid=32, n_terms=(4,), hurst=(0.0,), n_examples=0)
+    for i in range(4):
+        simulate_surface(settings, 0, 0, i)

@@ -78,8 +78,6 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
     """
     import glstat
 
-    from ..prediction import collect_warnings
-
     halves = [per[0::2], per[1::2]]
     scores, outside = {}, {}
     for p, m in candidates:
@@ -90,7 +88,7 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
             if x.size < 5 or not test:
                 continue
             try:
-                f, _ = collect_warnings(glstat.fit, x, p, m)
+                f = glstat.fit(x, p, m, warn=False)
             except (FitError, ValueError):
                 out += len(test)
                 s.append(-math.inf)

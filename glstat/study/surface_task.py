@@ -5,7 +5,6 @@ workers)."""
 
 from __future__ import annotations
 
-import warnings
 from typing import Any
 
 import numpy as np
@@ -64,12 +63,11 @@ def campaign_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> An
 def solve_asperity(settings: CampaignSettings, surface: Any, load: float) -> Any:
     """:func:`contact.solve` of ``surface`` at the nominal pressure ``load`` (Pa) with the
     settings' material and cone factor, without its per-surface :class:`contact.ContactWarning`
-    (a load inside a jump of the model's force is recorded in the result's ``info``)."""
+    (a load inside a jump of the model's force is recorded in the result's ``info``; no
+    warning filter is touched, so this is safe in worker threads)."""
     import contact
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", contact.ContactWarning)
-        return contact.solve(surface, load, settings.E, settings.nu, settings.cone_factor)
+    return contact.solve(surface, load, settings.E, settings.nu, settings.cone_factor, warn=False)
 
 
 def _contact_arrays(res: Any) -> dict[str, Any]:
@@ -99,11 +97,7 @@ def _contact_arrays(res: Any) -> dict[str, Any]:
 def _measured_arrays(surface: Any) -> dict[str, Any]:
     """The ISO 25178 parameters of a measured file (its form removed) and the fraction of its
     points that were not measured."""
-    import contact
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", contact.ContactWarning)
-        iso = surface.roughness(level="mean")
+    iso = surface.roughness(level="mean", warn=False)
     out = {f"iso_{k}": np.float64(iso[k]) for k in MEASURED_PARAMETERS}
     out["masked_fraction"] = np.float64(0.0 if surface.mask is None else np.mean(surface.mask))
     return out

@@ -67,3 +67,19 @@ def test_warnings_of_solve_point_at_its_caller():
     with pytest.warns(contact.ContactWarning) as record:
         contact.solve(s, 1.0, 210e9, 0.3)
     assert record[0].filename == __file__
+
+
+def test_solve_without_warning_keeps_the_message_and_leaves_the_filters_alone():
+    import warnings
+
+    s = _bump()
+    with pytest.warns(contact.ContactWarning) as record:
+        warned = contact.solve(s, 1.0, 210e9, 0.3)
+    filters = list(warnings.filters)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        quiet = contact.solve(s, 1.0, 210e9, 0.3, warn=False)
+    assert warnings.filters == filters
+    assert quiet.info["in_jump"] and quiet.info["warning"] == str(record[0].message)
+    assert np.array_equal(quiet.pressure, warned.pressure)
+    assert contact.solve(s, 5e8, 210e9, 0.3).info["warning"] == ""

@@ -157,3 +157,15 @@ def test_series_shape_and_plot():
     assert ax.get_xlabel() == "x (µm)"
     res = contact.solve(s, 20e6, 210e9, 0.3)
     assert res.plot(dx=s.dx).get_ylabel() == "y (µm)"
+
+
+def test_roughness_without_warning_gives_the_same_parameters():
+    import warnings
+
+    s = sinusoid_surface()
+    with pytest.warns(contact.ContactWarning):
+        warned = s.roughness()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        quiet = s.roughness(warn=False)
+    assert quiet.equals(warned)
