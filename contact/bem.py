@@ -72,6 +72,7 @@ def _result(
     info: dict,
     max_iter: int,
     tol: float,
+    warn: bool = True,
 ) -> ContactResult:
     if not np.isfinite(out.pressure).all() or out.reason.startswith(("non-finite", "pressure")):
         raise FloatingPointError(
@@ -96,16 +97,17 @@ def _result(
     logger.info("%s on %s grid: %s after %d iterations (%d convolutions), last relative change %.3g, "
                 "force error %.3g", method, "x".join(map(str, surface.shape)), out.reason, out.n_iterations,
                 out.n_convolutions, last, force_error)
+    message = ""
     if not out.converged:
-        warnings.warn(
+        message = (
             f"solve_bem did not converge: {out.reason} after {out.n_iterations} iterations "
             f"(max_iter={max_iter}); the last relative pressure change is {last:.3g}, above "
-            f"tol={tol:g}. The result is marked converged=False; raise max_iter or loosen tol.",
-            BEMConvergenceWarning,
-            stacklevel=3,
-        )
+            f"tol={tol:g}. The result is marked converged=False; raise max_iter or loosen tol.")
+        if warn:
+            warnings.warn(message, BEMConvergenceWarning, stacklevel=3)
     info = dict(info)
     info.update(
+        warning=message,
         reason=out.reason,
         tol=tol,
         gap_residual=out.gap_residual,
@@ -144,6 +146,7 @@ def solve_bem(
     counter_face: Sequence[float] | None = None,
     workers: int | None = None,
     accelerate: bool = True,
+    warn: bool = True,
 ) -> ContactResult:
     """Elastic contact of a flat with a rough surface under a given nominal pressure.
 
@@ -186,6 +189,10 @@ def solve_bem(
         along between convolutions; 3-5 times fewer convolutions on rough surfaces).
         False: the iteration of Polonsky & Keer (1999) as published, for reference. Both
         stop on the same criterion and reach the same solution to within about ``tol``.
+    warn : bool, default True
+        Issue a :class:`BEMConvergenceWarning` when the tolerance is not reached; False keeps
+        its message in ``info["warning"]`` only (for worker threads, where changing the
+        warning filters is not safe).
 
     Returns
     -------
@@ -198,7 +205,8 @@ def solve_bem(
         stopped), ``gap_residual`` (largest |gap| on the contact set, m),
         ``penetration`` (largest interpenetration off the contact set, m),
         ``n_convolutions`` (applications of the compliance operator, the cost),
-        ``accelerate``, and the ``displacement`` (elastic normal displacement, m) and
+        ``accelerate``, ``warning`` (the text of a :class:`BEMConvergenceWarning`, empty
+        when converged), and the ``displacement`` (elastic normal displacement, m) and
         ``gap`` (m) maps.
 
     Raises
@@ -252,7 +260,7 @@ def solve_bem(
     return _result(
         out, surface, valid, nominal_pressure, "bem",
         {"e_star": e_star, "periodic": bool(periodic), "accelerate": accelerate},
-        max_iter, tol,
+        max_iter, tol, warn,
     )
 
 
@@ -267,6 +275,7 @@ def solve_bem_displacement(
     counter_face: Sequence[float] | None = None,
     workers: int | None = None,
     accelerate: bool = True,
+    warn: bool = True,
 ) -> ContactResult:
     """Elastic contact with the flat held at a given height (displacement control).
 
@@ -277,7 +286,7 @@ def solve_bem_displacement(
     separation : float
         Height of the flat in metres, in the surface's height coordinate: points of the
         undeformed surface above it interpenetrate and are pressed down.
-    E, nu, tol, max_iter, counter_face, workers, accelerate
+    E, nu, tol, max_iter, counter_face, workers, accelerate, warn
         As in :func:`solve_bem`.
 
     Returns
@@ -317,5 +326,5 @@ def solve_bem_displacement(
     return _result(
         out, surface, valid, None, "bem-displacement",
         {"e_star": e_star, "periodic": False, "accelerate": accelerate},
-        max_iter, tol,
+        max_iter, tol, warn,
     )

@@ -150,13 +150,7 @@ def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane") -> li
 
 def _hurst_estimate(surface: Any) -> float:
     """Hurst exponent of a measured surface from its structure function (NaN when unphysical)."""
-    import warnings
-
-    import contact
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", contact.ContactWarning)
-        return float(surface.roughness(level="plane")["hurst"])
+    return float(surface.roughness(level="plane", warn=False)["hurst"])
 
 
 def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
@@ -299,9 +293,8 @@ def like_comparison(settings: CampaignSettings, results: dict) -> dict[str, Any]
         iso = contact.compare_surfaces(measured, sims)
     rows = []
     for il, load in enumerate(settings.pressures):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", contact.ContactWarning)
-            res = contact.solve(measured, load, settings.E, settings.nu, settings.cone_factor)
+        res = contact.solve(measured, load, settings.E, settings.nu, settings.cone_factor,
+                            warn=False)
         mine = {"mean contact pressure": res.mean_pressure, "max pressure": res.max_pressure,
                 "asperities in contact": float(len(res.asperities)),
                 "contact fraction": float(np.mean(res.pressure > 0))}

@@ -83,3 +83,17 @@ def test_solve_without_warning_keeps_the_message_and_leaves_the_filters_alone():
     assert quiet.info["in_jump"] and quiet.info["warning"] == str(record[0].message)
     assert np.array_equal(quiet.pressure, warned.pressure)
     assert contact.solve(s, 5e8, 210e9, 0.3).info["warning"] == ""
+
+
+def test_solve_bem_without_warning_keeps_the_message():
+    import warnings
+
+    s = contact.weierstrass((32, 32), 1e-3, 0.5, rq=1e-6, rng=0, n_terms=6)
+    with pytest.warns(contact.BEMConvergenceWarning) as record:
+        warned = contact.solve_bem(s, 20e6, 210e9, 0.3, max_iter=2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        quiet = contact.solve_bem(s, 20e6, 210e9, 0.3, max_iter=2, warn=False)
+    assert not quiet.converged and quiet.info["warning"] == str(record[0].message)
+    assert np.array_equal(quiet.pressure, warned.pressure)
+    assert contact.solve_bem(s, 20e6, 210e9, 0.3).info["warning"] == ""
