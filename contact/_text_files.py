@@ -55,20 +55,44 @@ def _text_lines(path: os.PathLike, fname: str) -> Iterator[tuple[int, str]]:
             raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
 
 
-#: Rows parsed at once by the text readers (bounded memory whatever the file's length).
+def _extent(path: os.PathLike, fname: str) -> tuple[int, int]:
+    """The number of lines (at most) and of bytes of a file, read in 1 MiB blocks."""
+    lines = 1
+    try:
+        with open(path, "rb") as fh:
+            while block := fh.read(1 << 20):
+                lines += block.count(b"\n")
+            size = fh.tell()
+    except OSError as exc:
+        raise TopographyFileError(f"{fname}: cannot read as text: {exc}") from None
+    return lines, size
+
+
+#: Lines and values parsed at once by the text readers: a batch is parsed when it holds
+#: _BATCH lines or _BATCH_VALUES values, so that its strings (about 70 bytes per value) stay
+#: a few MB however long or wide the file.
 _BATCH = 8192
+_BATCH_VALUES = 1 << 16
 
 
 class _Rows:
-    """Rows of numbers of equal width, gathered in float64 batches (8 bytes per value)."""
+    """Rows of numbers of equal width, parsed in batches into one float64 array.
 
-    def __init__(self, fname: str, delimiter: str | None, width: int | None = None,
-                 what: str = "rows"):
-        self.fname, self.delimiter, self.width, self.what = fname, delimiter, width, what
+    The array is allocated when the first batch is parsed, for as many rows as the rest of
+    the file can hold (its lines, and its bytes at 2 per value: a digit and a separator),
+    so the rows are never copied to be joined: the memory is the result (8 bytes per value)
+    plus one batch, since the pages of rows never read are never touched. Rows beyond that
+    room (a file that grew while read) are kept apart and joined at the end.
+    """
+
+    def __init__(self, fname: str, delimiter: str | None, path: os.PathLike):
+        self.fname, self.delimiter, self.path = fname, delimiter, path
+        self.width: int | None = None
         self.tokens: list[str] = []
         self.lines: list[tuple[int, str]] = []
-        self.chunks: list[np.ndarray] = []
-        self.count = 0
+        self.out: np.ndarray | None = None
+        self.filled = 0
+        self.extra: list[np.ndarray] = []
 
     def add(self, lineno: int, body: str) -> None:
         parts = body.split(self.delimiter)
@@ -82,7 +106,7 @@ class _Rows:
             )
         self.tokens.extend(parts)
         self.lines.append((lineno, body))
-        if len(self.lines) >= _BATCH:
+        if len(self.lines) >= _BATCH or len(self.tokens) >= _BATCH_VALUES:
             self.flush()
 
     def flush(self) -> None:
@@ -110,16 +134,36 @@ class _Rows:
                                       f"{self.lines[-1][0]} hold a non-number")
         if self.width is None:  # set by the first add(), which every line goes through
             raise AssertionError("rows buffered without a row width")
-        self.chunks.append(values.reshape(len(self.lines), self.width))
-        self.count += len(self.lines)
+        if self.out is None:
+            self.out = self._allocate(self.lines[0][0], self.width)
+        values = values.reshape(len(self.lines), self.width)
         self.tokens, self.lines = [], []
+        n = min(self.out.shape[0] - self.filled, values.shape[0])
+        self.out[self.filled:self.filled + n] = values[:n]
+        self.filled += n
+        if n < values.shape[0]:
+            self.extra.append(values[n:])
+
+    def _allocate(self, lineno: int, width: int) -> np.ndarray:
+        """Room for the rows from line ``lineno`` on, once the first batch is parsed (so a
+        file that is not a grid is refused before it is read twice)."""
+        lines, size = _extent(self.path, self.fname)
+        rows = max(1, min(lines - lineno + 1, (size + 1) // 2 // width))
+        try:
+            return np.empty((rows, width))
+        except MemoryError:  # no room reserved: the rows are joined at the end instead
+            return np.empty((0, width))
 
     def array(self) -> np.ndarray:
         self.flush()
-        if not self.chunks:
+        if self.out is None:
             return np.empty((0, self.width or 0))
-        out = np.concatenate(self.chunks) if len(self.chunks) > 1 else self.chunks[0]
-        self.chunks = []
+        out = self.out if self.filled == self.out.shape[0] else self.out[:self.filled]
+        if self.extra:
+            out = np.concatenate([out, *self.extra])
+        elif 2 * self.filled < self.out.shape[0]:  # many lines were comments or blank
+            out = out.copy()
+        self.out, self.extra = None, []
         return out
 
 
@@ -175,7 +219,7 @@ def read_text(path: os.PathLike, fname: str) -> Stored:
     found: dict[str, float | None] = {"dx": None, "dy": None}
     shape = None
     delimiter = "," if os.fspath(path).lower().endswith(".csv") else None
-    rows = _Rows(fname, delimiter)
+    rows = _Rows(fname, delimiter, path)
     for lineno, line in _text_lines(path, fname):
         if "#" in line:
             m = _HEADER.match(line)
@@ -267,7 +311,7 @@ def read_xyz(path: os.PathLike, fname: str) -> Stored:
         or too sparse coordinates, two points at one position, or another number of points
         than the ``# points`` line declares.
     """
-    rows = _Rows(fname, None)
+    rows = _Rows(fname, None, path)
     count = None
     for lineno, line in _text_lines(path, fname):
         if "#" in line:
