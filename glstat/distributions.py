@@ -268,6 +268,11 @@ class gld_rs_gen(_GLDGen):
     (both >= 0), negative elsewhere. Valid shapes are those in the six regions of
     Karian & Dudewicz (see :mod:`glstat.regions`).
 
+    **Argument order.** scipy's order is shapes, then ``loc``, then ``scale``:
+    ``gld_rs(lam3, lam4, loc=l1, scale=1/|l2|)``, not R's ``(l1, l2, l3, l4)``.
+    ``gld_rs(*fit.lambdas)`` is therefore another distribution; use ``fit.dist`` or
+    ``glstat.GLD(l1, l2, l3, l4, param="rs")``, which take R's order.
+
     The CDF inverts Q accurately in both tails (relative error near machine precision down
     to tail probabilities of 1e-300); moments exist up to order k when
     min(lam3, lam4) > -1/k.
@@ -300,6 +305,11 @@ class gld_fkml_gen(_GLDGen):
     with the logarithmic limits at :math:`\lambda_3 = 0` or :math:`\lambda_4 = 0`.
     ``gld_fkml`` takes ``lam3``, ``lam4``, ``loc`` = :math:`\lambda_1` and
     ``scale`` = :math:`1/\lambda_2`; every finite (lam3, lam4) is valid.
+
+    **Argument order.** scipy's order is shapes, then ``loc``, then ``scale``:
+    ``gld_fkml(lam3, lam4, loc=l1, scale=1/|l2|)``, not R's ``(l1, l2, l3, l4)``.
+    ``gld_fkml(*fit.lambdas)`` is therefore another distribution; use ``fit.dist`` or
+    ``glstat.GLD(l1, l2, l3, l4, param="fkml")``, which take R's order.
 
     %(after_notes)s
 
