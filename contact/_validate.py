@@ -313,7 +313,9 @@ def height_map(heights, mask) -> tuple[np.ndarray, np.ndarray]:
             raise ValueError(f"mask shape {valid.shape} does not match heights shape {h.shape}")
         if not valid.any():
             raise ValueError("the mask hides every point; nothing is left to analyse")
-    if not np.isfinite(h[valid]).all():
+    # without a mask no copy of the heights: isfinite on the map itself (a bool map, 1/8 size)
+    finite = np.isfinite(h).all() if mask is None else np.isfinite(h[valid]).all()
+    if not finite:
         raise ValueError(
             "heights contain NaN or inf at points that are not masked; pass "
             "mask=~np.isfinite(heights) to mark missing points (surface.mask on a surface)"
