@@ -192,6 +192,12 @@ def _study_parser() -> argparse.ArgumentParser:
                    help="form removed from each measured file (--topographies, --like), fitted by "
                         "least squares on its measured points: the plane, a polynomial of degree 2 "
                         "or 3 in x and y, the mean, or nothing")
+    p.add_argument("--paper-table", metavar="CSV",
+                   help="the paper's Table 1 with its printed values (columns hurst, mean_mpa, "
+                        "sd_mpa, skewness, kurtosis, lambda1_mpa, lambda2_per_mpa, lambda3, "
+                        "lambda4): the report's consistency section then checks its moments, "
+                        "λ's and damage claims (docs/method.md §11); without it only the means "
+                        "stored in the package are checked")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--wait", action="store_true",
                    help="when another campaign runs in the output directory, wait for it to end "
@@ -237,6 +243,10 @@ def _study_settings(args, argv: list[str]):
         settings = dataclasses.replace(settings, rq=rq)
     asettings = AnalysisSettings(hardness=args.hardness,
                                  n_resamples=args.bootstrap or base["bootstrap"], seed=args.seed)
+    if args.paper_table is not None:
+        from .study.paper_table import read_table1
+
+        args.paper_table = read_table1(args.paper_table)
     if args.compare_bem > surfaces and not any(a.startswith("--compare-bem") for a in argv):
         args.compare_bem = surfaces  # the default K on a small campaign
     if args.compare_bem > surfaces:
@@ -374,7 +384,8 @@ def _run_locked(args, argv: list[str], settings, asettings, out: str):
             return run_study(settings, asettings, out, executor=executor, workers=args.workers,
                              force=args.force, progress=not args.no_progress,
                              command="glstat study " + " ".join(argv), workers_label=label,
-                             compare_bem=args.compare_bem, model=args.model)
+                             compare_bem=args.compare_bem, model=args.model,
+                             paper_table=args.paper_table)
     finally:
         if shutdown is not None:
             shutdown()

@@ -252,6 +252,7 @@ def run_study(
     workers_label: str | None = None,
     compare_bem: int | BEMSettings | None = DEFAULT_COMPARE_BEM,
     model: str = "asperity",
+    paper_table=None,
 ) -> StudyResult:
     """Run (or resume) the campaign, analyse it and write the report.
 
@@ -280,6 +281,11 @@ def run_study(
         with the elastic BEM too (``compare_bem`` then covers all surfaces) and run the
         analysis, the checks and the report on both models side by side; the elastic
         per-asperity sample is the peak pressure of every contact spot.
+    paper_table : optional
+        The paper's Table 1 with its printed values, for the report's consistency section
+        (anything :func:`glstat.study.paper.table1` takes, e.g. the rows of
+        :func:`glstat.study.paper_table.read_table1`); default the stored copy, which holds
+        the mean pressures only.
 
     Returns
     -------
@@ -365,7 +371,8 @@ def run_study(
             from .paper import paper_findings
 
             info["paper_findings"] = paper_findings(n_contact={
-                settings.hurst[ih]: r["summary"]["n_contact"] for (ih, il), r in an.items() if il == 0})
+                settings.hurst[ih]: r["summary"]["n_contact"] for (ih, il), r in an.items() if il == 0},
+                table=paper_table)
         except Exception as exc:  # the paper's tables never stop a report
             info["paper_findings"] = [f"the consistency check could not be computed: {exc}"]
     if settings.like:

@@ -195,7 +195,8 @@ def _missing_findings(t: pd.DataFrame) -> list[str]:
         + ("the printed λ's" if missing_l else "")
         + f" for H = {', '.join(sorted(set(missing_m + missing_l)))}; the moment-fit roots, "
         "the sign of the skewness, the validity of the printed rows and the damage claims "
-        "need them (glstat.study.paper.paper_consistency(table=...) with the printed values)."
+        "need them (glstat study --paper-table FILE.csv, or "
+        "glstat.study.paper.paper_consistency(table=...), with the printed values)."
     ]
 
 

@@ -28,6 +28,7 @@ __all__ = [
     "TABLE1",
     "TABLE1_SOURCE",
     "Table1Row",
+    "read_table1",
     "table1",
     "table_rows",
 ]
@@ -169,3 +170,43 @@ def table1(table=None):
     df = pd.DataFrame([{c: getattr(r, c) for c in COLUMNS} for r in rows])
     df["source"] = TABLE1_SOURCE if table is None else "given table"
     return df
+
+
+def read_table1(path) -> list[Table1Row]:
+    """Table 1 with its printed values from a CSV file (``glstat study --paper-table``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A CSV file with a header row naming the columns of :data:`COLUMNS` it holds
+        (``hurst`` and ``mean_mpa`` at least; pressures in MPa, λ2 in 1/MPa) and one row per H.
+
+    Returns
+    -------
+    list of Table1Row
+
+    Raises
+    ------
+    ValueError
+        A file that cannot be read, an unknown or missing column, or a value that is not a
+        number (the message names the file and the fix).
+    """
+    import pandas as pd
+
+    try:
+        frame = pd.read_csv(path)
+    except (OSError, ValueError, pd.errors.ParserError) as exc:
+        raise ValueError(f"--paper-table {path}: cannot read it as CSV ({exc})") from None
+    unknown = [c for c in frame.columns if c not in COLUMNS]
+    if unknown:
+        raise ValueError(f"--paper-table {path}: unknown column(s) {', '.join(map(str, unknown))}; "
+                         f"the columns are {', '.join(COLUMNS)}")
+    for need in ("hurst", "mean_mpa"):
+        if need not in frame.columns:
+            raise ValueError(f"--paper-table {path}: the column {need} is missing")
+    try:
+        frame = frame.astype(float)
+    except (TypeError, ValueError):
+        raise ValueError(f"--paper-table {path}: every value must be a number (MPa for "
+                         "pressures, 1/MPa for lambda2_per_mpa)") from None
+    return table_rows(frame)
