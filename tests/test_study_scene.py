@@ -140,3 +140,37 @@ def test_scene_summary_numbers():
     np.testing.assert_allclose(t50["rms_slope"] / t["rms_slope"], 50 / 1.6, rtol=1e-9)
     assert (t50["rms_slope_over_paper_tan_beta"] > 10 * t["rms_slope_over_paper_tan_beta"]).all()
     np.testing.assert_allclose(t["shortest_wavelength_m"], 1e-3 / 1.5 ** 5)
+
+
+def test_glstat_study_target_pressure_places_the_scene(tmp_path, capsys):
+    """`glstat study --target-pressure` runs the campaign at the Rq rq_for_pressure finds and
+    records it in the manifest and the report."""
+    import json
+
+    from glstat.cli import main
+
+    out = tmp_path / "run"
+    rc = main(["study", "--surfaces", "4", "--grid", "128", "--hurst", "0.5", "--bootstrap", "20",
+               "--target-pressure", "1300", "--compare-bem", "0", "--no-progress", "--workers",
+               "1", "--out", str(out)])
+    assert rc == 0
+    err = capsys.readouterr().err
+    rq_um = float(re.search(r"glstat study: Rq = ([\d.]+) µm", err).group(1))
+    s128 = CampaignSettings(grid=128, n_surfaces=4, hurst=(0.5,), n_examples=0)
+    expected = rq_for_pressure(1.3e9, settings=s128)
+    assert rq_um == pytest.approx(expected * 1e6, rel=1e-3)
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert any(abs(v - expected) <= 1e-9 * expected for v in _floats(manifest))
+    assert f"Rq = {rq_um:.3g} µm" in (out / "report.md").read_text()
+
+
+def _floats(obj):
+    """Every float in a JSON document."""
+    if isinstance(obj, dict):
+        for v in obj.values():
+            yield from _floats(v)
+    elif isinstance(obj, list):
+        for v in obj:
+            yield from _floats(v)
+    elif isinstance(obj, float):
+        yield obj
