@@ -138,9 +138,9 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--hardness", type=_positive(float), default=2050.0, help="hardness Pd in MPa")
     p.add_argument("--bootstrap", type=_positive(int),
                    help=f"bootstrap resamples B (default {DEFAULTS['bootstrap']})")
-    p.add_argument("--rq", type=_positive(float), default=1.6,
-                   help="RMS roughness in µm (1.6 gives the paper's mean pressures; 50 is the value "
-                        "it prints, see docs/method.md)")
+    p.add_argument("--rq", type=_positive(float), nargs="+", default=[1.6], metavar="UM",
+                   help="RMS roughness in µm, one value or one per --hurst (1.6 gives the paper's "
+                        "mean pressures; 50 is the value it prints, see docs/method.md)")
     p.add_argument("--size", type=_positive(float), default=1.0, help="side of the surface in mm")
     p.add_argument("--modulus", type=_positive(float), default=210.0, help="Young's modulus E in GPa")
     p.add_argument("--poisson", type=_number_in(-1, 0.5, low_open=True), default=0.3,
@@ -174,9 +174,10 @@ def _study_parser() -> argparse.ArgumentParser:
                    help="contact model of the whole method: the asperity model, or the elastic "
                         "boundary-element solution of every surface too ('bem' and 'both' run both "
                         "models side by side; the BEM takes about 4 s per 1024² surface)")
-    p.add_argument("--target-pressure", type=_positive(float), metavar="MPA",
-                   help="choose Rq so that the asperity model's mean contact pressure is MPA "
-                        "(one Rq for all H, found on a few seeds; replaces --rq)")
+    p.add_argument("--target-pressure", type=_positive(float), nargs="+", metavar="MPA",
+                   help="choose Rq so that the asperity model's mean contact pressure is MPA, "
+                        "found on a few seeds (replaces --rq): one value gives one Rq for all H, "
+                        "one value per --hurst one Rq per H, each at its own pressure")
     src = p.add_mutually_exclusive_group()
     src.add_argument("--topographies", nargs="+", metavar="PATH",
                      help="measured topographies instead of simulated surfaces: files, folders or "
@@ -226,7 +227,8 @@ def _study_settings(args, argv: list[str]):
         n_terms = args.n_terms or [DEFAULT_N_TERMS]
     settings = CampaignSettings(
         hurst=tuple(args.hurst), pressures=tuple(p * 1e6 for p in args.pressure),
-        n_surfaces=surfaces, grid=args.grid or base["grid"], length=length, rq=args.rq * 1e-6,
+        n_surfaces=surfaces, grid=args.grid or base["grid"], length=length,
+        rq=tuple(v * 1e-6 for v in args.rq),
         gamma=args.gamma, n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
         cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
     if args.topographies or args.like:
@@ -237,10 +239,21 @@ def _study_settings(args, argv: list[str]):
         from .study import rq_for_pressure
 
         print(f"glstat study: finding the Rq that gives a mean contact pressure of "
-              f"{args.target_pressure:g} MPa ...", file=sys.stderr, flush=True)
-        rq = float(rq_for_pressure(args.target_pressure * 1e6, settings=settings))
-        print(f"glstat study: Rq = {rq * 1e6:.4g} µm", file=sys.stderr, flush=True)
+              f"{' / '.join(f'{v:g}' for v in args.target_pressure)} MPa ...", file=sys.stderr,
+              flush=True)
+        import numpy as np
+
+        targets = [v * 1e6 for v in args.target_pressure]
+        per_h = len(targets) > 1
+        if per_h and len(targets) != len(settings.hurst):
+            raise StudyInputError(f"--target-pressure takes one value or one per --hurst "
+                                  f"({len(settings.hurst)}), got {len(targets)}")
+        found = rq_for_pressure(targets if per_h else targets[0], settings=settings,
+                                per_hurst=per_h)
+        rq = tuple(float(v) for v in np.atleast_1d(found))
         settings = dataclasses.replace(settings, rq=rq)
+        print(f"glstat study: Rq = {settings.rq_text} µm" + (" (per H)" if per_h else ""),
+              file=sys.stderr, flush=True)
     asettings = AnalysisSettings(hardness=args.hardness,
                                  n_resamples=args.bootstrap or base["bootstrap"], seed=args.seed)
     if args.paper_table is not None:

@@ -161,7 +161,7 @@ def test_glstat_study_target_pressure_places_the_scene(tmp_path, capsys):
     assert rq_um == pytest.approx(expected * 1e6, rel=1e-3)
     manifest = json.loads((out / "manifest.json").read_text())
     assert any(abs(v - expected) <= 1e-9 * expected for v in _floats(manifest))
-    assert f"Rq = {rq_um:.3g} µm" in (out / "report.md").read_text()
+    assert f"Rq = {rq_um:.4g} µm" in (out / "report.md").read_text()
 
 
 def _floats(obj):
@@ -174,3 +174,40 @@ def _floats(obj):
             yield from _floats(v)
     elif isinstance(obj, float):
         yield obj
+
+
+def test_one_rq_per_h_drives_the_campaign():
+    """CampaignSettings takes one Rq per H (as rq_for_pressure(per_hurst=True) returns): each
+    H's surfaces have their own Rq; one value for all H stays a float (the same identity)."""
+    from glstat.study.surface_task import weierstrass_surface
+
+    rqs = (1.0e-6, 2.0e-6, 3.0e-6)
+    s = CampaignSettings(grid=128, n_surfaces=2, rq=rqs, n_examples=0)
+    assert s.rq == rqs and [s.rq_of(i) for i in range(3)] == list(rqs)
+    for ih, rq in enumerate(rqs):
+        h = weierstrass_surface(s, ih, 0, 0).heights
+        assert float(np.sqrt(np.mean((h - h.mean()) ** 2))) == pytest.approx(rq, rel=1e-6)
+    same = CampaignSettings(grid=128, rq=(1.6e-6,) * 3)
+    assert same.rq == 1.6e-6 and same.identity() == CampaignSettings(grid=128).identity()
+    assert s.identity()["rq"] == list(rqs)
+    with pytest.raises(ValueError, match="one value or one per Hurst exponent"):
+        CampaignSettings(rq=(1e-6, 2e-6))
+    with pytest.raises(ValueError, match="rq"):
+        CampaignSettings(rq=(1e-6, -2e-6, 1e-6))
+
+
+def test_glstat_study_target_pressure_per_h(tmp_path, capsys):
+    from glstat.cli import main
+
+    out = tmp_path / "run"
+    rc = main(["study", "--surfaces", "3", "--grid", "128", "--hurst", "0", "1", "--bootstrap",
+               "20", "--target-pressure", "1724", "1108", "--compare-bem", "0", "--no-progress",
+               "--workers", "1", "--out", str(out)])
+    assert rc == 0
+    s128 = CampaignSettings(grid=128, n_surfaces=3, hurst=(0.0, 1.0), n_examples=0)
+    expected = rq_for_pressure([1.724e9, 1.108e9], settings=s128, per_hurst=True)
+    err = capsys.readouterr().err
+    assert f"Rq = {expected[0] * 1e6:.4g}, {expected[1] * 1e6:.4g} µm (per H)" in err
+    rc = main(["study", "--hurst", "0", "1", "--target-pressure", "1724", "1369", "1108",
+               "--out", str(tmp_path / "bad")])
+    assert rc == 2 and "one value or one per --hurst (2), got 3" in capsys.readouterr().err

@@ -249,11 +249,13 @@ def scene_choice_sentence(settings, analysis: dict | None) -> str:
              if settings.hurst[ih] in PAPER_MEAN_MPA and len(settings.pressures) == 1]
     if not pairs:
         return ""
-    ratio = PAPER_RQ / settings.rq
+    rq = settings.rq if not isinstance(settings.rq, tuple) else math.exp(
+        float(np.mean(np.log(settings.rq))))
+    ratio = PAPER_RQ / rq
     ours = " / ".join(f"{m:.0f}" for _, m in pairs)
     theirs = " / ".join(f"{PAPER_MEAN_MPA[h]:.0f}" for h, _ in pairs)
     hs = " / ".join(f"{h:g}" for h, _ in pairs)
-    text = (f"The scene: this run's Rq = {settings.rq * 1e6:.3g} µm gives mean contact pressures "
+    text = (f"The scene: this run's Rq = {settings.rq_text} µm gives mean contact pressures "
             f"{ours} MPa for H = {hs}, against Table 1's {theirs} MPa. ")
     if abs(ratio - 1) < 1e-9:
         return text + ("This is the paper's printed Rq; docs/method.md §10 explains why the "

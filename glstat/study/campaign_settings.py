@@ -88,8 +88,10 @@ class CampaignSettings:
     length : float
         Side of the square surface in metres, or its length along x when ``length_y`` is
         given.
-    rq : float
-        RMS roughness in metres.
+    rq : float or tuple of float
+        RMS roughness in metres: one for every H, or one per H (aligned with ``hurst``, e.g.
+        from :func:`glstat.study.rq_for_pressure` with ``per_hurst=True``); see
+        :meth:`rq_of`.
     gamma : float
         Frequency ratio of the Weierstrass series.
     n_terms : tuple of (int or None)
@@ -136,7 +138,7 @@ class CampaignSettings:
     n_surfaces: int = 100
     grid: int = 1024
     length: float = 1e-3
-    rq: float = 1.6e-6
+    rq: float | tuple[float, ...] = 1.6e-6
     gamma: float = 1.5
     n_terms: tuple[int | None, ...] = (6,)
     E: float = 210e9
@@ -168,6 +170,13 @@ class CampaignSettings:
         object.__setattr__(self, "hurst", h)
         object.__setattr__(self, "pressures", p)
         object.__setattr__(self, "n_terms", nt)
+        if isinstance(self.rq, tuple | list | np.ndarray):
+            rq = tuple(float(v) for v in self.rq)
+            if len(rq) not in (1, len(h)):
+                raise ValueError(f"rq must be one value or one per Hurst exponent ({len(h)}), "
+                                 f"got {len(rq)}")
+            # one value for every H is a float (the identity of single-Rq campaigns)
+            object.__setattr__(self, "rq", rq[0] if len(set(rq)) == 1 else rq)
         _check_cases(self)
         _check_sampling(self)
         if self.grid_y is not None:
@@ -234,6 +243,16 @@ class CampaignSettings:
         return [(ih, il, i) for ih in range(len(self.hurst)) for il in range(len(self.pressures))
                 for i in range(self.n_surfaces)]
 
+    def rq_of(self, ih: int) -> float:
+        """RMS roughness in metres of Hurst exponent number ``ih``."""
+        return self.rq[ih] if isinstance(self.rq, tuple) else self.rq
+
+    @property
+    def rq_text(self) -> str:
+        """The RMS roughness in µm as text: "1.6", or "1.5, 1.6, 1.7" (one per H)."""
+        values = self.rq if isinstance(self.rq, tuple) else (self.rq,)
+        return ", ".join(f"{v * 1e6:.4g}" for v in values)
+
     def seed_sequence(self, ih: int, il: int, i: int) -> np.random.SeedSequence:
         """``SeedSequence(seed).spawn(nH)[ih].spawn(nL)[il].spawn(...)[i]`` (spawn key (ih, il, i))."""
         return np.random.SeedSequence(self.seed, spawn_key=(ih, il, i))
@@ -299,7 +318,8 @@ def _check_geometry(s: CampaignSettings) -> None:
     positive_finite(s.length, "length", "side in metres")
     if s.length_y is not None:
         positive_finite(s.length_y, "length_y", "length along y in metres")
-    positive_finite(s.rq, "rq", "RMS roughness in metres")
+    for v in (s.rq if isinstance(s.rq, tuple) else (s.rq,)):
+        positive_finite(v, "rq", "RMS roughness in metres")
     frequency_ratio(s.gamma)
     limit = nyquist_limit(s)
     grid = f"{s.grid}²" if s.grid_y is None else f"{s.grid} × {s.grid_y}"

@@ -59,8 +59,8 @@ def scene_sentence(settings) -> str:
                 f"(H, Rq, size and truncation from its spectrum; section \"Measured template and "
                 f"simulated surfaces\")")
     return (f"{settings.n_surfaces} Weierstrass surfaces per Hurst exponent{like}, "
-            f"{grid_text(settings)} on {area_text(settings)}, Rq = {settings.rq * 1e6:.4g} µm, "
-            f"{model}.")
+            f"{grid_text(settings)} on {area_text(settings)}, Rq = {settings.rq_text} µm"
+            f"{' (one per H)' if isinstance(settings.rq, tuple) else ''}, {model}.")
 
 
 def surface_rows(settings) -> list[list[Any]]:
@@ -83,7 +83,8 @@ def surface_rows(settings) -> list[list[Any]]:
              ["grid", "{} × {}".format(*settings.shape)],
              ["size (mm)", "{:g} × {:g}".format(*(v * 1e3 for v in settings.size))],
              ["spacing (µm)", "{:.4g} × {:.4g}".format(*(v * 1e6 for v in settings.spacing))],
-             ["Rq (µm)" + (" (mean over the files)" if settings.measured else ""), settings.rq * 1e6]]
+             ["Rq (µm)" + (" (mean over the files)" if settings.measured else
+                           " per H" if isinstance(settings.rq, tuple) else ""), settings.rq_text]]
     if not settings.measured:
         n = len(settings.hurst)
         rows += [["γ", settings.gamma],

@@ -71,6 +71,7 @@ def truncation_matches(settings, reference: dict | None) -> bool:
         return False
     return (settings.square and int(settings.grid) == int(reference["grid"])
             and math.isclose(settings.length, reference["length"], rel_tol=1e-9)
+            and not isinstance(settings.rq, tuple)
             and math.isclose(settings.rq, reference["rq"], rel_tol=1e-9))
 
 
@@ -90,7 +91,7 @@ def truncation_caption(settings, reference: dict | None) -> str:
             "this run; means over surfaces.")
     if not truncation_matches(settings, reference):
         text += (f" This run's settings ({grid_text(settings)}, {area_text(settings)}, Rq = "
-                 f"{settings.rq * 1e6:g} µm) differ, so the table does not describe it.")
+                 f"{settings.rq_text} µm) differ, so the table does not describe it.")
     return text
 
 

@@ -109,7 +109,8 @@ def _settings_for(settings: CampaignSettings | None, hurst) -> tuple[CampaignSet
             f"hurst {hs} are not all among the settings' exponents {s.hurst} and their n_terms "
             f"{s.n_terms} differ, so the truncation is undefined; add them to the settings"
         )
-    s2 = dataclasses.replace(s, hurst=hs, n_terms=s.n_terms[:1], n_examples=0)
+    rq = s.rq if not isinstance(s.rq, tuple) else float(np.exp(np.mean(np.log(s.rq))))
+    s2 = dataclasses.replace(s, hurst=hs, n_terms=s.n_terms[:1], rq=rq, n_examples=0)
     return s2, list(range(len(hs)))
 
 
@@ -244,7 +245,8 @@ def rq_for_pressure(
     converged = True
     for ks in groups:
         fine = PressureAtRq(s, [idx[k] for k in ks], 0, n_seeds, s.grid, load, record)
-        x, ok = search_log_rq(fine, targets[ks], s.rq, bounds, coarse_n, tol, max_evaluations)
+        start = math.exp(float(np.mean([math.log(s.rq_of(idx[k])) for k in ks])))
+        x, ok = search_log_rq(fine, targets[ks], start, bounds, coarse_n, tol, max_evaluations)
         converged &= ok
         p, a_, c_, _ = fine(math.exp(x))  # cached: the evaluation that gave x
         for j, k in enumerate(ks):
@@ -365,10 +367,10 @@ def scene_summary(settings: CampaignSettings | None = None, *, n_seeds: int = 3,
         m = _measure_scene(s, ih, n_seeds, solve)
         pp = paper_pressures.get(float(h), math.nan)
         row = {
-            "hurst": h, "rq_m": s.rq, "n_terms": terms_of(s, ih),
+            "hurst": h, "rq_m": s.rq_of(ih), "n_terms": terms_of(s, ih),
             "shortest_wavelength_m": 1.0 / s.max_frequency(ih),
             "rms_slope": float(np.mean(m["slope"])),
-            "rms_slope_expected": s.rq * _expected_slope_ratio(s, ih),
+            "rms_slope_expected": s.rq_of(ih) * _expected_slope_ratio(s, ih),
             "e_star_pa": e_star, "cone_factor": s.cone_factor,
             "mean_pressure_pa": float(np.mean(m["mean_pressure"])) if solve else nan,
             "tan_beta_implied": float(np.mean(m["mean_pressure"])) / ce if solve else nan,

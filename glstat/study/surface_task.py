@@ -48,7 +48,7 @@ def weierstrass_surface(settings: CampaignSettings, ih: int, il: int, i: int, *,
     shape = settings.shape if grid is None else (grid, grid)
     length = settings.size if grid is None else settings.length
     return contact.weierstrass(shape, length, settings.hurst[ih], settings.gamma,
-                               rq=settings.rq if rq is None else rq, rng=rng,
+                               rq=settings.rq_of(ih) if rq is None else rq, rng=rng,
                                n_terms=settings.n_terms[ih])
 
 
