@@ -318,8 +318,8 @@ def _check_geometry(s: CampaignSettings) -> None:
     positive_finite(s.length, "length", "side in metres")
     if s.length_y is not None:
         positive_finite(s.length_y, "length_y", "length along y in metres")
-    for v in (s.rq if isinstance(s.rq, tuple) else (s.rq,)):
-        positive_finite(v, "rq", "RMS roughness in metres")
+    for rq in (s.rq if isinstance(s.rq, tuple) else (s.rq,)):
+        positive_finite(rq, "rq", "RMS roughness in metres")
     frequency_ratio(s.gamma)
     limit = nyquist_limit(s)
     grid = f"{s.grid}²" if s.grid_y is None else f"{s.grid} × {s.grid_y}"
