@@ -53,14 +53,18 @@ def _user_cache_root() -> Path | None:
     if sys.platform == "win32":
         base = os.environ.get("LOCALAPPDATA")
         return Path(base) / "glstat" / "numba" if base else None
+    try:
+        home = Path.home()
+    except RuntimeError:  # no home directory
+        home = None
     if sys.platform == "darwin":
-        return Path.home() / "Library" / "Caches" / "glstat" / "numba"
+        # never create a home directory that does not exist
+        return home / "Library" / "Caches" / "glstat" / "numba" if home and home.is_dir() else None
     base = os.environ.get("XDG_CACHE_HOME")
     if not base or not os.path.isabs(base):
-        try:
-            base = str(Path.home() / ".cache")
-        except RuntimeError:  # no home directory
+        if home is None or not home.is_dir():
             return None
+        base = str(home / ".cache")
     return Path(base) / "glstat" / "numba"
 
 

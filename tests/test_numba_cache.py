@@ -153,3 +153,17 @@ def test_old_kernel_folders_are_pruned(tmp_path):
     os.utime(current, (stale, stale))
     _numba_cache._prune(tmp_path, "src-current")
     assert not old.exists() and recent.exists() and current.exists()
+
+
+def test_a_missing_home_is_not_created(tmp_path, monkeypatch):
+    from numba.core import config
+
+    monkeypatch.setattr(config, "CACHE_DIR", "")
+    monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
+    missing = tmp_path / "no-such-home"
+    monkeypatch.setenv("HOME", str(missing))
+    monkeypatch.setattr("tempfile.tempdir", str(tmp_path / "tmp"))
+    (tmp_path / "tmp").mkdir()
+    got = _numba_cache._choose()
+    assert not missing.exists()
+    assert got is not None and Path(got).parent == tmp_path / "tmp"
