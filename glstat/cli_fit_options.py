@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ._validate import FIT_METHODS, PARAMS
-from .cli_input import InputError, Sample
+from .cli_input import InputError, Sample, quoted
 from .fitting._stats import MIN_N
 
 __all__ = ["GOF_BUDGET", "GOF_MIN_RESAMPLES", "GOF_RESAMPLES", "METHODS", "METHOD_NAMES", "PARAMS",
@@ -193,16 +193,16 @@ def check_sample(args: argparse.Namespace, sample: Sample) -> None:
     """Refuse samples no fit or bootstrap can use, before anything is computed or written."""
     x = sample.values
     if x.size < MIN_N:
-        raise InputError(f"column {sample.column!r} in {sample.path} has {x.size} finite value(s); a GLD "
-                         f"fit by {METHOD_NAMES[args.method]} estimates 4 parameters and needs at least "
-                         f"{MIN_N} (a reliable fit, hundreds); give more data")
+        raise InputError(f"column {quoted(sample.column)} in {sample.path} has {x.size} finite "
+                         f"value(s); a GLD fit by {METHOD_NAMES[args.method]} estimates 4 parameters "
+                         f"and needs at least {MIN_N} (a reliable fit, hundreds); give more data")
     if np.min(x) == np.max(x):
-        raise InputError(f"all {x.size} values in column {sample.column!r} are equal to {x[0]:g}: a "
-                         "constant sample has no GLD fit; check the column")
+        raise InputError(f"all {x.size} values in column {quoted(sample.column)} are equal to "
+                         f"{x[0]:g}: a constant sample has no GLD fit; check the column")
     if args.bootstrap and x.size < 2 * MIN_N:
-        raise InputError(f"column {sample.column!r} has only {x.size} values: too few to bootstrap a "
-                         f"4-parameter fit (resamples repeat values); give at least {2 * MIN_N} values "
-                         "or pass --bootstrap 0")
+        raise InputError(f"column {quoted(sample.column)} has only {x.size} values: too few to "
+                         f"bootstrap a 4-parameter fit (resamples repeat values); give at least "
+                         f"{2 * MIN_N} values or pass --bootstrap 0")
 
 
 def gof_resamples_for(n: int, requested: int | None) -> tuple[int, str | None]:

@@ -12,17 +12,25 @@ Lines starting with ``#`` are comments. A first row made only of numbers is data
 columns are then named ``"1"``, ``"2"``, ...). A first column without a header holding
 0, 1, 2, ... (the index pandas writes with ``DataFrame.to_csv``) is not data.
 
-Memory is bounded before reading: compressed text is decompressed up to
-:data:`MAX_DECOMPRESSED` bytes, Parquet and Excel files whose declared uncompressed size
-exceeds it are refused from their metadata, and a ``.npy`` header that declares more data
-than the file holds is refused without reserving memory. Everything that is the file's fault
-raises :class:`InputError` (``glstat fit`` exits with status 2 and the message).
+Memory is bounded before reading. Text is first read once a chunk at a time, keeping only
+its first lines (for the separator and the header): a NUL byte (binary data), a line longer
+than :data:`MAX_LINE`, more than :data:`MAX_COLUMNS` columns or no line holding a value is
+refused there; compressed text is refused beyond :data:`MAX_DECOMPRESSED` bytes
+decompressed, or when its lines times its columns, as 8-byte numbers, exceed that. pandas
+then parses the file from a second pass, so the text is never held whole. Parquet and Excel
+files whose declared uncompressed size exceeds :data:`MAX_DECOMPRESSED` are refused from
+their metadata, and Parquet files whose declared rows times the columns read, as 8-byte
+numbers, exceed it; a ``.npy`` header that declares more data than the file holds is refused
+without reserving memory. Column names and entries are shortened to about 200 characters in
+messages. Everything that is the file's fault raises :class:`InputError` (``glstat fit``
+exits with status 2 and the message).
 """
 
 from __future__ import annotations
 
 import bz2
-import io
+import codecs
+import contextlib
 import lzma
 import math
 import re
@@ -36,13 +44,17 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Iterator
+
     import pandas as pd
 
 __all__ = ["MAX_DECOMPRESSED", "InputError", "Sample", "read_sample"]
 
-#: Largest decompressed size (bytes) of a compressed text file, and largest declared
-#: uncompressed size of the data read from a Parquet or Excel file: 1 GiB.
-MAX_DECOMPRESSED = 2**30
+#: Largest decompressed size (bytes) of a compressed text file, and of the values it may hold as
+#: 8-byte numbers (lines x fields x 8); largest declared uncompressed size of the data read from
+#: a Parquet or Excel file, and of the values read from a Parquet file (rows x columns x 8):
+#: 256 MiB. Reading then takes at most a small multiple of it.
+MAX_DECOMPRESSED = 256 * 2**20
 COMPRESSION = (".gz", ".bz2", ".xz", ".zip", ".zst")
 _SEPARATORS = {",": "commas", ";": "semicolons", "\t": "tabs", r"\s+": "whitespace"}
 _SEP_NAMES = {",": ",", ";": ";", "tab": "\t", "\\t": "\t", "\t": "\t", "space": r"\s+",
@@ -114,78 +126,192 @@ def format_of(path: Path) -> str:
 
 
 def _too_big(path: Path, what: str) -> InputError:
-    return InputError(f"{path} {what} more than {MAX_DECOMPRESSED // 2**20} MiB, the limit of "
-                      "glstat fit for compressed input; decompress it first (uncompressed files "
-                      "have no limit), or fit a part of it")
+    return InputError(f"{path} {what} more than {_mib(MAX_DECOMPRESSED)}, the limit of glstat fit for "
+                      "compressed input; decompress it first (uncompressed files have no limit), or "
+                      "fit a part of it")
 
 
-def _capped_read(stream, path: Path) -> bytes:
-    data = stream.read(MAX_DECOMPRESSED + 1)
-    if len(data) > MAX_DECOMPRESSED:
-        raise _too_big(path, "decompresses to")
-    return data
+def _mib(nbytes: float) -> str:
+    if nbytes < 2**20:
+        return f"{nbytes / 2**10:.0f} KiB"
+    return f"{nbytes / 2**20:.0f} MiB" if nbytes < 2**30 else f"{nbytes / 2**30:.1f} GiB"
 
 
-def _zip_bytes(path: Path) -> bytes:
+def quoted(value: Any, limit: int = 200) -> str:
+    """``repr(value)`` for a message, shortened to about ``limit`` characters (with the length of
+    ``value``) when longer: a column name or an entry of a file may be megabytes long."""
+    if not isinstance(value, str):
+        text = repr(value)
+        return text if len(text) <= limit else f"{text[:limit - 40]}... ({len(text)} characters)"
+    if len(value) <= limit - 2:
+        return repr(value)
+    shown = repr(value[:limit - 40])
+    if len(shown) > limit - 38:  # escaped characters
+        shown = shown[:limit - 40]
+    return f"{shown}... ({len(value)} characters)"
+
+
+#: Columns named in a message at most.
+_LISTED = 20
+
+
+def _listing(names: list, limit: int = _LISTED) -> str:
+    """``'a', 'b', ...`` for a message: at most ``limit`` names, each shortened."""
+    parts = [quoted(c) for c in names[:limit]]
+    if len(names) > limit:
+        parts.append(f"... ({len(names) - limit} more)")
+    return ", ".join(parts)
+
+
+def _zip_member(archive: zipfile.ZipFile, path: Path) -> zipfile.ZipInfo:
     from contact.errors import TopographyFileError
     from contact.x3p import check_zip_member
 
-    with zipfile.ZipFile(path) as archive:
-        members = [i for i in archive.infolist() if not i.is_dir()]
-        if len(members) != 1:
-            raise InputError(f"{path} is a zip archive of {len(members)} files; it must hold exactly "
-                             "one data file")
-        info = members[0]
-        try:
-            check_zip_member(info, str(path), repr(info.filename), limit=MAX_DECOMPRESSED)
-        except TopographyFileError as exc:
-            raise InputError(str(exc)) from None
-        with archive.open(info) as f:
-            return _capped_read(f, path)
+    members = [i for i in archive.infolist() if not i.is_dir()]
+    if len(members) != 1:
+        raise InputError(f"{path} is a zip archive of {len(members)} files; it must hold exactly "
+                         "one data file")
+    info = members[0]
+    try:
+        check_zip_member(info, str(path), repr(info.filename), limit=MAX_DECOMPRESSED)
+    except TopographyFileError as exc:
+        raise InputError(str(exc)) from None
+    return info
 
 
-def _raw_text(path: Path) -> bytes:
-    """The bytes of a text file, decompressed (with the cap) when its name says so."""
+@contextlib.contextmanager
+def _text_stream(path: Path) -> Iterator[Any]:
+    """The bytes of a text file as a binary stream, decompressed when its name says so."""
     suffix = path.suffix.lower()
-    try:
-        if suffix == ".gz":
-            import gzip
+    if suffix == ".gz":
+        import gzip
 
-            with gzip.open(path, "rb") as f:
-                return _capped_read(f, path)
-        if suffix == ".bz2":
-            with bz2.open(path, "rb") as f:
-                return _capped_read(f, path)
-        if suffix == ".xz":
-            with lzma.open(path, "rb") as f:
-                return _capped_read(f, path)
-        if suffix == ".zip":
-            return _zip_bytes(path)
-        if suffix == ".zst":
+        with gzip.open(path, "rb") as f:
+            yield f
+    elif suffix == ".bz2":
+        with bz2.open(path, "rb") as f:
+            yield f
+    elif suffix == ".xz":
+        with lzma.open(path, "rb") as f:
+            yield f
+    elif suffix == ".zip":
+        with zipfile.ZipFile(path) as archive, archive.open(_zip_member(archive, path)) as f:
+            yield f
+    elif suffix == ".zst":
+        try:
+            import zstandard
+        except ImportError:
+            raise InputError(f"reading {path.name} needs the package 'zstandard' (pip install "
+                             "zstandard), or decompress the file first") from None
+        with open(path, "rb") as fh, zstandard.ZstdDecompressor().stream_reader(fh) as f:
+            yield f
+    else:
+        with open(path, "rb") as f:
+            yield f
+
+
+@dataclass
+class _Scan:
+    """What one pass over the bytes of a text file found (no more than ``_HEAD`` of them kept)."""
+
+    size: int = 0  # bytes (after decompression, without a UTF-8 byte order mark)
+    line_ends: int = 0  # line ends: at least the number of lines but one
+    head: bytes = b""  # the text from the first line holding a value on (whole lines)
+    encoding: str = "utf-8"  # or "latin-1" when the bytes are not UTF-8
+
+
+#: Bytes read at a time, and longest line (bytes) of a text file: a longer one is no table.
+_CHUNK = MAX_LINE = 2**20
+#: Most columns of a text file (pandas takes minutes and gigabytes for a few hundred thousand).
+MAX_COLUMNS = 10_000
+#: Bytes kept from the first line holding a value on, to find the separator and the header.
+_HEAD = MAX_LINE + 64 * 2**10
+_BOM = b"\xef\xbb\xbf"
+_BLANK_OR_HASH = b" \t\n\r\f\v#"
+#: The first character of a line that is neither blank nor a comment: a value (or a header);
+#: for lines ended by "\r" alone, the slower pattern.
+_DATA = re.compile(rb"(?m)^[ \t\f\v]*[^#\s]")
+_DATA_CR = re.compile(rb"(?:\A|(?<=\r))[ \t\f\v]*[^#\s]")
+
+
+def _scan_text(stream, path: Path, compressed: bool) -> _Scan:
+    """One pass over the bytes of a text file, a chunk at a time, refusing what is no table of
+    values: more than :data:`MAX_DECOMPRESSED` bytes decompressed, a NUL byte (binary data), a
+    line longer than :data:`MAX_LINE`, no line holding a value."""
+    scan = _Scan()
+    decoder = codecs.getincrementaldecoder("utf-8")()
+    head = bytearray()
+    found = in_comment = False  # a line holding a value seen; in a comment at the chunk's end
+    line_start = 0  # offset of the current line
+    n_lf = n_cr = 0
+    last = b""
+    while True:
+        chunk = stream.read(_CHUNK)
+        if not chunk:
+            break
+        if scan.size == 0 and chunk.startswith(_BOM):
+            chunk = chunk[len(_BOM):]
+        offset = scan.size
+        scan.size += len(chunk)
+        if compressed and scan.size > MAX_DECOMPRESSED:
+            if not found:
+                raise InputError(f"{path} decompresses to more than {_mib(MAX_DECOMPRESSED)}, the "
+                                 "limit of glstat fit for compressed input, and holds no value in "
+                                 "them (only blank or comment lines); give a file with one value "
+                                 "per line or a column of values")
+            raise _too_big(path, "decompresses to")
+        nul = chunk.find(b"\x00")
+        if nul >= 0:
+            raise InputError(f"{path} is not a text file (a NUL byte at byte {offset + nul}"
+                             f"{' of the decompressed data' if compressed else ''}); give a CSV, "
+                             "Parquet (.parquet), Excel (.xlsx), NumPy (.npy) or plain text file")
+        if scan.encoding == "utf-8":
             try:
-                import zstandard
-            except ImportError:
-                raise InputError(f"reading {path.name} needs the package 'zstandard' (pip install "
-                                 "zstandard), or decompress the file first") from None
-            with open(path, "rb") as fh, zstandard.ZstdDecompressor().stream_reader(fh) as f:
-                return _capped_read(f, path)
-        return path.read_bytes()
-    except InputError:
-        raise
-    except _READ_ERRORS as exc:
-        raise InputError(f"{path} could not be decompressed ({type(exc).__name__}: {exc}); the file "
-                         "is damaged or not compressed the way its name says") from None
-
-
-def _decode(raw: bytes, path: Path) -> str:
-    try:
-        return raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        if b"\x00" in raw[:4096]:
-            raise InputError(f"{path} is not a text file ({exc.reason} at byte {exc.start}); give a "
-                             "CSV, Parquet (.parquet), Excel (.xlsx), NumPy (.npy) or plain text "
-                             "file") from None
-        return raw.decode("latin-1")
+                decoder.decode(chunk)
+            except UnicodeDecodeError:
+                scan.encoding = "latin-1"
+        n_lf += chunk.count(b"\n")
+        n_cr += chunk.count(b"\r")
+        ends = [i for i in (chunk.find(b"\n"), chunk.find(b"\r")) if i >= 0]
+        line_end = offset + (min(ends) if ends else len(chunk))
+        if line_end - line_start > MAX_LINE:  # lines inside a chunk are shorter than it
+            raise InputError(f"{path} has a line longer than {_mib(MAX_LINE)} (from byte {line_start}"
+                             f"{' of the decompressed data' if compressed else ''}): not a table of "
+                             "values; give a file with one value per line or a column of values")
+        if ends:
+            line_start = offset + max(chunk.rfind(b"\n"), chunk.rfind(b"\r")) + 1
+        if not found:
+            pos = 0
+            if in_comment:  # the comment ends at the first line end
+                pos = min(ends) + 1 if ends else len(chunk)
+                in_comment = not ends
+            rest = chunk[pos:]
+            m = None
+            if rest.translate(None, _BLANK_OR_HASH):  # something else than blanks and '#'
+                m = (_DATA_CR if b"\r" in rest and b"\n" not in rest else _DATA).search(rest)
+            if m is not None:
+                found = True
+                head += rest[m.start():m.start() + _HEAD]
+            elif not in_comment:  # is the last line so far a comment?
+                in_comment = b"#" in chunk[max(0, line_start - offset):]
+        elif len(head) < _HEAD:
+            head += chunk[:_HEAD - len(head)]
+        last = chunk[-1:]
+    if scan.encoding == "utf-8":
+        try:
+            decoder.decode(b"", final=True)
+        except UnicodeDecodeError:
+            scan.encoding = "latin-1"
+    if not found:
+        raise InputError(f"{path} is empty (no values, only blank or comment lines); give a file with "
+                         "one value per line or a column of values")
+    scan.line_ends = max(n_lf, n_cr) + (last not in (b"\n", b"\r"))
+    if len(head) >= _HEAD:  # keep whole lines
+        cut = max(head.rfind(b"\n"), head.rfind(b"\r"))
+        if cut > 0:
+            del head[cut + 1:]
+    scan.head = bytes(head)
+    return scan
 
 
 # ---------------------------------------------------------------------------------------------
@@ -207,9 +333,11 @@ def _is_number(token: str, decimal: str = ".") -> bool:
 
 
 def _data_lines(text: str, limit: int = 50) -> list[str]:
+    """The first ``limit`` lines of ``text`` that hold something else than blanks and a comment
+    (read one at a time: never all the lines of a long text)."""
     out = []
-    for line in text.splitlines():
-        body = line.split("#", 1)[0].rstrip()
+    for m in re.finditer(r"[^\r\n]+", text):
+        body = m.group().split("#", 1)[0].rstrip()
         if body.strip():
             out.append(body)
             if len(out) >= limit:
@@ -255,36 +383,69 @@ def _mismatch(exc: Exception, path: Path, sep: str) -> InputError:
     return InputError(f"{path}: some rows have more fields than the header; {fix}")
 
 
+def _open_text(path: Path, compressed: bool, read, errors: tuple = ()):
+    """``read(stream)`` on the bytes of a text file; the errors of reading or decompressing the
+    file (and ``errors``) are the file's fault."""
+    errors = (*errors, OSError, EOFError, RuntimeError, NotImplementedError, zlib.error,
+              lzma.LZMAError, zipfile.BadZipFile)
+    if path.suffix.lower() == ".zst":
+        try:
+            import zstandard
+        except ImportError:
+            pass
+        else:
+            errors = (*errors, zstandard.ZstdError)
+    try:
+        with _text_stream(path) as f:
+            return read(f)
+    except InputError:
+        raise
+    except errors as exc:
+        what = "decompressed" if compressed else "read"
+        hint = "; the file is damaged or not compressed the way its name says" if compressed else ""
+        raise InputError(f"{path} could not be {what} ({type(exc).__name__}: {exc}){hint}") from None
+
+
 def _read_delimited(path: Path, fmt: str, sep: str | None, decimal: str,
                     notes: list[str]) -> pd.DataFrame:
     import pandas as pd
 
-    text = _decode(_raw_text(path), path)
-    if not _data_lines(text, 1):
-        raise InputError(f"{path} is empty (no values, only blank or comment lines); give a file with "
-                         "one value per line or a column of values")
+    compressed = path.suffix.lower() in COMPRESSION
+    scan = _open_text(path, compressed, lambda f: _scan_text(f, path, compressed), (ValueError,))
+    head = scan.head.decode(scan.encoding, errors="replace")
     if sep is None:
         default = {"csv": ",", "tsv": "\t"}.get(fmt, r"\s+")
-        sep = sniff_separator(text, decimal) or default
+        sep = sniff_separator(head, decimal) or default
         if sep != default:
             notes.append(f"fields separated by {_SEPARATORS[sep]} (found in the file; --sep to "
                          "choose another)")
+    first = _data_lines(head, 1)[0]
+    tokens = first.split() if sep == r"\s+" else first.split(sep)
+    if len(tokens) > MAX_COLUMNS:
+        raise InputError(f"{path} has {len(tokens)} fields in its first line (read as separated by "
+                         f"{_SEPARATORS[sep]}), more than the {MAX_COLUMNS} columns glstat fit reads; "
+                         "check the separator (--sep), or save the column to fit in a file of its own")
+    if compressed and scan.line_ends * len(tokens) * 8 > MAX_DECOMPRESSED:
+        # as many numbers as the decompressed text allows: 4 times its size for "1\n1\n..."
+        raise InputError(f"{path} decompresses to {scan.line_ends} lines of {len(tokens)} field(s): up "
+                         f"to {scan.line_ends * len(tokens)} values, "
+                         f"{_mib(8 * scan.line_ends * len(tokens))} as numbers, more than the "
+                         f"{_mib(MAX_DECOMPRESSED)} glstat fit holds for compressed input; decompress "
+                         "it first (uncompressed files have no limit), or fit a part of it")
     opts: dict[str, Any] = {"sep": sep, "comment": "#", "index_col": False, "decimal": decimal}
     if sep != r"\s+":
         opts["skipinitialspace"] = True
     if decimal == "." and int(pd.__version__.split(".")[0]) < 3:
         opts["float_precision"] = "round_trip"  # pandas 3 parses floats exactly by default
-    first = next(iter(_data_lines(text, 1)))
-    if sep == r"\s+":
-        tokens = first.split()
-    else:
-        tokens = first.split(sep)
     headerless = all(_is_number(t, decimal) for t in tokens)
     try:
         with warnings.catch_warnings():
             # rows longer than the header: an error, not a silent loss of fields
             warnings.simplefilter("error", pd.errors.ParserWarning)
-            df = pd.read_csv(io.StringIO(text), header=None if headerless else 0, **opts)
+            # numbers and text in one column: said when the column is used
+            warnings.simplefilter("ignore", pd.errors.DtypeWarning)
+            df = _open_text(path, compressed, lambda f: pd.read_csv(
+                f, header=None if headerless else 0, encoding=scan.encoding, **opts))
     except pd.errors.ParserWarning as exc:
         raise _mismatch(exc, path, sep) from None
     except pd.errors.EmptyDataError:
@@ -353,10 +514,15 @@ def _read_parquet(path: Path, column: str | None) -> pd.DataFrame:
                 chunk = rg.column(c)
                 if chunk.path_in_schema in wanted:
                     size += int(chunk.total_uncompressed_size)
-        if size > MAX_DECOMPRESSED:
-            raise InputError(f"{path} declares {size} bytes of uncompressed data in the column(s) read, "
-                             f"more than the {MAX_DECOMPRESSED // 2**20} MiB glstat fit reads from "
-                             "Parquet; choose one column with --column, or fit a part of the data")
+        values = meta.num_rows * len(wanted)
+        if size > MAX_DECOMPRESSED or 8 * values > MAX_DECOMPRESSED:
+            what = (f"{size} bytes of uncompressed data" if size > MAX_DECOMPRESSED else
+                    f"{meta.num_rows} rows x {len(wanted)} column(s) = {values} values "
+                    f"({_mib(8 * values)} as 8-byte numbers)")
+            raise InputError(f"{path} declares {what} in the column(s) read, more than the "
+                             f"{_mib(MAX_DECOMPRESSED)} glstat fit reads from Parquet; choose one "
+                             "column with --column, or fit a part of the rows (a .npy or an "
+                             "uncompressed CSV file has no limit)")
         df = pd.read_parquet(path, engine="pyarrow", columns=wanted)
     except InputError:
         raise
@@ -461,16 +627,24 @@ def _numeric(series) -> bool:
 
 
 def describe_columns(df) -> str:
-    """The columns of ``df`` as ``'a', 'b' (not numeric)``."""
+    """The columns of ``df`` as ``'a', 'b' (not numeric)`` (the first 20, names shortened)."""
     parts = []
-    for c in df.columns:
-        parts.append(f"{c!r}" + ("" if _numeric(df[c]) else " (not numeric)"))
+    for c in list(df.columns)[:_LISTED]:
+        parts.append(quoted(c) + ("" if _numeric(df[c]) else " (not numeric)"))
+    if df.shape[1] > _LISTED:
+        parts.append(f"... ({df.shape[1] - _LISTED} more)")
     return ", ".join(parts)
 
 
 def _decimal_comma_column(series) -> bool:
-    values = series.dropna().astype(str)
-    return bool(values.size) and bool(values.map(lambda v: bool(_DECIMAL_COMMA.match(v))).all()) \
+    values = series.dropna()
+    if not values.size:
+        return False
+    first = values.iloc[:1000].astype(str)  # a column of text is told at once, not entry by entry
+    if not first.map(lambda v: bool(_DECIMAL_COMMA.match(v))).all():
+        return False
+    values = values.astype(str)
+    return bool(values.map(lambda v: bool(_DECIMAL_COMMA.match(v))).all()) \
         and bool(values.str.contains(",").any())
 
 
@@ -485,7 +659,7 @@ def _select_column(df, column: str | None, path: Path, fmt: str) -> tuple[str, A
         if stripped.isdigit() and 1 <= int(stripped) <= len(names):
             name = names[int(stripped) - 1]
             return name, df[name]
-        raise InputError(f"column {column!r} not found in {path}; available columns: "
+        raise InputError(f"column {quoted(column)} not found in {path}; available columns: "
                          f"{describe_columns(df)} (or a 1-based position 1..{len(names)})")
     numeric = [c for c in names if _numeric(df[c])]
     if len(numeric) == 1:
@@ -493,8 +667,12 @@ def _select_column(df, column: str | None, path: Path, fmt: str) -> tuple[str, A
     if not numeric and len(names) == 1 and fmt not in ("npy", "parquet", "excel"):
         import pandas as pd
 
-        if pd.to_numeric(df[names[0]], errors="coerce").notna().any():
-            return names[0], df[names[0]]  # mostly numbers: say which entries are not
+        col = df[names[0]]
+        # numbers among the entries: say which entries are not (a long column of text is told
+        # from its first entries: converting every one takes a minute per 50 million)
+        if pd.to_numeric(col.iloc[:10_000], errors="coerce").notna().any() or (
+                len(col) <= 100_000 and pd.to_numeric(col, errors="coerce").notna().any()):
+            return names[0], col
     if not numeric:
         hint = ("save the values as numbers (e.g. numpy.asarray(values, dtype=float))"
                 if fmt in ("npy", "parquet", "excel") else
@@ -502,9 +680,9 @@ def _select_column(df, column: str | None, path: Path, fmt: str) -> tuple[str, A
                 "with --column")
         raise InputError(f"{path} has no numeric column (columns: {describe_columns(df)}); the values "
                          f"to fit must be numbers - {hint}")
-    listed = ", ".join(repr(c) for c in numeric)
-    raise InputError(f"{path} has {len(numeric)} numeric columns ({listed}); choose the one to fit "
-                     f"with --column, e.g. --column {numeric[-1]}")
+    example = numeric[-1] if len(str(numeric[-1])) <= 60 else names.index(numeric[-1]) + 1
+    raise InputError(f"{path} has {len(numeric)} numeric columns ({_listing(numeric)}); choose the one "
+                     f"to fit with --column, e.g. --column {example}")
 
 
 def _to_float(series, name: str, path: Path, df) -> np.ndarray:
@@ -513,27 +691,41 @@ def _to_float(series, name: str, path: Path, df) -> np.ndarray:
     if _numeric(series):
         return series.to_numpy(dtype=float, na_value=np.nan)
     if pd.api.types.is_bool_dtype(series):
-        raise InputError(f"column {name!r} in {path} holds true/false values, not numbers; choose a "
+        raise InputError(f"column {quoted(name)} in {path} holds true/false values, not numbers; choose a "
                          f"numeric column (columns: {describe_columns(df)})")
     if pd.api.types.is_complex_dtype(series):
-        raise InputError(f"column {name!r} in {path} holds complex numbers; fit a real quantity")
+        raise InputError(f"column {quoted(name)} in {path} holds complex numbers; fit a real quantity")
     if pd.api.types.is_datetime64_any_dtype(series) or pd.api.types.is_timedelta64_dtype(series):
-        raise InputError(f"column {name!r} in {path} holds dates or times, not numbers; choose a "
+        raise InputError(f"column {quoted(name)} in {path} holds dates or times, not numbers; choose a "
                          f"numeric column (columns: {describe_columns(df)})")
-    text = series.astype("string")
-    underscore = text.str.contains("_", regex=False).fillna(False).to_numpy(dtype=bool)
-    coerced = pd.to_numeric(series.where(~underscore), errors="coerce")
-    bad = coerced.isna().to_numpy() & series.notna().to_numpy()
+    # a million entries at a time: converting text makes a Python object of every entry
+    step = 1_000_000
+    coerced = np.empty(len(series))
+    stopped = False
+    for start in range(0, len(series), step):
+        part = series.iloc[start:start + step]
+        underscore = part.astype("string").str.contains("_", regex=False).fillna(False)
+        coerced[start:start + step] = pd.to_numeric(part.where(~underscore.to_numpy(dtype=bool)),
+                                                    errors="coerce").to_numpy(dtype=float,
+                                                                              na_value=np.nan)
+        if start == 0 and len(series) > step and np.isnan(coerced[:step]).all() \
+                and part.notna().any():
+            stopped = True  # a long column of text: say so now, not after a minute
+            break
+    n = step if stopped else len(series)
+    bad = np.isnan(coerced[:n]) & series.iloc[:n].notna().to_numpy()
     nbad = int(bad.sum())
     if nbad:
         row = int(np.flatnonzero(bad)[0])
         value = series.iloc[row]
         numeric = [c for c in df.columns if _numeric(df[c])]
-        hint = (f"choose a numeric column ({', '.join(repr(c) for c in numeric)}) with --column"
+        hint = (f"choose a numeric column ({_listing(numeric)}) with --column"
                 if numeric else "clean the file so that the column holds only numbers")
-        raise InputError(f"column {name!r} in {path} is not numeric: {nbad} of {len(series)} entries are "
-                         f"not numbers (first: {value!r} in data row {row + 1}); {hint}")
-    return coerced.to_numpy(dtype=float, na_value=np.nan)
+        count = (f"none of its first {step} entries (of {len(series)}) is a number" if stopped
+                 else f"{nbad} of {len(series)} entries are not numbers")
+        raise InputError(f"column {quoted(name)} in {path} is not numeric: {count} (first: "
+                         f"{quoted(value)} in data row {row + 1}); {hint}")
+    return coerced
 
 
 def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "raise", *,
@@ -573,7 +765,7 @@ def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "
         raise InputError(f"--decimal must be '.' or ',', got {decimal!r}")
     if sep is not None:
         if sep not in _SEP_NAMES:
-            raise InputError(f"--sep must be one of ',', ';', 'tab' or 'space', got {sep!r}")
+            raise InputError(f"--sep must be one of ',', ';', 'tab' or 'space', got {quoted(sep)}")
         sep = _SEP_NAMES[sep]
         if sep == "," and decimal == ",":
             raise InputError("--sep , and --decimal , cannot both be commas; decimal commas come with "
@@ -620,14 +812,14 @@ def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "
     inf = np.isinf(values)
     n_nan, n_inf = int(nan.sum()), int(inf.sum())
     if n_nan + n_inf == values.size:
-        raise InputError(f"column {name!r} in {path} holds no finite value ({values.size} entries, all "
+        raise InputError(f"column {quoted(name)} in {path} holds no finite value ({values.size} entries, all "
                          "missing, NaN or infinite); choose another column or fix the file")
     if n_nan + n_inf:
         first = int(np.flatnonzero(nan | inf)[0]) + 1
         kinds = " and ".join(p for p in (f"{n_nan} missing/NaN" if n_nan else "",
                                          f"{n_inf} infinite" if n_inf else "") if p)
         if nan_policy == "raise":
-            raise InputError(f"column {name!r} in {path} has {kinds} value(s) out of {values.size} "
+            raise InputError(f"column {quoted(name)} in {path} has {kinds} value(s) out of {values.size} "
                              f"(first in data row {first}); they are refused (--nan-policy raise). Remove "
                              "them from the file, or pass --nan-policy omit to drop them")
         values = values[~(nan | inf)]
