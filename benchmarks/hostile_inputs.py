@@ -316,8 +316,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--keep", help="write the corpus to this folder and keep it")
     p.add_argument("--max-mb", type=float, default=200.0, help="peak memory counted as a blow-up")
     p.add_argument("--max-seconds", type=float, default=10.0, help="time counted as a blow-up")
-    p.add_argument("--cap-mb", type=int, default=64,
-                   help="decompression cap of glstat fit during the run (MiB; 1024 by default in use)")
+    p.add_argument("--cap-mb", type=int, default=256,
+                   help="decompression cap of glstat fit during the run (MiB; default the "
+                        "shipped 256)")
     args = p.parse_args(argv)
     tmp = None
     if args.keep:
