@@ -74,9 +74,15 @@ def make_executor(workers: int | None = None, scheduler: str | None = None,
     if n == 1:
         serial = SerialExecutor()
         return serial, serial.shutdown
+    import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
-    pool = ProcessPoolExecutor(n, initializer=_init_worker, initargs=(os.getpid(),))
+    # the workers are the campaign's own children, so that each can watch its parent: fork
+    # on Linux, also where a later Python defaults to forkserver (whose workers are the
+    # server's children); Python's default elsewhere
+    context = multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
+    pool = ProcessPoolExecutor(n, mp_context=context, initializer=_init_worker,
+                               initargs=(os.getpid(),))
     return pool, lambda: pool.shutdown(cancel_futures=True)
 
 
