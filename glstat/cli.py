@@ -379,8 +379,9 @@ def _run_locked(args, argv: list[str], settings, asettings, out: str):
     from .study.campaign import lock_directory, make_executor
 
     shutdown = None
+    quiet = _QuietDaskLogs() if args.scheduler else contextlib.nullcontext()
     try:
-        with lock_directory(out, wait=args.wait, on_wait=lambda holder: print(
+        with quiet, lock_directory(out, wait=args.wait, on_wait=lambda holder: print(
                 f"glstat study: waiting for the campaign running in {out} ({holder})",
                 file=sys.stderr, flush=True)):
             note = compile_note()
@@ -402,6 +403,28 @@ def _run_locked(args, argv: list[str], settings, asettings, out: str):
     finally:
         if shutdown is not None:
             shutdown()
+
+
+class _QuietDaskLogs:
+    """While ``glstat study --scheduler`` runs, Dask's and tornado's loggers keep to their
+    critical messages: a lost scheduler is reported once, in the command's own words, not
+    as pages of connection tracebacks. The levels are restored afterwards."""
+
+    NAMES = ("distributed", "tornado")
+
+    def __enter__(self):
+        import logging
+
+        self._levels = {n: logging.getLogger(n).level for n in self.NAMES}
+        for n in self.NAMES:
+            logging.getLogger(n).setLevel(logging.CRITICAL)
+        return self
+
+    def __exit__(self, *exc) -> None:
+        import logging
+
+        for n, level in self._levels.items():
+            logging.getLogger(n).setLevel(level)
 
 
 def _phases(timings: dict) -> list[tuple[str, float]]:

@@ -56,3 +56,14 @@ def test_quiet_silences_warnings_and_logs_and_restores_them():
         warnings.warn("shown", UserWarning, stacklevel=1)
     assert [str(w.message) for w in caught] == ["shown"]
     assert (logging.getLogger("glstat").level, os.environ.get("TQDM_DISABLE")) == before
+
+
+def test_dask_logs_are_quiet_during_a_scheduler_run_and_restored_after():
+    import logging
+
+    from glstat.cli import _QuietDaskLogs
+
+    before = {n: logging.getLogger(n).level for n in ("distributed", "tornado")}
+    with _QuietDaskLogs():
+        assert all(logging.getLogger(n).level == logging.CRITICAL for n in before)
+    assert {n: logging.getLogger(n).level for n in before} == before
