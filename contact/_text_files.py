@@ -112,7 +112,8 @@ class _Rows:
     def flush(self) -> None:
         if not self.lines:
             return
-        bad = next((ln for ln, body in self.lines if "_" in body), None)
+        # '_' separators and non-ASCII digits (float() reads '١' as 1) are not plain numbers
+        bad = next((ln for ln, body in self.lines if "_" in body or not body.isascii()), None)
         values = None
         if bad is None:
             try:
@@ -122,7 +123,7 @@ class _Rows:
         if values is None:
             for lineno, body in self.lines:
                 try:
-                    if "_" in body:
+                    if "_" in body or not body.isascii():
                         raise ValueError(body)
                     [float(t) for t in body.split(self.delimiter)]
                 except ValueError:

@@ -229,3 +229,12 @@ def test_environment_is_not_changed_by_import():
                          env=env, cwd=Path(__file__).resolve().parents[1])
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "[]"
+
+
+def test_non_ascii_digits_are_not_numbers_in_text_grids(tmp_path):
+    import contact
+
+    path = tmp_path / "arabic.txt"
+    path.write_text("# dx = 1e-6\n1 2 3\n4 \u0661 6\n7 8 9\n", encoding="utf-8")
+    with pytest.raises(contact.TopographyFileError, match=r"line 3 holds a non-number"):
+        contact.read(path)
