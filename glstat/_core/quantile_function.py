@@ -850,16 +850,62 @@ def _ratio_dd(num, den):
 
 
 @njit(cache=True, error_model="numpy")
+def _omega_log(z):
+    """log W(e^z) (W: the Lambert function), the y with e^y + y = z, for finite z.
+
+    Newton from the right of the root (y = z for z <= 1; log z above, the root being
+    log(z - y) < log z) on the convex e^y + y - z decreases monotonically to it."""
+    if z < -700.0:
+        return z - math.exp(z)
+    y = z if z <= 1.0 else math.log(z)
+    for _ in range(60):
+        ey = math.exp(y)
+        y_new = y - (ey + y - z) / (ey + 1.0)
+        if not y_new < y:
+            break
+        y = y_new
+    return y
+
+
+@njit(cache=True, error_model="numpy")
 def _linear_root(pc_hi, pc_lo, rc, w_hi, w_lo):
     """Root t = log p of P t - R log1p(-e^t) = w (P = pc_hi + pc_lo >= 0, R >= 0, t <= -ln 2
-    expected), returned as (p, t_hi + t_lo) with a final double-double correction."""
+    expected), returned as (p, t_hi + t_lo, status) with a final double-double correction;
+    status is 1 when the iteration limit was reached.
+
+    Newton in t converges monotonically from the right of the root (the left-hand side is
+    convex and increasing in t), but where R p dominates P it moves by about 1 per step, so
+    it starts at the root of P t + R p = w (-log1p(-p) = p to a factor 1.39 for p <= 1/2,
+    which puts that root at most 0.33 to the right of the exact one): with q = (R/P) p,
+    q + log q = z = w/P + log(R/P), so q = W(e^z) and t = w/P - q = log(P/R) + log q. This
+    is w/P where the P t term carries the equation and log(w/R) where the R term does (the
+    single-term roots), and joins them where the two terms nearly cancel.
+    """
     if pc_hi == 0.0:
         # no p-dependent term on this side but (1-p): -R log1p(-p) = w
         if not w_hi > 0.0:
-            return 0.0, -math.inf
+            return 0.0, -math.inf, 0
         p = -math.expm1(-(w_hi + w_lo) / rc)
-        return p, math.log(p)
-    t = min(w_hi / pc_hi, -LN2)
+        return p, math.log(p), 0
+    r = w_hi / pc_hi
+    if rc == 0.0 or r == -math.inf:
+        t = r
+    else:
+        z = r + (math.log(rc) - math.log(pc_hi))
+        if z == math.inf:
+            # w/P overflows: the R term alone
+            t = math.log(-math.expm1(-w_hi / rc))
+        else:
+            y = _omega_log(z)
+            if y < 0.0:
+                t = r - math.exp(y)
+            else:
+                t = (math.log(pc_hi) - math.log(rc)) + y
+    if not t > -math.inf:
+        # p = 0 with t below the double range: no finite root
+        return 0.0, -math.inf, 0
+    t = min(t, -LN2)
+    status = 1
     for _ in range(200):
         p = math.exp(t)
         l1 = math.log1p(-p)
@@ -870,6 +916,7 @@ def _linear_root(pc_hi, pc_lo, rc, w_hi, w_lo):
             t_new = -LN2
         if abs(t_new - t) <= 2.0 * EPS * max(1.0, abs(t)):
             t = t_new
+            status = 0
             break
         t = t_new
     p = math.exp(t)
@@ -878,7 +925,10 @@ def _linear_root(pc_hi, pc_lo, rc, w_hi, w_lo):
     g = ((m_hi - w_hi) + (m_lo + pc_lo * t - w_lo)) - rc * l1
     dg = pc_hi + rc * p / (1.0 - p)
     d = -g / dg
-    return p * math.exp(d), t + d
+    if p == 0.0:
+        # t below -745: d is of order |t| eps, whose exponential may overflow (0 * inf)
+        return 0.0, t + d, status
+    return p * math.exp(d), t + d, status
 
 
 @njit(cache=True, error_model="numpy")
@@ -887,15 +937,16 @@ def rs_tiny_point(what, a, b, x, loc, inv_scale):
 
     Q = c (A log u - B log(1-u)) with c = max(|a|, |b|), A = |a|/c, B = |b|/c, so the point
     is standardized by inv_scale/c (a double-double, exact for subnormal shapes and scales)
-    instead of forming the tiny, possibly subnormal Q. Returns NaN when the point lies
-    outside the linear regime (|a log p| >= 1e-17 at the root), for the general solver.
+    instead of forming the tiny, possibly subnormal Q. Returns (value, status), status 1
+    where the iteration limit was reached; the value is NaN when the point lies outside the
+    linear regime (|a log p| >= 1e-17 at the root), for the general solver.
     """
     c = max(abs(a), abs(b))
     ah, al = _ratio_dd(abs(a), c)
     bh, bl = _ratio_dd(abs(b), c)
     d_hi, d_lo = two_sum(x, -loc)
     if not math.isfinite(d_hi):
-        return math.nan
+        return math.nan, 0
     # v = d * inv_scale / c through the binary mantissas: neither inv_scale/c nor the
     # standardized point d * inv_scale (subnormal for subnormal scales) is ever formed
     r_hi, r_lo = _ratio_dd(math.frexp(inv_scale)[0], math.frexp(c)[0])
@@ -910,32 +961,32 @@ def rs_tiny_point(what, a, b, x, loc, inv_scale):
         v_hi = math.ldexp(v_hi, ed + ex)
         v_lo = math.ldexp(v_lo, ed + ex)
     if not math.isfinite(v_hi):
-        return math.nan
+        return math.nan, 0
     lr = math.log(r_hi) + r_lo / r_hi + ex * LN2  # log(inv_scale / c)
     r_hi = math.ldexp(r_hi, ex)
     upper = v_hi > (bh - ah) * LN2
     if upper:
-        p, t = _linear_root(bh, bl, ah, -v_hi, -v_lo)
+        p, t, st = _linear_root(bh, bl, ah, -v_hi, -v_lo)
         pc = bh
         rc = ah
     else:
-        p, t = _linear_root(ah, al, bh, v_hi, v_lo)
+        p, t, st = _linear_root(ah, al, bh, v_hi, v_lo)
         pc = ah
         rc = bh
     if not (c * abs(t) < 1e-17):
-        return math.nan
+        return math.nan, 0
     if what <= 3:
         want_small = (what == 0 or what == 2) != upper
         if what < 2:
-            return p if want_small else 1.0 - p
-        return t if want_small else math.log1p(-p)
+            return (p if want_small else 1.0 - p), st
+        return (t if want_small else math.log1p(-p)), st
     # f = (inv_scale/c) / (P/p + R/(1-p)) = r p / (P + R p/(1-p))
     if t == -math.inf:
-        return 0.0 if what == 4 else -math.inf
+        return (0.0 if what == 4 else -math.inf), st
     lq = math.log(pc + rc * p / (1.0 - p)) - t
     if what == 5:
-        return lr - lq
-    return _scaled_exp(lq, r_hi, lr)
+        return lr - lq, st
+    return _scaled_exp(lq, r_hi, lr), st
 
 
 # what = 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf
@@ -960,9 +1011,10 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
             out[i] = math.nan
             continue
         if rs_tiny(fam, ai, bi) and math.isfinite(y[i]):
-            v = rs_tiny_point(what, ai, bi, y[i], loc, inv_scale)
+            v, st = rs_tiny_point(what, ai, bi, y[i], loc, inv_scale)
             if v == v:
                 out[i] = v
+                status[i] = st
                 continue
         if yi == -math.inf or yi == math.inf:
             if math.isfinite(y[i]):

@@ -47,11 +47,12 @@ def _log_qprime_ref(fam, a, b, p):
         return mp.log(s * (a * p ** (a - 1) + b * (1 - p) ** (b - 1)))
 
 
-def _check_cdf(fam, a, b, x, tol=1e-13, loc=0.0, l2=1.0, g=None):
+def _check_cdf(fam, a, b, x, tol=1e-13, loc=0.0, l2=1.0, g=None, dps=None):
     """The smaller tail probability at x against mpmath (and log f); returns the relative
-    error. Shapes of very different magnitude get a reference at 340 digits."""
+    error. Shapes of very different magnitude get a reference at 340 digits (or ``dps``)."""
     lo, hi = sorted((abs(a), abs(b)))
-    dps = 340 if (0 < lo < 1e-15 and hi > 1.0) else 40
+    if dps is None:
+        dps = 340 if (0 < lo < 1e-15 and hi > 1.0) else 40
     with mp.workdps(40):
         y = (mp.mpf(x) - mp.mpf(loc)) * abs(mp.mpf(l2))
     p, upper = tail_probability(fam, a, b, y, dps=dps)
@@ -257,6 +258,61 @@ def test_tiny_and_subnormal_shapes(fam, a, b):
                 _check_cdf(fam, a, b, x)
 
 
+# RS shapes below 1e-20 of very different size (regions 3 and 4): the linear regime's root
+# in log p where the two terms of Q nearly cancel or the larger shape's term alone carries it
+TINY_UNEQUAL = [(RS, 1e-300, 1e-30), (RS, 1e-30, 1e-300), (RS, 1e-300, 1e-21),
+                (RS, -1e-300, -1e-30), (RS, -1e-30, -1e-300), (RS, 1e-300, 9e-21),
+                (RS, 1e-300, 1e-150), (RS, 5e-324, 1e-21)]
+UNEQUAL_TAILS = [1e-300, 1e-280, 1e-268, 1e-267, 1e-260, 1e-200, 1e-100, 1e-20, 1e-5, 0.01, 0.2,
+                 0.45, 0.5]
+
+
+def _check_four(fam, a, b, x, g, dps=60):
+    """cdf, sf, logcdf and logsf of ``g`` at x within 1e-13 of mpmath at ``dps`` digits (and
+    logpdf, through `_check_cdf`); returns the worst relative error."""
+    err = _check_cdf(fam, a, b, x, loc=g.lambdas[0], l2=g.lambdas[1], g=g, dps=dps)
+    with mp.workdps(dps):
+        y = (mp.mpf(x) - mp.mpf(g.lambdas[0])) * abs(mp.mpf(g.lambdas[1]))
+    p, upper = tail_probability(fam, a, b, y, dps=dps)
+    with mp.workdps(dps):
+        big = (g.cdf(x), g.logcdf(x)) if upper else (g.sf(x), g.logsf(x))
+        for got, ref in zip(big, (1 - p, mp.log1p(-p)), strict=True):
+            e = float(abs(got - ref) / abs(ref)) if ref != 0 else float(abs(got))
+            assert e <= 1e-13, (a, b, x, got, ref)
+            err = max(err, e)
+    return err
+
+
+@pytest.mark.parametrize("fam,a,b", TINY_UNEQUAL)
+def test_tiny_shapes_of_very_different_size(fam, a, b):
+    """GLD(0, +-1, a, b) (lambda2 < 0 in region 4) at Q(u) and Q(1 - u) for u from 1e-300 to
+    1/2: cdf, sf, logcdf, logsf within 1e-13 of a 60-digit mpmath reference, no warning.
+    Before, RS(1e-300, 1e-30) gave cdf(1e-230) = 4.3e-88 where F = 1e-200."""
+    g = glstat.GLD(0.0, 1.0 if a >= 0 else -1.0, a, b)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for u in UNEQUAL_TAILS:
+            for upper in (False, True):
+                x = g.isf(u) if upper else g.ppf(u)
+                _check_four(fam, a, b, x, g)
+        if (a, b) == (1e-300, 1e-30):
+            assert g.cdf(1e-230) == pytest.approx(1e-200, rel=1e-13)
+
+
+def test_tiny_shapes_far_in_the_tail_where_p_underflows():
+    """RS(1e-300, 1e-100) at x = -1e-230: log F = -1e70 (the lambda3 term alone), F = 0,
+    S = 1; not NaN (the final correction of log p is of order |log p| eps there)."""
+    for g, x in ((glstat.GLD(0.0, 1.0, 1e-300, 1e-100), -1e-230),
+                 (glstat.GLD(0.0, -1.0, -1e-100, -1e-300), 1e-230)):
+        lower = x < 0
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            small = (g.cdf(x), g.logcdf(x)) if lower else (g.sf(x), g.logsf(x))
+            big = (g.sf(x), g.logsf(x)) if lower else (g.cdf(x), g.logcdf(x))
+        assert small[0] == 0.0 and big == (1.0, 0.0)
+        assert small[1] == pytest.approx(-1e70, rel=1e-15)
+
+
 def test_tiny_shapes_are_continuous_with_lambda_zero():
     """FKML(lam, lam) -> the logistic and RS(lam, lam) with lambda2 = lam -> the logistic,
     with errors of order lam, down to the smallest subnormal."""
@@ -420,8 +476,19 @@ def sweep_table():
     rows.append(("both shapes large (FKML, RS region 3)", "λ from 30 to 1e4, equal and unequal; "
                  "u from 1e-300 to 1 - 1e-300", PPF_NOTE.format(wc, wq)))
     wc, wq = _worst_cdf_ppf(TINY)
+    for fam, a, b in TINY_UNEQUAL:
+        g = glstat.GLD(0.0, 1.0 if a >= 0 else -1.0, a, b)
+        for u in UNEQUAL_TAILS:
+            for upper in (False, True):
+                x = g.isf(u) if upper else g.ppf(u)
+                q = _q_ref(fam, a, b, u, upper)
+                if abs(q) >= 1e-300:
+                    wq = max(wq, float(abs(x - q) / abs(q)))
+                wc = max(wc, _check_four(fam, a, b, x, g))
     rows.append(("tiny and subnormal shapes", "\\|λ\\| from 1e-15 down to 5e-324, RS and FKML; "
-                 "u from 1e-300 to 1 - 1e-300", PPF_NOTE.format(wc, wq)))
+                 "RS with one shape 1e-300 or 5e-324 and the other from 1e-150 to 9e-21 (region 4 "
+                 "and the swapped order with 1e-300 and 1e-30); u from 1e-300 to 1 - 1e-300",
+                 PPF_NOTE.format(wc, wq)))
     worst = 0.0
     for lambdas, param in [((0.0, 1e300, 0.5, 2.0), "rs"), ((0.0, 1e-200, 0.5, 2.0), "rs"),
                            ((3.0, 1e-300, 2.0, 0.25), "rs"), ((1e155, 1e-160, 0.5, 2.0), "rs"),
