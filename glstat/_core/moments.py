@@ -19,7 +19,7 @@ from numba import njit
 
 from .double_double import EPS
 from .elementary import softplus
-from .quantile_function import LN2, RS, log_qprime_lower, q_lower, rs_sign, rs_tiny
+from .quantile_function import LN2, RS, q_lower, rs_sign, rs_tiny
 
 # tanh-sinh nodes on (0, 1) in log space
 _H = 1.0 / 32.0
@@ -399,9 +399,14 @@ def _entropy_sum(ca, am1, cb, bm1):
         if not length > 0.0:
             continue
         ll = math.log(length)
-        # which term dominates: the sign of g in the middle of the piece
-        um = u0 + 0.5 * length
-        gm = _gap(ca, am1, cb, bm1, math.log(um), math.log1p(-um))
+        # which term dominates: the sign of g in the middle of the piece (taken from the
+        # nearer end, so that neither u nor 1 - u rounds to 0 next to 1)
+        if u1 <= 0.5:
+            um = u0 + 0.5 * length
+            gm = _gap(ca, am1, cb, bm1, math.log(um), math.log1p(-um))
+        else:
+            cm = c1 + 0.5 * length
+            gm = _gap(ca, am1, cb, bm1, math.log1p(-cm), math.log(cm))
         # log(A + B) = log(dominant) + log1p(e^(-g) or e^g): signed, so that a split a few
         # ulps off the crossing costs nothing
         sg = 1.0 if gm >= 0.0 else -1.0
@@ -425,34 +430,151 @@ def _entropy_sum(ca, am1, cb, bm1):
 
 
 @njit(cache=True, error_model="numpy")
-def entropy_std(fam, a, b):
-    """Differential entropy int_0^1 log Q'(u) du of the standardized GLD."""
-    if fam == RS:
-        if (a >= 0.0 and b >= 0.0) or (a <= 0.0 and b <= 0.0):
-            # Q' = |a| u^(a-1) + |b| (1-u)^(b-1): a sum of positive terms
-            if a == 0.0:
-                return math.log(abs(b)) - (b - 1.0)
-            if b == 0.0:
-                return math.log(abs(a)) - (a - 1.0)
-            return _entropy_sum(math.log(abs(a)), a - 1.0, math.log(abs(b)), b - 1.0)
-    else:
-        return _entropy_sum(0.0, a - 1.0, 0.0, b - 1.0)
-    # RS regions 1, 2, 5, 6: Q' is a difference of two terms; tanh-sinh on (0, 1)
+def _psi(x, lx):
+    """x - log1p(x) >= 0 for x > -1, given lx = log1p(x); a series near 0, where the
+    difference would cancel."""
+    if abs(x) > 0.25:
+        return x - lx
+    s = 0.0
+    xk = x * x
+    for k in range(2, 60):
+        term = xk / k
+        s += term
+        if abs(term) <= 1e-17 * s:
+            break
+        xk *= -x
+    return s
+
+
+@njit(cache=True, error_model="numpy")
+def _log1mexp(g):
+    """log(1 - e^-g) for g > 0."""
+    if g < LN2:
+        return math.log(-math.expm1(-g))
+    return math.log1p(-math.exp(-g))
+
+
+_PANEL_RATIO = 4.0  # geometric growth of the panels away from the minimum of the gap
+
+
+@njit(cache=True, error_model="numpy")
+def _entropy_gap_side(a, b, lus, l1us, gs, delta, side):
+    """int log(1 - e^-g(u)) du over [0, u*] (side -1) or [u*, 1] (side +1), where
+    g = log A - log B >= 0 for A = |a| u^(a-1), B = b (1-u)^(b-1) (a < 0 < b), and u* is
+    the minimum of g, g* = g(u*).
+
+    Around u*, g - g* = (1-a) psi(x) + (b-1) psi(y) with x = u/u* - 1, y = (1-u)/(1-u*) - 1
+    and psi(x) = x - log1p(x): two nonnegative terms (the linear parts cancel since
+    g'(u*) = 0), so g is accurate however small g - g* is. Near the region boundary g* -> 0
+    and the integrand has a logarithmic peak of width delta at u*: panels at distances
+    delta * 4^k from u* (up to half of the side) keep every singularity of the integrand
+    a fixed fraction of a panel's width away, and tanh-sinh on each converges fully.
+    """
+    us = math.exp(lus)
+    cs = math.exp(l1us)
+    length = us if side < 0 else cs  # the side's length
+    lfar = lus if side < 0 else l1us
     total = 0.0
-    for j in range(_LOGU.shape[0]):
-        w = math.exp(_LOGW[j])
-        if w == 0.0:
-            # node beyond the double range: log Q' may be -inf there, and the
-            # contribution (of order u log u) is below every representable weight
-            continue
-        lu = _LOGU[j]
-        l1 = _LOG1MU[j]
-        if lu <= l1:
-            lq = log_qprime_lower(fam, a, b, lu, l1)
-        else:
-            lq = log_qprime_lower(fam, b, a, l1, lu)
-        total += lq * w
+    p = 0.0
+    q = length if delta >= 0.5 * length else delta
+    while True:
+        last = q >= length
+        if last:
+            q = length
+        ll = math.log(q - p)
+        for j in range(_LOGU.shape[0]):
+            lw = _LOGW[j] + ll
+            if lw < -745.0:
+                continue
+            d = p + math.exp(_LOGU[j] + ll)  # distance from u*
+            if last:
+                lf = _LOG1MU[j] + ll - lfar  # log of (distance to the far end) / length
+                fx = math.expm1(lf)
+            else:
+                fx = -d / length
+                lf = math.log1p(fx)
+            # near side: the ratio of u (or 1 - u) to its value at u*, away from the far end
+            if b == 1.0:
+                # u* = 1 is an end point, not a stationary point: g = g* - (1-a) log u
+                g = gs - (1.0 - a) * lf
+            elif side < 0:
+                nx = d / cs
+                g = gs + (1.0 - a) * _psi(fx, lf) + (b - 1.0) * _psi(nx, math.log1p(nx))
+            else:
+                nx = d / us
+                g = gs + (1.0 - a) * _psi(nx, math.log1p(nx)) + (b - 1.0) * _psi(fx, lf)
+            if g > 0.0:
+                total += math.exp(lw) * _log1mexp(g)
+        if last:
+            break
+        p = q
+        q = q * _PANEL_RATIO
+        if q > 0.5 * length:
+            q = length
     return total
+
+
+@njit(cache=True, error_model="numpy")
+def _entropy_gap(a, b):
+    """Entropy of the RS GLD with a < 0 < b (regions 1, 5; regions 2, 6 mirrored):
+    Q' = A - B, A = |a| u^(a-1), B = b (1-u)^(b-1), A > B. With log Q' = log A +
+    log(1 - e^-g), g = log A - log B, the first part integrates to log|a| + 1 - a and the
+    second, small except near the minimum of g, by tanh-sinh on panels around it; nothing
+    is formed that can overflow. NaN unless g >= 0 throughout (an invalid shape pair)."""
+    if b < 1.0:
+        return math.nan  # g -> -inf at u = 1
+    la = math.log(-a)
+    head = la + (1.0 - a)
+    if b == 1.0:
+        # g = log|a| - (1-a) log u decreases to its minimum log|a| at u = 1, linearly in
+        # 1 - u: the peak of log(1 - e^-g) there has width g*/(1-a)
+        gs = la
+        if gs < 0.0:
+            return math.nan
+        lus, l1us = 0.0, -math.inf
+        delta = min(gs, 1.0) / (1.0 - a)
+        return head + _entropy_gap_side(a, b, lus, l1us, gs, max(delta, 1e-20), -1)
+    # the minimum of g at u* = (1-a)/(b-a), 1 - u* = (b-1)/(b-a)
+    lba = math.log(b - a)
+    lus = math.log(1.0 - a) - lba
+    l1us = math.log(b - 1.0) - lba
+    t1 = (1.0 - a) * math.log1p((b - 1.0) / (1.0 - a))
+    t2 = (b - 1.0) * math.log1p((1.0 - a) / (b - 1.0))
+    lb = math.log(b)
+    gs = (la - lb) + t1 + t2
+    if gs < 0.0:
+        if gs < -8.0 * EPS * (abs(la) + abs(lb) + t1 + t2):
+            return math.nan  # Q' < 0 around u*: outside regions 1 and 5
+        gs = 0.0
+    # g''(u*) = (1-a)/u*^2 + (b-1)/(1-u*)^2; the peak of log(1 - e^-g) has width delta
+    g2 = (1.0 - a) * math.exp(-2.0 * lus) + (b - 1.0) * math.exp(-2.0 * l1us)
+    delta = max(math.sqrt(2.0 * min(gs, 1.0) / g2), 1e-20 * min(math.exp(lus), math.exp(l1us)))
+    return (head + _entropy_gap_side(a, b, lus, l1us, gs, delta, -1)
+            + _entropy_gap_side(a, b, lus, l1us, gs, delta, 1))
+
+
+@njit(cache=True, error_model="numpy")
+def entropy_std(fam, a, b):
+    """Differential entropy int_0^1 log Q'(u) du of the standardized GLD; NaN for shapes
+    that are not a valid GLD."""
+    if not (abs(a) < math.inf and abs(b) < math.inf):
+        # (comparisons: numba's isfinite raises the invalid flag on an infinity)
+        return math.nan
+    if fam != RS:
+        return _entropy_sum(0.0, a - 1.0, 0.0, b - 1.0)
+    if (a >= 0.0 and b >= 0.0) or (a <= 0.0 and b <= 0.0):
+        # Q' = |a| u^(a-1) + |b| (1-u)^(b-1): a sum of positive terms
+        if a == 0.0 and b == 0.0:
+            return math.nan
+        if a == 0.0:
+            return math.log(abs(b)) - (b - 1.0)
+        if b == 0.0:
+            return math.log(abs(a)) - (a - 1.0)
+        return _entropy_sum(math.log(abs(a)), a - 1.0, math.log(abs(b)), b - 1.0)
+    # regions 1, 2, 5, 6: Q' is a difference of two terms; u -> 1 - u swaps a and b
+    if a > 0.0:
+        return _entropy_gap(b, a)
+    return _entropy_gap(a, b)
 
 
 @njit(cache=True, error_model="numpy")

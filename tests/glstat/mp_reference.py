@@ -165,6 +165,24 @@ def entropy_reference(fam, a, b, dps=30):
                     for j in range(-4, 60, 2):
                         d = mp.mpf(2) ** j / slope
                         pts.extend(v for v in (r - d, r + d) if 0 < v < 1)
+        if diff:
+            # regions 1, 2, 5, 6: no crossing, but log Q' peaks where the ratio of the two
+            # terms is closest to 1, at u* = (1-a)/(b-a) (the minimum of |log A - log B|),
+            # sharply next to the boundary of regions 5 and 6: split there, geometrically on
+            # the scale of the peak, and towards both ends
+            us = (1 - a) / (b - a)
+            if 0 < us < 1:
+                gs = abs(la(us) - lb(us))
+                g2 = abs((1 - a) / us**2 + (b - 1) / (1 - us) ** 2)
+                delta = mp.sqrt(2 * max(gs, mp.mpf(10) ** (-2 * dps)) / g2)
+                pts.append(us)
+                for j in range(0, 4 * dps):
+                    d = delta * mp.mpf(2) ** j
+                    if d > 1:
+                        break
+                    pts.extend(v for v in (us - d, us + d) if 0 < v < 1)
+            pts.extend(v for j in range(1, dps) for v in (mp.mpf(2) ** (-4 * j),
+                                                          1 - mp.mpf(2) ** (-4 * j)))
         pts = sorted(set(pts))
         return mp.quad(lq, pts)
 

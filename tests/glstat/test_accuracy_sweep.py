@@ -19,6 +19,7 @@ import glstat
 from glstat._core import inverse_table, moments
 from glstat._core import resample as R
 from glstat.fitting import _stats as S
+from glstat.regions import rs_region
 
 RS, FKML = 0, 1
 EPS = 2.220446049250313e-16
@@ -226,6 +227,50 @@ def test_entropy_of_large_shapes(fam, a, b):
 @pytest.mark.parametrize("fam,a,b", ENTROPY_SLOW)
 def test_entropy_sweep(fam, a, b):
     _entropy_case(fam, a, b)
+
+
+# RS regions 1, 2 (up to |lambda| = 1e4, where Q' itself overflows) and 5, 6 (next to their
+# boundary, where log Q' has a sharp peak at the minimum of the ratio of its two terms, and
+# away from it); the reference at 50 digits
+ENTROPY_GAP = [(RS, 1.0, -1e4), (RS, -1e4, 1e4), (RS, -1e4, 1.0), (RS, 1.5, -1e4),
+               (RS, -1.0, 1.0), (RS, -1.0, 1e4), (RS, -2.0, 3.0), (RS, 3.0, -2.0),
+               (RS, 1.5, -0.49), (RS, -0.489, 1.5), (RS, 1.5, -0.4891), (RS, 1.5, -0.5),
+               (RS, -0.5, 5.0), (RS, 10.0, -0.3), (RS, -0.2, 1e3), (RS, 1e4, -0.13),
+               (RS, -0.9, 1.05), (RS, 2.0, -0.3933)]
+
+
+@pytest.mark.parametrize("fam,a,b", ENTROPY_GAP)
+def test_entropy_of_regions_1_2_5_6(fam, a, b):
+    """Q' = A - B there: log A in closed form, log(1 - B/A) by tanh-sinh on panels around
+    the minimum of log A - log B; finite (and without warnings) up to |lambda| = 1e4."""
+    assert rs_region(a, b) in (1, 2, 5, 6)
+    ref = entropy_reference(fam, a, b, dps=50)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = _dist(fam).entropy(a, b)
+    assert abs(got - ref) <= 1e-13 * max(1.0, abs(float(ref))), (fam, a, b, got, ref)
+
+
+@pytest.mark.parametrize("lams", [(0.0, 1.0, 0.5, 1e-20), (0.0, 1.0, 1e-20, 0.5),
+                                  (0.0, -1.0, -0.5, -1e-20), (0.0, 1.0, 1e-20, 3.0),
+                                  (0.0, 1.0, 2.0, 1e-20)])
+def test_entropy_with_a_tiny_shape_warns_nothing(lams):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        h = glstat.GLD(*lams).entropy()
+    ref = entropy_reference(RS, lams[2], lams[3], dps=40) - mp.log(abs(lams[1]))
+    assert abs(float(h) - ref) <= 1e-13 * max(1.0, abs(float(ref)))
+
+
+@pytest.mark.parametrize("a,b", [(-0.3, 1.5), (0.5, -0.5), (-0.5, 0.5), (0.0, 0.0),
+                                 (-0.05, 1e4), (1.01, -0.9), (0.5, math.inf), (math.nan, 0.3)])
+def test_entropy_of_invalid_shapes_is_nan_without_warnings(a, b):
+    """scipy evaluates the kernel at invalid shapes too (through np.vectorize, which reports
+    any floating-point flag the kernel raises)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert math.isnan(moments.entropy_std(RS, a, b))
+        assert np.isnan(glstat.gld_rs.entropy(a, b))
 
 
 # -- 5. tiny and subnormal shapes -----------------------------------------------------------
@@ -511,12 +556,13 @@ def sweep_table():
     rows.append(("logpdf where F or S underflows", "FKML(0, 0) at \\|x\\| up to 5000, tail "
                  "probabilities below 1e-320", f"{worst:.1e} (relative)"))
     worst = 0.0
-    for fam, a, b in ENTROPY_FAST + ENTROPY_SLOW:
-        ref = entropy_reference(fam, a, b, dps=20)
+    for fam, a, b in ENTROPY_FAST + ENTROPY_SLOW + ENTROPY_GAP:
+        ref = entropy_reference(fam, a, b, dps=50 if (fam, a, b) in ENTROPY_GAP else 20)
         got = _dist(fam).entropy(a, b)
         worst = max(worst, float(abs(got - ref) / max(1.0, abs(ref))))
-    rows.append(("entropy", "every RS region, FKML, λ from 1e-300 to 1e4", f"{worst:.1e} "
-                 "(relative, absolute below 1)"))
+    rows.append(("entropy", "every RS region, FKML, λ from 1e-300 to 1e4; RS regions 1, 2 up to "
+                 "\\|λ\\| = 1e4 and regions 5, 6 next to their boundary (RS(−0.489, 1.5), "
+                 "RS(1.5, −0.4891)) against 50 digits", f"{worst:.1e} (relative, absolute below 1)"))
     rng = np.random.default_rng(11)
     x = np.sort(rng.standard_normal(2000)) + 1e9
     z = x - 1e9
