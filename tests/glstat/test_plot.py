@@ -189,7 +189,7 @@ def test_bad_input():
         plot_histogram([])
     with pytest.raises(ValueError, match="at least 2"):
         plot_qq([np.nan, 1.0], FIT)
-    with pytest.raises(TypeError, match="numeric"):
+    with pytest.raises(TypeError, match="real numbers"):
         plot_pp(["a", "b"], FIT)
     with pytest.raises(ValueError, match="at least one"):
         plot_qq(X)
