@@ -60,8 +60,11 @@ _SEPARATORS = {",": "commas", ";": "semicolons", "\t": "tabs", r"\s+": "whitespa
 _SEP_NAMES = {",": ",", ";": ";", "tab": "\t", "\\t": "\t", "\t": "\t", "space": r"\s+",
               "whitespace": r"\s+", " ": r"\s+"}
 _DECIMAL_COMMA = re.compile(r"^\s*[-+]?(\d+(,\d*)?|,\d+)([eE][-+]?\d+)?\s*$")
-_READ_ERRORS = (OSError, EOFError, ValueError, zlib.error, lzma.LZMAError, RuntimeError,
-                NotImplementedError, zipfile.BadZipFile, MemoryError)
+#: Errors of reading or decompressing a file's bytes (corrupt streams, compression methods
+#: the standard library cannot read: NotImplementedError from zipfile); the file's fault.
+_STREAM_ERRORS = (OSError, EOFError, zlib.error, lzma.LZMAError, RuntimeError,
+                  NotImplementedError, zipfile.BadZipFile)
+_READ_ERRORS = (*_STREAM_ERRORS, ValueError, MemoryError)
 
 
 class InputError(ValueError):
@@ -386,8 +389,7 @@ def _mismatch(exc: Exception, path: Path, sep: str) -> InputError:
 def _open_text(path: Path, compressed: bool, read, errors: tuple = ()):
     """``read(stream)`` on the bytes of a text file; the errors of reading or decompressing the
     file (and ``errors``) are the file's fault."""
-    errors = (*errors, OSError, EOFError, RuntimeError, NotImplementedError, zlib.error,
-              lzma.LZMAError, zipfile.BadZipFile)
+    errors = (*errors, *_STREAM_ERRORS)
     if path.suffix.lower() == ".zst":
         try:
             import zstandard

@@ -249,9 +249,7 @@ def scene_choice_sentence(settings, analysis: dict | None) -> str:
              if settings.hurst[ih] in PAPER_MEAN_MPA and len(settings.pressures) == 1]
     if not pairs:
         return ""
-    rq = settings.rq if not isinstance(settings.rq, tuple) else math.exp(
-        float(np.mean(np.log(settings.rq))))
-    ratio = PAPER_RQ / rq
+    ratio = PAPER_RQ / settings.rq_geometric_mean
     ours = " / ".join(f"{m:.0f}" for _, m in pairs)
     theirs = " / ".join(f"{PAPER_MEAN_MPA[h]:.0f}" for h, _ in pairs)
     hs = " / ".join(f"{h:g}" for h, _ in pairs)

@@ -248,6 +248,14 @@ class CampaignSettings:
         return self.rq[ih] if isinstance(self.rq, tuple) else self.rq
 
     @property
+    def rq_geometric_mean(self) -> float:
+        """The geometric mean of the per-H RMS roughnesses in metres (the Rq itself when one
+        value holds for every H)."""
+        if not isinstance(self.rq, tuple):
+            return self.rq
+        return math.exp(math.fsum(math.log(v) for v in self.rq) / len(self.rq))
+
+    @property
     def rq_text(self) -> str:
         """The RMS roughness in µm as text: "1.6", or "1.5, 1.6, 1.7" (one per H)."""
         values = self.rq if isinstance(self.rq, tuple) else (self.rq,)

@@ -101,24 +101,22 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
         scores[name] = float(np.mean(s)) if s else -math.inf
         outside[name] = out if s else len(per)
     names = list(scores)
-    best = min(names, key=lambda k: (outside[k], -scores[k], names.index(k)))
-    p, m = best.split(" ", 1)
     ranked = sorted(names, key=lambda k: (outside[k], -scores[k], names.index(k)))
-    runner = next((k for k in ranked if k != best), None)
+    best, runner = ranked[0], (ranked[1] if len(ranked) > 1 else None)
+    p, m = best.split(" ", 1)
     if runner is not None and outside[runner] > outside[best]:
         # ranked first on the maxima outside the support, not on the density
-        n_out = outside[runner]
         why = (f"{best} predicts the held-out half's maxima best: "
                + (f"{outside[best]} of them lie" if outside[best] else "none lies")
-               + f" beyond its support against {n_out} for {runner} (mean log density of the "
-               f"others {scores[best]:.3g} against {scores[runner]:.3g})")
+               + f" beyond its support against {outside[runner]} for {runner} (mean log "
+               f"density of the others {scores[best]:.3g} against {scores[runner]:.3g})")
     else:
         why = (f"{best} predicts the held-out half's maxima best (mean log density "
                f"{scores[best]:.3g}" + (f" against {scores[runner]:.3g} for {runner})" if runner
                                          else ")"))
-    if outside[best] and not (runner is not None and outside[runner] > outside[best]):
-        why += (f"; {outside[best]} held-out maxima lie beyond its support (fewest of the "
-                f"candidates)")
+        if outside[best]:
+            why += (f"; {outside[best]} held-out maxima lie beyond its support (fewest of the "
+                    f"candidates)")
     denser = [k for k in ranked if k != best and k != runner and scores[k] > scores[best]
               and outside[k] > outside[best]]
     if denser:

@@ -69,31 +69,32 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict,
     pyplot()
     say = progress or (lambda text: None)
     rep = Report(TITLE)
+    # (progress label, whether the run has these sections, the sections)
     sections = [
-        ("the answer and its checks", lambda: (answer_section(settings, asettings, analysis, info),
-                                               checks_section(settings, asettings, analysis, info))),
-        ("the paper and the main results", lambda: (paper_section(info, settings, analysis),
-                                                    main_results_section(settings, asettings,
-                                                                         analysis))),
-        ("measured surfaces", lambda: ((measured_section(settings, results),)
-                                       if settings.measured else ())),
-        ("measured template", lambda: ((like_section(settings, info["like"]),)
-                                       if info.get("like") is not None else ())),
-        ("settings and example surfaces", lambda: (settings_section(settings, asettings, info),
-                                                   examples_section(settings, analysis, results))),
-        ("fits and maxima", lambda: (fit_section(settings, asettings, analysis),
-                                     maximum_section(settings, asettings, analysis))),
-        ("validation, damage and integrity", lambda: (validation_section(settings, asettings, analysis),
-                                                      damage_section(settings, asettings, analysis))),
-        ("asperity model vs elastic BEM", lambda: ((bem_section(
-            settings, asettings, info["bem"], info["bem_settings"], info.get("bem_maps") or {}),)
-            if info.get("bem") else ())),
+        ("the answer and its checks", True,
+         lambda: (answer_section(settings, asettings, analysis, info),
+                  checks_section(settings, asettings, analysis, info))),
+        ("the paper and the main results", True,
+         lambda: (paper_section(info, settings, analysis),
+                  main_results_section(settings, asettings, analysis))),
+        ("measured surfaces", settings.measured, lambda: (measured_section(settings, results),)),
+        ("measured template", info.get("like") is not None,
+         lambda: (like_section(settings, info["like"]),)),
+        ("settings and example surfaces", True,
+         lambda: (settings_section(settings, asettings, info),
+                  examples_section(settings, analysis, results))),
+        ("fits and maxima", True,
+         lambda: (fit_section(settings, asettings, analysis),
+                  maximum_section(settings, asettings, analysis))),
+        ("validation, damage and integrity", True,
+         lambda: (validation_section(settings, asettings, analysis),
+                  damage_section(settings, asettings, analysis))),
+        ("asperity model vs elastic BEM", bool(info.get("bem")),
+         lambda: (bem_section(settings, asettings, info["bem"], info["bem_settings"],
+                              info.get("bem_maps") or {}),)),
     ]
-    for label, make in sections:
-        if label.startswith("measured") and not (settings.measured or info.get("like") is not None):
-            continue
-        if label.startswith("asperity model vs") and not info.get("bem"):
-            continue
-        say(f"report: {label}")
-        rep.extend(*make())
+    for label, present, make in sections:
+        if present:
+            say(f"report: {label}")
+            rep.extend(*make())
     return rep

@@ -109,8 +109,8 @@ def _settings_for(settings: CampaignSettings | None, hurst) -> tuple[CampaignSet
             f"hurst {hs} are not all among the settings' exponents {s.hurst} and their n_terms "
             f"{s.n_terms} differ, so the truncation is undefined; add them to the settings"
         )
-    rq = s.rq if not isinstance(s.rq, tuple) else float(np.exp(np.mean(np.log(s.rq))))
-    s2 = dataclasses.replace(s, hurst=hs, n_terms=s.n_terms[:1], rq=rq, n_examples=0)
+    s2 = dataclasses.replace(s, hurst=hs, n_terms=s.n_terms[:1], rq=s.rq_geometric_mean,
+                             n_examples=0)
     return s2, list(range(len(hs)))
 
 
