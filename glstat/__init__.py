@@ -12,6 +12,7 @@ from .bootstrap import (
     MaximumMixture,
     bootstrap,
 )
+from .checks import BinomialCheck, binomial_check
 from .counts import CountDistribution, ObservedCounts, PoissonCount
 from .damage import damage_probability, guaranteed_threshold, integrity_probability
 from .distributions import gld_fkml, gld_rs
@@ -31,6 +32,7 @@ from .regions import rs_region
 
 __all__ = [
     "GLD",
+    "BinomialCheck",
     "BootstrapFit",
     "BootstrapInterval",
     "BootstrapMaximum",
@@ -50,6 +52,7 @@ __all__ = [
     "ObservedCounts",
     "OrderStatisticDistribution",
     "PoissonCount",
+    "binomial_check",
     "bootstrap",
     "compare_families",
     "damage_probability",

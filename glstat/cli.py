@@ -441,6 +441,7 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
     the contact models, and where the report is."""
     from .formatting import fmt_mpa, fmt_probability
     from .formatting import fmt_number as _num
+    from .study.analysis_settings import PRIMARY_SAMPLE
     from .study.answer import case_name, degenerate_scene, overlap_note
     from .study.report_surfaces import area_text
 
@@ -451,16 +452,15 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
     lvl = round(100 * asettings.confidence_level)
     print(f"Probability that the contact pressure exceeds {hardness:g} MPa somewhere on one "
           f"{area_text(settings)} area ({lvl} % interval):")
-    rows = table[table["sample"] == "asperity"]
+    rows = table[table["sample"] == PRIMARY_SAMPLE]
     labels = [("measured" if settings.measured else f"H = {r['hurst']:g}") + ", "
               + ("asperity model" if r["model"] == "asperity" else "elastic BEM")
               for _, r in rows.iterrows()]
     width = max((len(label) for label in labels), default=0)
     for label, (_, r) in zip(labels, rows.iterrows(), strict=True):
-        check = ("" if r["coverage"] != r["coverage"] else
+        check = ("" if r["check"] == "not checked" else
                  "  no GLD could be fitted (report: Moments and fitted GLD)" if r["damage"] != r["damage"]
-                 else ("  check on held-out surfaces: passed" if r["passes_check"] else
-                       "  check on held-out surfaces: failed"))
+                 else f"  check on {r['held_out_surfaces']} held-out surfaces: {r['check']}")
         print(f"  {label + ':':<{width + 1}} {fmt_probability(r['damage'])} "
               f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}]; observed "
               f"{fmt_probability(r['observed_damage'])} of {r['n_surfaces']} surfaces; mean contact "

@@ -75,33 +75,60 @@ def test_hardness_levels_span_the_maxima_and_include_the_hardness():
     assert np.all(np.diff(lv) > 0)
 
 
-def _validation(coverage_interval, reject, inside):
-    cal = pd.DataFrame({"hardness_mpa": np.arange(10.0), "area_factor": 1,
-                        "predicted": [0.5] * 10,
-                        "observed": [0.5] * 10,
-                        "observed_low": [0.4 if i < inside else 0.6 for i in range(10)],
-                        "observed_high": [0.6] * 10, "n_surfaces": 100})
-    return Validation(table=pd.DataFrame({"x": [1]}), coverage=0.9,
-                      coverage_interval=coverage_interval, reject=reject, calibration=cal)
+def _validation(damage, coverage):
+    """A validation whose checks are ``(predicted, hits, n)`` triples."""
+    from glstat.study.validation import held_out_check
+
+    return Validation(table=pd.DataFrame({"x": [1]}), coverage=coverage[1] / coverage[2],
+                      damage_check=held_out_check(*damage), coverage_check=held_out_check(*coverage))
 
 
-def test_passes_needs_coverage_centring_and_damage_levels():
-    assert _validation((0.83, 0.95), False, 8).passes(0.9)
-    assert not _validation((0.70, 0.85), False, 10).passes(0.9)  # coverage too low
-    assert not _validation((0.83, 0.95), True, 10).passes(0.9)   # biased
-    assert not _validation((0.83, 0.95), False, 7).passes(0.9)   # 7 of 10 levels < 80 %
-    assert _validation((0.83, 0.95), False, 8).damage_hits() == (8, 10)
-    assert not Validation(error="too few surfaces").passes(0.9)
+def test_verdict_is_failed_when_either_binomial_test_rejects():
+    assert _validation((0.5, 50, 100), (0.9, 90, 100)).verdict() == "passed"
+    # the damage is off: 75 of 100 surfaces damaged where 50 % were predicted
+    assert _validation((0.5, 75, 100), (0.9, 90, 100)).verdict() == "failed"
+    # the interval of the maximum covers 70 of 100 where 90 % were promised
+    assert _validation((0.5, 50, 100), (0.9, 70, 100)).verdict() == "failed"
+    assert not _validation((0.5, 75, 100), (0.9, 90, 100)).passes()
+    assert "75 of 100 held-out surfaces damaged" in _validation((0.5, 75, 100), (0.9, 90, 100)).short_text()
+
+
+def test_verdict_is_never_passed_with_too_few_surfaces():
+    # 6 of 12 against 50 %: consistent, but 12 surfaces cannot detect a miss of 20 points
+    v = _validation((0.5, 6, 12), (0.9, 11, 12))
+    assert v.verdict() == "not checkable" and not v.passes()
+    assert "not checkable with 12 held-out surfaces" in v.short_text()
+    assert Validation(error="too few surfaces").verdict() == "not checked"
+
+
+def test_validate_sample_fails_when_the_observed_maxima_exceed_the_peaks():
+    # the per-surface maxima lie above every value of the sample (as where asperity patches
+    # overlap and add up): the prediction from the values cannot see them, and the check
+    # must say so; the same surfaces with their true maxima are not rejected
+    from glstat.study.validation import validate_sample
+
+    rng = np.random.default_rng(4)
+    per = _surfaces(rng, 120, lambda r, k: r.lognormal(7.0, 0.3, k))
+    a = AnalysisSettings(hardness=float(np.median([m for _, _, m in per])), n_resamples=100)
+    levels = hardness_levels(np.array([m for _, _, m in per]), a.hardness, a.n_levels)
+    honest = validate_sample(per, "spot", a, 0, 0, "rs", "moments", levels)
+    assert honest.damage_check.verdict != "failed"
+    assert honest.damage_check.n == 120
+    lifted = [(v, k, 1.3 * m) for v, k, m in per]
+    v = validate_sample(lifted, "spot", a, 0, 0, "rs", "moments", levels)
+    assert v.damage_check.verdict == "failed" and v.verdict() == "failed"
+    assert v.damage_check.observed >= 0.85 and v.damage_check.predicted < 0.7
 
 
 def test_degenerate_scene_warning():
     def case(n_asp, damage):
         d = SimpleNamespace(estimate=np.array(damage))
-        return {"summary": {"n_asperities": n_asp}, "asperity": SimpleNamespace(damage=d)}
+        return {"summary": {"n_asperities": n_asp + 1, "n_spots": n_asp},
+                "spot": SimpleNamespace(damage=d)}
 
     assert degenerate_scene({(0, 0): case(6.0, 0.5), (1, 0): case(8.0, 0.9)}) == ""
     msg = degenerate_scene({(0, 0): case(1.4, 1.0), (1, 0): case(1.8, 1.0)})
-    assert "1.4 asperities" in msg and "for every H" in msg and "--target-pressure" in msg
+    assert "1.4 contact spots" in msg and "for every H" in msg and "--target-pressure" in msg
 
 
 def test_end_note_and_formats():

@@ -1,42 +1,13 @@
-"""The study's answer tables: the Holm adjustment of the centring tests across cases."""
+"""The study's answer tables and figures: the held-out check, the area scaling sentence."""
 
 from __future__ import annotations
 
 from types import SimpleNamespace
 
-import pytest
-
-from glstat.study.answer import _holm_across_cases
-
-
-def _case(p_asperity, p_grid):
-    def sample(p):
-        return SimpleNamespace(validation=SimpleNamespace(table=object(), t_pvalue=p))
-    return {"asperity": sample(p_asperity), "grid": sample(p_grid)}
-
-
-def test_holm_is_one_family_per_model_and_sample_across_cases():
-    items = [((0, 0), _case(0.01, 0.5), ""), ((1, 0), _case(0.04, 0.2), ""),
-             ((2, 0), _case(0.03, 0.9), "")]
-    got = _holm_across_cases(items)
-    # Holm (1979) by hand, m = 3: sorted 0.01, 0.03, 0.04 -> 3 * 0.01, max(0.03, 2 * 0.03),
-    # max(0.06, 1 * 0.04)
-    assert [got[(ih, 0, "", "asperity")] for ih in range(3)] == pytest.approx([0.03, 0.06, 0.06])
-    # grid: sorted 0.2, 0.5, 0.9 -> 0.6, max(0.6, 1.0) capped at 1, max(1, 0.9)
-    assert [got[(ih, 0, "", "grid")] for ih in range(3)] == pytest.approx([1.0, 0.6, 1.0])
-
-
-def test_each_model_is_its_own_family():
-    items = [((0, 0), _case(0.01, 0.5), ", asperity model"), ((0, 0), _case(0.01, 0.5), ", elastic BEM")]
-    got = _holm_across_cases(items)
-    assert got[(0, 0, ", asperity model", "asperity")] == pytest.approx(0.01)  # a family of one
-    assert got[(0, 0, ", elastic BEM", "asperity")] == pytest.approx(0.01)
-
 
 def test_validation_figure_draws_intervals_that_exclude_the_point_prediction():
     # a point prediction outside its interval (possible for a mixture's bootstrap interval)
     # is drawn, not refused as a negative error bar
-    from types import SimpleNamespace
 
     import pandas as pd
 
@@ -54,7 +25,6 @@ def test_validation_figure_draws_intervals_that_exclude_the_point_prediction():
 
 
 def test_area_scaling_sentence_counts_levels_inside_per_group_size():
-    from types import SimpleNamespace
 
     import pandas as pd
 
@@ -70,11 +40,11 @@ def test_area_scaling_sentence_counts_levels_inside_per_group_size():
                          "observed_high": 0.6, "n_surfaces": 50})
     v = Validation(table=pd.DataFrame({"x": [1]}), coverage=0.9, coverage_interval=(0.8, 0.95),
                    reject=False, calibration=pd.DataFrame(rows))
-    analysis = {(0, 0): {"asperity": SimpleNamespace(validation=v)}}
+    analysis = {(0, 0): {"spot": SimpleNamespace(validation=v)}}
     text = area_scaling_sentence(CampaignSettings(hurst=(0.5,)), analysis)
     assert "H = 0.5, 20 MPa: k = 2: 6 of 8, k = 4: 3 of 8" in text
     assert v.damage_hits() == (7, 8) and v.damage_hits(4) == (3, 8)
     v1 = Validation(table=pd.DataFrame({"x": [1]}), coverage=0.9, coverage_interval=(0.8, 0.95),
                     reject=False, calibration=pd.DataFrame([r for r in rows if r["area_factor"] == 1]))
     assert area_scaling_sentence(CampaignSettings(hurst=(0.5,)),
-                                 {(0, 0): {"asperity": SimpleNamespace(validation=v1)}}) == ""
+                                 {(0, 0): {"spot": SimpleNamespace(validation=v1)}}) == ""

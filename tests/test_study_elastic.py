@@ -23,10 +23,13 @@ def test_both_models_side_by_side(both):
     summary = pd.read_csv(both / "summary.csv")
     assert set(summary["model"]) == {"asperity", "bem"}
     bem = summary[summary["model"] == "bem"]
-    assert len(bem) == 4  # 2 H x 2 samples, each with its own checks
+    assert len(bem) == 4  # 2 H x 2 samples (contact spots, grid points), each with its checks
+    assert set(bem["sample"]) == {"spot", "grid"}
     assert bem["n_surfaces"].eq(6).all()
-    # the elastic per-asperity sample is the peak of every contact spot
-    assert (bem["asperities_per_surface"] > 0).all()
+    # the elastic spot sample is the peak of every contact spot inside the patch
+    assert (bem["spots_per_surface"] > 0).all() and bem["asperities_per_surface"].isna().all()
+    spot = bem[bem["sample"] == "spot"]
+    assert ((spot["values_per_surface"] - spot["spots_per_surface"]).abs() < 1e-12).all()
     cal = pd.read_csv(both / "damage_calibration.csv")
     assert set(cal["model"]) == {"asperity", "bem"}
     md = (both / "report.md").read_text()
@@ -41,9 +44,9 @@ def test_elastic_results_match_the_stored_solves(both):
     assert not dropped and len(res) == 12
     with np.load(both / "H0.5_P20MPa" / "bem_0002.npz") as z:
         r = res[(0, 0, 2)]
-        np.testing.assert_array_equal(r["asperity_peak"], z["bem_cluster_peaks"])
-        assert r["n_asperities"] == int(z["bem_n_clusters"]) == r["asperity_peak"].size
-        assert r["max_pressure"] == pytest.approx(float(r["asperity_peak"].max()))
+        np.testing.assert_array_equal(r["spot_peak"], z["bem_cluster_peaks"])
+        assert r["n_spots"] == int(z["bem_n_clusters"]) == r["spot_peak"].size
+        assert r["max_pressure"] == pytest.approx(float(r["spot_peak"].max()))
 
 
 def test_unconverged_solves_are_left_out_and_listed(tmp_path):

@@ -11,17 +11,33 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["AnalysisSettings", "fit_order", "overlap_sets_maximum", "pool", "predict_sample",
+__all__ = ["GROUPED_SAMPLES", "MODEL_SAMPLES", "PRIMARY_SAMPLE", "SEED_SLOTS", "AnalysisSettings",
+           "fit_order", "overlap_sets_maximum", "pool", "predict_sample",
            "sample_rng", "surface_values"]
 
-#: The two samples whose maximum is predicted: grid-point pressures (the paper's) and the
-#: peak pressure 1.5 p_m of every asperity in contact (one value per asperity).
-SAMPLES = {"grid": ("samples", "n_contact", "max_pressure"),
-           "asperity": ("asperity_peak", "n_asperities", "asperity_max")}
-SAMPLE_LABELS = {"grid": "grid-point pressures (the paper's)",
-                 "asperity": "per-asperity peak pressures"}
+#: The samples whose maximum is predicted: the peak pressure of every connected contact spot
+#: of the pressure map (the primary sample: the largest spot peak of a surface is its maximal
+#: pressure, whatever the contact model), the peak pressure 1.5 p_m of every asperity in
+#: contact (one value per asperity: the per-asperity option, blind to overlapping patches) and
+#: the grid-point pressures (the paper's).
+SAMPLES = {"spot": ("spot_peak", "n_spots", "max_pressure"),
+           "asperity": ("asperity_peak", "n_asperities", "max_pressure"),
+           "grid": ("samples", "n_contact", "max_pressure")}
+SAMPLE_LABELS = {"spot": "contact-spot peak pressures",
+                 "asperity": "per-asperity peak pressures",
+                 "grid": "grid-point pressures (the paper's)"}
+#: The sample of the answer.
+PRIMARY_SAMPLE = "spot"
+#: Samples with one value per spot or asperity: the bootstrap resamples whole surfaces and
+#: the number of values of a surface is the random count of the maximum.
+GROUPED_SAMPLES = ("spot", "asperity")
+#: Seed slots of each sample: (full-sample fit, fold fits, fold maxima, maximum).
+SEED_SLOTS = {"grid": (0, 1, 3, 6), "asperity": (5, 2, 4, 6), "spot": (7, 8, 9, 10)}
 #: Contact models whose solutions the analysis reads, with their seed slot and name.
 MODEL_SLOTS = {"asperity": 0, "bem": 1000}
+#: The samples analysed for each model (the elastic BEM has no asperities: its spots are the
+#: per-spot sample).
+MODEL_SAMPLES = {"asperity": ("spot", "asperity", "grid"), "bem": ("spot", "grid")}
 MODEL_NAMES = {"asperity": "asperity model", "bem": "elastic BEM"}
 #: Fits tried for the primary sample, in order of preference on ties.
 CANDIDATES = (("rs", "moments"), ("fkml", "moments"), ("rs", "lmoments"), ("fkml", "lmoments"),
@@ -32,9 +48,12 @@ FALLBACKS = (("rs", "moments"), ("fkml", "moments"), ("rs", "percentiles"), ("fk
 MLE_RESAMPLES = 100
 #: Area factors checked by grouping held-out surfaces.
 AREA_CHECKS = (2, 4)
-#: A result "passes its check" when its predicted damage lies inside the observed Wilson
-#: interval at this fraction of the hardness levels (with the coverage and bias criteria).
-PASS_FRACTION = 0.8
+#: The held-out checks (exact binomial tests of the damage at the hardness and of the coverage
+#: of the maximum's interval): their level, the power with which a miss must be detected, and
+#: the largest miss (in probability) that may go undetected for a check to count.
+CHECK_SIGNIFICANCE = 0.05
+CHECK_POWER = 0.8
+CHECK_MAX_MISS = 0.2
 
 
 @dataclass(frozen=True)
@@ -101,11 +120,20 @@ class AnalysisSettings:
 
 # -- samples of the surfaces -------------------------------------------------------------------
 def surface_values(res: dict, sample: str) -> tuple[np.ndarray, int, float]:
-    """(values in MPa, count, observed maximum in MPa) of one surface's result."""
+    """(values in MPa, count, observed maximum in MPa) of one surface's result.
+
+    The observed maximum is the surface's maximal pressure for every sample: the event the
+    damage probability is about. For the spot sample it is the largest spot peak; for the
+    per-asperity sample it can lie above every asperity's own peak where patches overlap."""
     if sample == "grid":
         return res["samples"] / 1e6, int(res["n_contact"]), float(res["max_pressure"]) / 1e6
-    peaks = res["asperity_peak"] / 1e6
-    return peaks, int(peaks.size), float(peaks.max()) if peaks.size else 0.0
+    if sample not in GROUPED_SAMPLES:
+        raise ValueError(f"unknown sample {sample!r}; expected one of {tuple(SAMPLES)}")
+    if SAMPLES[sample][0] not in res:
+        raise KeyError(f"the stored result has no {SAMPLES[sample][0]!r} (written by an earlier "
+                       "version): rerun the campaign with --force")
+    peaks = np.asarray(res[SAMPLES[sample][0]], dtype=float) / 1e6
+    return peaks, int(peaks.size), float(res["max_pressure"]) / 1e6
 
 
 #: A surface's maximal pressure above its largest asperity peak by more than this fraction is

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..formatting import fmt_mpa, fmt_probability
-from .analysis import SAMPLE_LABELS
+from .analysis import PRIMARY_SAMPLE, SAMPLE_LABELS, SAMPLES
 
 __all__ = ["calibration_frame", "degenerate_scene", "summary_frame"]
 
@@ -28,13 +28,16 @@ def case_label(settings, ih: int, il: int) -> str:
 
 #: Columns of ``summary.csv`` (one row per H × load × model × sample).
 SUMMARY_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "mean_pressure_mpa",
-                   "asperities_per_surface", "points_in_contact_per_surface", "fit", "damage",
-                   "damage_low", "damage_high", "observed_damage", "coverage", "coverage_low",
-                   "coverage_high", "bias_p_value", "theta", "damage_levels_inside",
+                   "values_per_surface", "asperities_per_surface", "spots_per_surface",
+                   "points_in_contact_per_surface", "fit", "damage", "damage_low", "damage_high",
+                   "observed_damage", "held_out_damage", "held_out_surfaces", "damage_p_value",
+                   "coverage", "coverage_low", "coverage_high", "coverage_p_value",
+                   "detectable_miss", "bias_p_value", "theta", "damage_levels_inside", "check",
                    "passes_check", "upper_end_mpa", "n_surfaces")
 #: Columns of ``damage_calibration.csv``.
 CALIBRATION_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "hardness_mpa", "area_factor",
-                       "predicted", "observed", "observed_low", "observed_high", "n_surfaces")
+                       "predicted", "observed", "observed_low", "observed_high", "n_surfaces",
+                       "p_value")
 #: The paper's damage verdicts at 2050 MPa (its section 4), by H.
 PAPER_VERDICTS = {0.0: "certain", 0.5: "≈ 1 %", 1.0: "impossible"}
 #: The paper's mean contact pressures (Table 1), MPa, by H.
@@ -45,11 +48,28 @@ def _scalar(a) -> float:
     return float(np.ravel(a)[0])
 
 
+def _samples(r: dict) -> list[str]:
+    """The samples of one case's analysis, in table order (primary first)."""
+    return [sample for sample in SAMPLES if sample in r]
+
+
+def _check_numbers(v) -> dict:
+    """The held-out check's columns of ``summary.csv`` (NaN where there is no check)."""
+    d, c = v.damage_check, v.coverage_check
+    misses = [x.detectable_miss for x in (d, c) if x is not None]
+    return {"held_out_damage": math.nan if d is None else d.observed,
+            "held_out_surfaces": 0 if d is None else d.n,
+            "damage_p_value": math.nan if d is None else d.p_value,
+            "coverage_p_value": math.nan if c is None else c.p_value,
+            "detectable_miss": max(misses) if misses else math.nan,
+            "check": v.verdict()}
+
+
 def _analysis_rows(settings, analysis: dict, model: str) -> list[dict]:
     rows = []
     for (ih, il), r in analysis.items():
         s = r["summary"]
-        for sample in ("asperity", "grid"):
+        for sample in _samples(r):
             sa = r[sample]
             v = sa.validation
             d = sa.damage
@@ -57,7 +77,9 @@ def _analysis_rows(settings, analysis: dict, model: str) -> list[dict]:
             rows.append({
                 "hurst": settings.hurst[ih], "pressure_mpa": settings.pressures[il] / 1e6,
                 "model": model, "sample": sample, "mean_pressure_mpa": s["mean_pressure"],
-                "asperities_per_surface": s["n_asperities"],
+                "values_per_surface": float(sa.counts.mean()) if sa.counts.size else math.nan,
+                "asperities_per_surface": s["n_asperities"] if model == "asperity" else math.nan,
+                "spots_per_surface": s.get("n_spots", math.nan),
                 "points_in_contact_per_surface": s["n_contact"],
                 "fit": f"{sa.param.upper()} {sa.method}" if sa.ok else "none",
                 "damage": math.nan if d is None else _scalar(d.estimate),
@@ -67,8 +89,8 @@ def _analysis_rows(settings, analysis: dict, model: str) -> list[dict]:
                 "coverage": v.coverage, "coverage_low": v.coverage_interval[0],
                 "coverage_high": v.coverage_interval[1], "bias_p_value": v.t_pvalue,
                 "theta": v.theta, "damage_levels_inside": f"{hits} of {m}" if m else "",
-                "passes_check": v.passes(getattr(sa.boot, "confidence_level", 0.9))
-                if sa.ok else False,
+                **_check_numbers(v),
+                "passes_check": v.passes() if sa.ok else False,
                 "upper_end_mpa": sa.upper_end, "n_surfaces": s["n_surfaces"]})
     return rows
 
@@ -77,19 +99,25 @@ def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysi
     """``summary.csv``: one row per H × load × model × sample (pandas DataFrame).
 
     Columns (pressures in MPa, probabilities as fractions): ``hurst``, ``pressure_mpa`` (nominal),
-    ``model`` ("asperity", or "bem" for the elastic comparison), ``sample`` ("asperity" for
-    per-asperity / per-spot peaks, "grid" for grid-point pressures), ``mean_pressure_mpa`` (mean
-    contact pressure per surface), ``asperities_per_surface`` (asperities or contact spots in
-    contact), ``points_in_contact_per_surface``, ``fit`` (GLD used), ``damage``, ``damage_low``,
-    ``damage_high`` (P(max > hardness) on one analysed area with its bootstrap interval),
-    ``observed_damage`` (fraction of the surfaces whose maximum exceeds the hardness),
-    ``coverage``, ``coverage_low``, ``coverage_high`` (held-out coverage of the predicted
-    interval of the maximum and its Wilson interval), ``bias_p_value`` (centring t-test),
-    ``theta`` (extremal index), ``damage_levels_inside`` (hardness levels at which the predicted
-    damage lies inside the observed interval, "k of m"), ``passes_check``, ``upper_end_mpa``
-    (upper end of the fitted GLD), ``n_surfaces``. NaN where a quantity does not apply (the
-    elastic model is compared on a few surfaces, without held-out checks, unless the whole
-    study ran on it too: ``bem_analysis``, with the same columns as the asperity model).
+    ``model`` ("asperity", or "bem" for the elastic BEM), ``sample`` ("spot" for the peaks of
+    the connected contact spots, the answer; "asperity" for per-asperity peaks; "grid" for
+    grid-point pressures), ``mean_pressure_mpa`` (mean contact pressure per surface),
+    ``values_per_surface`` (the sample's mean count per surface: spots, asperities or points),
+    ``asperities_per_surface``, ``spots_per_surface``, ``points_in_contact_per_surface``,
+    ``fit`` (GLD used), ``damage``, ``damage_low``, ``damage_high`` (P(max > hardness) on one
+    analysed area with its bootstrap interval), ``observed_damage`` (fraction of the surfaces
+    whose maximum exceeds the hardness), ``held_out_damage`` and ``held_out_surfaces`` (the
+    same on the held-out surfaces of the check), ``damage_p_value`` (exact binomial test of the
+    held-out damage against the prediction), ``coverage``, ``coverage_low``, ``coverage_high``
+    (held-out coverage of the predicted interval of the maximum and its Wilson interval),
+    ``coverage_p_value`` (exact binomial test against the interval's level),
+    ``detectable_miss`` (the smallest miss either test detects with 80 % power),
+    ``bias_p_value`` (centring t-test), ``theta`` (extremal index), ``damage_levels_inside``
+    (hardness levels at which the predicted damage lies inside the observed interval, "k of
+    m"), ``check`` ("passed", "failed", "not checkable" or "not checked"), ``passes_check``,
+    ``upper_end_mpa`` (upper end of the fitted GLD), ``n_surfaces``. NaN where a quantity does
+    not apply (the elastic model compared on a few surfaces has no held-out check unless the
+    whole study ran on it too: ``bem_analysis``, with the same columns as the asperity model).
     """
     import pandas as pd
 
@@ -104,9 +132,11 @@ def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysi
             d = f.damage
             rows.append({
                 "hurst": settings.hurst[ih], "pressure_mpa": settings.pressures[il] / 1e6,
-                "model": "bem", "sample": "asperity",
+                "model": "bem", "sample": "spot",
                 "mean_pressure_mpa": float(surf["mean_pressure_MPa"].mean()),
-                "asperities_per_surface": float(surf["n_clusters"].mean()),
+                "values_per_surface": float(surf["n_clusters"].mean()),
+                "asperities_per_surface": math.nan,
+                "spots_per_surface": float(surf["n_clusters"].mean()),
                 "points_in_contact_per_surface": float(surf["n_contact"].mean()),
                 "fit": f"{f.param.upper()} {f.method}" if f.ok else "none",
                 "damage": math.nan if d is None else _scalar(d.estimate),
@@ -115,7 +145,10 @@ def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysi
                 "observed_damage": float(np.mean(surf["max_pressure_MPa"] > c.hardness)),
                 "coverage": math.nan, "coverage_low": math.nan, "coverage_high": math.nan,
                 "bias_p_value": math.nan, "theta": math.nan, "damage_levels_inside": "",
-                "passes_check": False, "upper_end_mpa": math.nan, "n_surfaces": len(surf)})
+                "held_out_damage": math.nan, "held_out_surfaces": 0, "damage_p_value": math.nan,
+                "coverage_p_value": math.nan, "detectable_miss": math.nan,
+                "check": "not checked", "passes_check": False, "upper_end_mpa": math.nan,
+                "n_surfaces": len(surf)})
     return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
 
 
@@ -127,7 +160,7 @@ def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None
     ``predicted`` (P(max > hardness) from the fit of the other fold, averaged over the two
     folds), ``observed`` (fraction of held-out surfaces or groups whose maximum exceeds it),
     ``observed_low``/``observed_high`` (Wilson 95 % interval), ``n_surfaces`` (surfaces or
-    groups).
+    groups), ``p_value`` (exact binomial test of the observed count against the prediction).
     """
     import pandas as pd
 
@@ -135,7 +168,7 @@ def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None
     models = [("asperity", analysis)] + ([("bem", bem_analysis)] if bem_analysis else [])
     for model, an in models:
         for (ih, il), r in an.items():
-            for sample in ("asperity", "grid"):
+            for sample in _samples(r):
                 c = r[sample].validation.calibration
                 if c is None or len(c) == 0:
                     continue
@@ -152,14 +185,15 @@ def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None
 
 def degenerate_scene(analysis: dict) -> str:
     """A plain warning when the scene cannot answer the question ("" otherwise): fewer than
-    3 asperities per surface on average, or a damage probability of 0 or 1 for every H."""
+    3 contact spots per surface on average, or a damage probability of 0 or 1 for every H."""
     msgs = []
-    few = [r["summary"]["n_asperities"] for r in analysis.values()]
+    few = [r["summary"].get("n_spots", r["summary"]["n_asperities"]) for r in analysis.values()]
     if few and min(few) < 3:
-        msgs.append(f"only {min(few):.2g} asperities per surface are in contact on average for at "
-                    "least one H: one or two asperities carry the load, the pressure statistics "
-                    "describe those few contacts and the maximum is barely random")
-    dmg = [r["asperity"].damage for r in analysis.values() if r["asperity"].damage is not None]
+        msgs.append(f"only {min(few):.2g} contact spots per surface on average for at least one "
+                    "H: one or two spots carry the load, the pressure statistics describe those "
+                    "few contacts and the maximum is barely random")
+    dmg = [r[PRIMARY_SAMPLE].damage for r in analysis.values()
+           if r[PRIMARY_SAMPLE].damage is not None]
     vals = [_scalar(d.estimate) for d in dmg]
     if vals and (all(v >= 1 - 1e-12 for v in vals) or all(v <= 1e-12 for v in vals)):
         msgs.append("the damage probability is " + ("1" if vals[0] >= 0.5 else "0") + " for every H: "
@@ -182,9 +216,9 @@ def overlap_note(settings, analysis: dict, threshold: float = 0.1) -> str:
     return ("Overlapping asperities: on " + ", ".join(f"{100 * f:.0f} % of the surfaces ({name})"
                                                       for name, f in many)
             + " the maximal pressure lies where the pressure patches of neighbouring asperities "
-              "overlap and add up, above every asperity's own peak. The per-asperity prediction "
-              "describes the peaks, not these sums, and understates the damage probability there: "
-              "read it next to the observed fraction of surfaces damaged and the elastic BEM.")
+              "overlap and add up, above every asperity's own peak. The answer's contact-spot "
+              "peaks include these sums; the per-asperity option (in the checks below) does not "
+              "and understates the damage probability there.")
 
 
 def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
@@ -201,7 +235,7 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
                                                  if k in bem_analysis else [])]
     for (ih, il), r, label in cases:
         h = settings.hurst[ih]
-        sa = r["asperity"]
+        sa = r[PRIMARY_SAMPLE]
         d = sa.damage
         v = sa.validation
         if d is None:
@@ -211,12 +245,10 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
                       f"{fmt_probability(_scalar(d.high))}]")
             if sa.end_note:
                 answer += " ⚠ near or beyond the fit's end point (below)"
-        check = ("passed" if v.passes(asettings.confidence_level) else "failed") if sa.ok else "—"
-        if v.error:
-            check = f"not checked ({v.error})"
+        check = v.short_text() if sa.ok else "—"
         elastic = "—"
-        if bem_analysis and (ih, il) in bem_analysis and bem_analysis[(ih, il)]["asperity"].ok:
-            elastic = fmt_probability(_scalar(bem_analysis[(ih, il)]["asperity"].damage.estimate))
+        if bem_analysis and (ih, il) in bem_analysis and bem_analysis[(ih, il)][PRIMARY_SAMPLE].ok:
+            elastic = fmt_probability(_scalar(bem_analysis[(ih, il)][PRIMARY_SAMPLE].damage.estimate))
         elif bem and (ih, il) in bem and bem[(ih, il)].fits["bem"].damage is not None:
             de = bem[(ih, il)].fits["bem"].damage
             elastic = fmt_probability(_scalar(de.estimate))
@@ -278,11 +310,11 @@ def _readable(p: float) -> str:
 
 def integrity_rows(settings, asettings, analysis: dict) -> tuple[list[list[str]], list[str]]:
     """Integrity against area for the first screen: per case, the probability that no point
-    of k analysed areas exceeds the hardness (per-asperity predictor, with its interval) at
+    of k analysed areas exceeds the hardness (contact-spot predictor, with its interval) at
     k = 1, 10 and 100; no rows when no case has an integrity curve."""
     rows = []
     for (ih, il), r in analysis.items():
-        it = r["asperity"].integrity
+        it = r[PRIMARY_SAMPLE].integrity
         if it is None:
             continue
         k = np.asarray(it.area_factor, dtype=float).ravel()
@@ -308,13 +340,13 @@ def integrity_rows(settings, asettings, analysis: dict) -> tuple[list[list[str]]
 
 def area_scaling_sentence(settings, analysis: dict) -> str:
     """The area scaling's check in words: per case, at how many hardness levels the predicted
-    damage probability of k analysed areas (per-asperity predictor) lies inside the observed
+    damage probability of k analysed areas (contact-spot predictor) lies inside the observed
     interval of groups of k held-out surfaces, for every k checked besides 1 ("" when none)."""
     from .analysis_settings import AREA_CHECKS
 
     parts = []
     for (ih, il), r in analysis.items():
-        v = r["asperity"].validation
+        v = r[PRIMARY_SAMPLE].validation
         counts = [(k, *v.damage_hits(k)) for k in AREA_CHECKS]
         counts = [(k, hits, m) for k, hits, m in counts if m]
         if counts:
@@ -323,7 +355,7 @@ def area_scaling_sentence(settings, analysis: dict) -> str:
     if not parts:
         return ""
     return ("Area scaling (docs/method.md §7), checked by grouping k held-out surfaces: hardness "
-            "levels at which the predicted damage probability of k areas (per-asperity "
+            "levels at which the predicted damage probability of k areas (contact-spot "
             "predictor) lies inside the observed Wilson interval — " + "; ".join(parts)
             + ". These are not part of the pass rule, which is for one area: read the "
             "integrity of larger areas with them.")
@@ -338,44 +370,25 @@ def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = 
     if bem_analysis:
         items = ([(k, r, ", asperity model") for k, r in analysis.items()]
                  + [(k, r, ", elastic BEM") for k, r in bem_analysis.items()])
-    holm = _holm_across_cases(items)
     for (ih, il), r, label in items:
-        for sample in ("asperity", "grid"):
+        for sample in _samples(r):
             v = r[sample].validation
             case = case_name(settings, ih) + (
                 f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1 else "") + label
-            if v.table is None:
+            if v.table is None or v.damage_check is None:
                 rows.append([case, SAMPLE_LABELS[sample], "—", "—", "—", "—", "—",
                              f"not checked: {v.error or r[sample].note}"])
                 continue
-            hits, m = v.damage_hits()
-            lo, hi = v.coverage_interval
-            adjusted = holm.get((ih, il, label, sample), math.nan)
+            d, c = v.damage_check, v.coverage_check
+            miss = max(d.detectable_miss, c.detectable_miss)
             rows.append([case, SAMPLE_LABELS[sample],
-                         f"{100 * v.coverage:.0f} % [{100 * lo:.0f}, {100 * hi:.0f}]",
-                         f"{v.t_pvalue:.2g}", f"{adjusted:.2g}" if math.isfinite(adjusted) else "—",
-                         f"{hits} of {m}", f"{v.theta:.2g}" if math.isfinite(v.theta) else "—",
-                         "passes" if v.passes(asettings.confidence_level) else "fails"])
-    return rows, ["case", "sample", f"coverage of the {lvl} % interval [Wilson 95 %]",
-                  "centring test p", "centring p, Holm across cases", "hardness levels inside",
-                  "extremal index θ", "check"]
-
-
-def _holm_across_cases(items: list) -> dict:
-    """Holm-adjusted centring-test p-values: one family per (model, sample) across the cases
-    (Hurst exponents and loads), keyed ``(ih, il, model label, sample)``."""
-    from ..gof import adjust_pvalues
-
-    out: dict[tuple[int, int, str, str], float] = {}
-    for label in dict.fromkeys(lab for _, _, lab in items):
-        for sample in ("asperity", "grid"):
-            keys, ps = [], []
-            for (ih, il), r, lab in items:
-                v = r[sample].validation
-                if lab == label and v.table is not None and math.isfinite(v.t_pvalue):
-                    keys.append((ih, il, label, sample))
-                    ps.append(v.t_pvalue)
-            if ps:
-                out.update(zip(keys, np.atleast_1d(adjust_pvalues(np.array(ps))).tolist(),
-                               strict=True))
-    return out
+                         f"{d.hits} of {d.n} vs {fmt_probability(d.predicted)} (p = {d.p_value:.2g})",
+                         f"{c.hits} of {c.n} = {100 * v.coverage:.0f} % (p = {c.p_value:.2g})",
+                         "—" if not math.isfinite(miss) else f"{100 * miss:.2g} points",
+                         f"{v.t_pvalue:.2g}", f"{v.theta:.2g}" if math.isfinite(v.theta) else "—",
+                         v.verdict()])
+    return rows, ["case", "sample", f"damaged held-out surfaces vs predicted at "
+                                    f"{asettings.hardness:g} MPa (exact binomial p)",
+                  f"held-out maxima inside the {lvl} % interval (exact binomial p)",
+                  "smallest miss detected (80 % power)", "centring test p", "extremal index θ",
+                  "check"]

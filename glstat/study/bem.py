@@ -358,12 +358,12 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
 
     Every surface's record holds, for the contact spots inside the patch (spots touching its
     border carry the edge singularity of the isolated patch and are left out, see
-    :func:`contact_record`): ``samples`` (their non-zero grid pressures, Pa), ``asperity_peak``
-    (the peak pressure of every such spot, Pa: the elastic analogue of the per-asperity peak),
-    ``n_asperities`` (their number), ``n_contact`` (their grid points), ``max_pressure``
-    (their largest pressure); and for the whole solution ``mean_pressure``, ``alpha``,
-    ``force_error`` and ``n_border_spots``. A solve that did not converge within its iteration limit is
-    left out (never silently used) and listed.
+    :func:`contact_record`): ``samples`` (their non-zero grid pressures, Pa), ``spot_peak``
+    (the peak pressure of every such spot, Pa), ``n_spots`` (their number), ``asperity_peak``
+    and ``n_asperities`` (the same, under the per-asperity names), ``n_contact`` (their grid
+    points), ``max_pressure`` (their largest pressure); and for the whole solution
+    ``mean_pressure``, ``alpha``, ``force_error`` and ``n_border_spots``. A solve that did not
+    converge within its iteration limit is left out (never silently used) and listed.
 
     Returns
     -------
@@ -378,7 +378,8 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
             dropped.append(key)
             continue
         inner = interior(r)
-        res[key] = {"samples": inner["samples"], "asperity_peak": inner["peaks"],
+        res[key] = {"samples": inner["samples"], "spot_peak": inner["peaks"],
+                    "n_spots": inner["n_spots"], "asperity_peak": inner["peaks"],
                     "n_asperities": inner["n_spots"], "n_contact": int(inner["samples"].size),
                     "max_pressure": inner["max_pressure"],
                     "mean_pressure": float(r["mean_pressure"]),

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from .analysis import SAMPLE_LABELS
+from .analysis_settings import PRIMARY_SAMPLE
 from .answer import case_label
 from .report_document import fmt_cell
 from .report_numbers import SAMPLE_ORDER, fitted
@@ -47,7 +48,7 @@ def sample_panels() -> tuple[Any, list[tuple[Any, str]]]:
     -------
     fig : matplotlib.figure.Figure
     panels : list of (matplotlib.axes.Axes, str)
-        The axes of the grid-point and of the per-asperity sample, with the sample.
+        The axes of the grid-point and of the contact-spot sample, with the sample.
     """
     fig, axes = pyplot().subplots(1, 2, figsize=(11, 3.8), squeeze=False, layout="constrained")
     return fig, [(axes[0, col], sample) for col, sample in enumerate(SAMPLE_ORDER)]
@@ -97,12 +98,12 @@ def _zoom_panel(fig, ax, sub, sl, spacing: tuple[float, float], norm, title: str
 
 
 def damage_curve_figure(settings, asettings, analysis: dict, suffix: str = ""):
-    """Damage probability of one area against the hardness, per case: the per-asperity
+    """Damage probability of one area against the hardness, per case: the contact-spot
     predictor with its band, and the observed fraction of surfaces above it."""
     cases = list(analysis.items())
     fig, axes = pyplot().subplots(1, len(cases), figsize=(4.2 * len(cases), 3.4), squeeze=False)
     for ax, ((ih, il), r) in zip(axes[0], cases, strict=True):
-        c = r["asperity"].damage_curve
+        c = r[PRIMARY_SAMPLE].damage_curve
         if c is None:
             ax.set_axis_off()
             continue
@@ -111,8 +112,8 @@ def damage_curve_figure(settings, asettings, analysis: dict, suffix: str = ""):
         ax.plot(x, c["damage"], label="predicted")
         ax.step(x, c["observed"], where="post", color="k", lw=1, label="observed fraction")
         ax.axvline(asettings.hardness / 1e3, color="r", ls="--", lw=1, label="hardness")
-        top = float(np.quantile(r["asperity"].validation.table["observed"], 0.95)) / 1e3 \
-            if r["asperity"].validation.table is not None else float(x.max())
+        table = r[PRIMARY_SAMPLE].validation.table
+        top = float(np.quantile(table["observed"], 0.95)) / 1e3 if table is not None else float(x.max())
         ax.set_xlim(float(x.min()), max(top * 1.15, asettings.hardness / 1e3 * 1.1))
         ax.set_xlabel("hardness Pd (GPa)")
         ax.set_ylabel("P(max > Pd), one area")
@@ -122,13 +123,19 @@ def damage_curve_figure(settings, asettings, analysis: dict, suffix: str = ""):
     return fig
 
 
+#: Legend labels of the samples in the reliability figure.
+_RELIABILITY_LABELS = {"spot": "contact spots", "asperity": "asperities", "grid": "grid (paper)"}
+
+
 def damage_reliability_figure(settings, analysis: dict, suffix: str = ""):
     """Predicted against observed damage probability on held-out surfaces, per case, for
     both samples and the area factors 1, 2 and 4."""
     cases = list(analysis.items())
     fig, axes = pyplot().subplots(1, len(cases), figsize=(4.2 * len(cases), 3.6), squeeze=False)
     for ax, ((ih, il), r) in zip(axes[0], cases, strict=True):
-        for sample, marker in (("asperity", "o"), ("grid", "s")):
+        for sample, marker in (("spot", "o"), ("asperity", "^"), ("grid", "s")):
+            if sample not in r:
+                continue
             c = r[sample].validation.calibration
             if c is None or len(c) == 0:
                 continue
@@ -139,8 +146,8 @@ def damage_reliability_figure(settings, analysis: dict, suffix: str = ""):
                 ax.errorbar(ck["predicted"], ck["observed"],
                             yerr=[np.maximum(ck["observed"] - ck["observed_low"], 0.0),
                                   np.maximum(ck["observed_high"] - ck["observed"], 0.0)],
-                            fmt=marker, ms=4, color=color, mfc="none" if sample == "grid" else color,
-                            label=f"{'grid (paper)' if sample == 'grid' else 'asperity'}, k = {k}")
+                            fmt=marker, ms=4, color=color, mfc=color if sample == "spot" else "none",
+                            label=f"{_RELIABILITY_LABELS[sample]}, k = {k}")
         ax.plot([0, 1], [0, 1], "k:", lw=1)
         ax.set_xlabel("predicted P(max > Pd)")
         ax.set_ylabel("observed fraction (Wilson 95 %)")
@@ -192,7 +199,7 @@ def pressure_maps_figure(settings, examples: list):
 
 def histograms_figure(settings, analysis: dict):
     """Pooled pressures and the fitted GLD density per case: grid-point pressures (top row)
-    and per-asperity peaks (bottom row)."""
+    and contact-spot peaks (bottom row)."""
     from ..plot import plot_histogram
 
     nc = len(analysis)

@@ -18,8 +18,8 @@ __all__ = ["SAMPLE_ORDER", "TruncationSummary", "comparison_rows", "damage_recor
            "sample_moments", "truncation_summary", "unconverged_solves", "validation_records"]
 
 #: The two samples of every case, in the order of the report's tables: grid-point pressures
-#: (the paper's) and per-asperity peak pressures.
-SAMPLE_ORDER = ("grid", "asperity")
+#: (the paper's) and contact-spot peak pressures.
+SAMPLE_ORDER = ("grid", "spot")
 #: Area factors k of the guaranteed-pressure table.
 GUARANTEED_FACTORS = (1.0, 10.0, 100.0, 1000.0)
 
@@ -32,7 +32,7 @@ def fitted(analysis: dict, sample: str) -> Iterator[tuple[int, int, Any]]:
     analysis : dict
         ``(ih, il) -> {sample: SampleAnalysis, ...}``.
     sample : str
-        ``"grid"`` or ``"asperity"``.
+        ``"grid"`` or ``"spot"``.
 
     Yields
     ------
@@ -54,7 +54,7 @@ def damage_verdict(analysis: dict) -> str:
     ----------
     analysis : dict
         Output of :func:`glstat.study.analysis.analyse`: per case, ``"grid"`` and
-        ``"asperity"`` sample analyses whose ``damage`` is a bootstrap probability or None.
+        ``"spot"`` sample analyses whose ``damage`` is a bootstrap probability or None.
 
     Returns
     -------
@@ -164,7 +164,7 @@ def maximum_records(analysis: dict) -> list[dict[str, Any]]:
     Returns
     -------
     list of dict
-        Grid samples first, then per-asperity samples: ``ih``, ``il``, ``sample``, ``n`` (the
+        Grid samples first, then contact-spot samples: ``ih``, ``il``, ``sample``, ``n`` (the
         reference count), ``maximum`` (the bootstrap maximum), ``mean``, ``low``, ``high``
         (its mixture's mean and interval).
     """
@@ -189,7 +189,7 @@ def validation_records(analysis: dict) -> list[dict[str, Any]]:
     Returns
     -------
     list of dict
-        Grid samples first, then per-asperity samples: ``ih``, ``il``, ``sample``,
+        Grid samples first, then contact-spot samples: ``ih``, ``il``, ``sample``,
         ``validation`` and, when it was checked, ``surfaces`` (held-out surfaces) and
         ``mean_difference`` (mean of predicted − observed maxima, MPa); otherwise ``reason``
         (why it was not).
@@ -220,7 +220,7 @@ def damage_records(analysis: dict) -> list[tuple[int, int, str, Any, tuple[float
     Returns
     -------
     list of (ih, il, sample, n, (estimate, low, high) or None)
-        Per case, the grid sample then the per-asperity sample, with the reference count.
+        Per case, the grid sample then the contact-spot sample, with the reference count.
     """
     out = []
     for (ih, il), r in analysis.items():

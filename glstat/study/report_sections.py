@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from ..formatting import fmt_number
 from .analysis import SAMPLE_LABELS
+from .analysis_settings import PRIMARY_SAMPLE
 from .answer import (
     area_scaling_sentence,
     case_label,
@@ -57,17 +58,19 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     out.table(columns, rows,
               f"Probability that the contact pressure exceeds the hardness {hard:g} MPa somewhere on "
               f"one analysed area ({area_text(settings)}), "
-              f"predicted from the peak pressures of the asperities in contact with their number "
-              f"per surface as a random count (docs/method.md §6), with its {lvl} % bootstrap "
-              f"interval (surfaces resampled). 'Check' is the prediction tested on held-out "
-              f"surfaces (coverage of the maximum, centring, and the damage probability at "
-              f"{asettings.n_levels}+ hardness levels). The elastic BEM column is the same "
-              f"predictor on the elastic solution of the first surfaces (per contact spot).")
+              f"predicted from the peak pressures of the connected contact spots of each surface's "
+              f"pressure map with their number per surface as a random count (docs/method.md §6; "
+              f"the largest spot peak of a surface is its maximal pressure), with its {lvl} % "
+              f"bootstrap interval (surfaces resampled). 'Check' tests the prediction on held-out "
+              f"surfaces: the fraction damaged and the coverage of the maximum's interval, each by "
+              f"an exact binomial test ('not checkable' when the surfaces are too few to detect a "
+              f"miss of 20 percentage points). The elastic BEM column is the same predictor on the "
+              f"elastic solution.")
     rows, columns = integrity_rows(settings, asettings, analysis)
     if rows:
         out.table(columns, rows,
                   f"Integrity against area: the probability that no point of k analysed areas "
-                  f"exceeds {hard:g} MPa (per-asperity predictor; the figure \"Integrity against "
+                  f"exceeds {hard:g} MPa (contact-spot predictor; the figure \"Integrity against "
                   f"area\" below draws it for k = 1 to 1000).")
     if bem:
         ratios = [f"{case_name(settings, ih)}: mean pressure ×{mean:.2g}, maximal pressure ×{peak:.2g}"
@@ -76,12 +79,12 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
                       "solution gives " + "; ".join(ratios) + " the asperity model's (c = "
                       f"{settings.cone_factor:g}). The asperity model neglects elastic interaction "
                       "and prescribes the pressure shape; the damage verdict depends on the model.")
-    notes = [f"{case_name(settings, ih)}: {r['asperity'].end_note}" for (ih, il), r in analysis.items()
-             if r["asperity"].end_note]
+    notes = [f"{case_name(settings, ih)}: {r[PRIMARY_SAMPLE].end_note}"
+             for (ih, il), r in analysis.items() if r[PRIMARY_SAMPLE].end_note]
     if notes:
         out.paragraph("⚠ Fitted end point: " + "; ".join(notes) + ".")
-    choices = [f"{case_name(settings, ih)}: {r['asperity'].choice.reason}"
-               for (ih, il), r in analysis.items() if r["asperity"].choice is not None]
+    choices = [f"{case_name(settings, ih)}: {r[PRIMARY_SAMPLE].choice.reason}"
+               for (ih, il), r in analysis.items() if r[PRIMARY_SAMPLE].choice is not None]
     if choices:
         out.paragraph("Fit of the peak pressures, chosen on an inner split of the surfaces (never on "
                       "the surfaces it is checked against): " + "; ".join(choices) + ".")
@@ -95,13 +98,14 @@ def _answer_figures(out: Blocks, settings, asettings, analysis: dict, model: str
     tag = "_bem" if model else ""
     out.figure("damage_curve" + tag, damage_curve_figure(settings, asettings, analysis, suffix),
                "Damage probability on one analysed area against the hardness, with its bootstrap "
-               "band (per-asperity predictor), and the fraction of surfaces whose maximal pressure "
+               "band (contact-spot predictor), and the fraction of surfaces whose maximal pressure "
                "exceeds it" + suffix + ".")
     out.figure("damage_reliability" + tag, damage_reliability_figure(settings, analysis, suffix),
                "Reliability of the damage probability: predicted (fit on the other fold) against "
                "observed on held-out surfaces, at several hardness levels, for one area (k = 1) and "
-               "groups of k = 2 and 4 surfaces (the area scaling). Filled: per-asperity predictor; "
-               "open squares: the paper's grid-point predictor.")
+               "groups of k = 2 and 4 surfaces (the area scaling). Filled circles: the contact-spot "
+               "predictor (the answer); open triangles: the per-asperity predictor; open squares: the "
+               "paper's grid-point predictor.")
 
 
 def checks_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
@@ -111,15 +115,18 @@ def checks_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     bem_an = info.get("bem_analysis")
     rows, columns = check_rows(settings, asettings, analysis, bem_an)
     out.table(columns, rows,
-              "Checks on held-out surfaces (fit on one fold, predict the other): coverage of the "
-              "predicted interval of each surface's maximum, the t-test of (predicted − observed) "
-              "maxima, the hardness levels at which the predicted damage probability lies inside "
-              "the observed Wilson interval, and the extremal index θ (effective over nominal number "
-              "of draws). A prediction passes when the coverage interval contains the level, the "
-              "test does not reject at 5 % and ≥ 80 % of the levels are inside. The Holm column "
-              "adjusts the centring p-values for testing every case (one family per model and "
-              "sample; statsmodels' multipletests): it answers whether any case is off-centre, "
-              "while each case's check uses its own p.")
+              "Checks on held-out surfaces (fit on one fold, predict the other), each against the "
+              "surface's maximal pressure, the event the damage probability is about. Damage: the "
+              "number of held-out surfaces whose maximum exceeds the hardness against the predicted "
+              "probability; coverage: the number of held-out maxima inside their predicted interval "
+              "against the interval's level. Each is an exact binomial test at 5 % (p below 0.05: "
+              "the prediction and the observation disagree, 'failed'). A test that does not reject "
+              "proves little when the surfaces are few: the check counts only when a miss of 20 "
+              "percentage points or more would be detected with 80 % probability; otherwise it "
+              "says 'not checkable' and the column before the centring test gives the smallest "
+              "miss it could detect. The centring test (t-test of predicted − observed maxima) and "
+              "the extremal index θ (effective over nominal number of draws; 1 for independent "
+              "draws) are shown for reference.")
     scaling = area_scaling_sentence(settings, analysis)
     if scaling:
         out.paragraph(scaling)

@@ -37,7 +37,7 @@ def damage_sentence(settings, analysis: dict, hardness: float, level: int) -> st
         Campaign settings (for the case labels).
     analysis : dict
         Output of :func:`glstat.study.analysis.analyse`: per case, ``"grid"`` and
-        ``"asperity"`` sample analyses whose ``damage`` is a bootstrap probability or None.
+        ``"spot"`` sample analyses whose ``damage`` is a bootstrap probability or None.
     hardness : float
         Hardness in MPa.
     level : int

@@ -28,8 +28,8 @@ __all__ = [
 
 #: Arrays every stored surface holds (the analysis reads them); ``in_jump`` and
 #: ``force_jump`` are optional (files written before they existed lack them).
-SURFACE_ARRAYS = ("samples", "asperity_peak", "max_pressure", "mean_pressure", "alpha",
-                  "n_contact", "n_points", "n_asperities", "force_error")
+SURFACE_ARRAYS = ("samples", "spot_peak", "n_spots", "asperity_peak", "max_pressure",
+                  "mean_pressure", "alpha", "n_contact", "n_points", "n_asperities", "force_error")
 
 #: The full maps of the example surfaces, loaded on request only.
 MAPS = ("heights", "pressure")

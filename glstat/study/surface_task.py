@@ -72,10 +72,15 @@ def solve_asperity(settings: CampaignSettings, surface: Any, load: float) -> Any
 
 def _contact_arrays(res: Any) -> dict[str, Any]:
     """The stored arrays of one solve (see :func:`simulate_surface`)."""
+    import contact
+
     asp = res.asperities
     p = res.pressure
+    spots = contact.contact_spots(res)
     return {
         "samples": p[p > 0].astype(np.float64),
+        "spot_peak": spots.peak_pressure.astype(np.float64),
+        "n_spots": np.int64(spots.n_spots),
         "asperity_peak": 1.5 * asp["p_m"].to_numpy(dtype=float),
         "asperity_p_m": asp["p_m"].to_numpy(dtype=float),
         "asperity_beta": asp["beta"].to_numpy(dtype=float),
@@ -109,7 +114,9 @@ def simulate_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> di
     Returns
     -------
     dict of ndarray
-        ``samples`` (non-zero grid pressures, Pa, row-major order), ``asperity_peak``
+        ``samples`` (non-zero grid pressures, Pa, row-major order), ``spot_peak`` (the
+        largest pressure of every 8-connected contact spot of the pressure map, Pa, in the
+        order of :func:`contact.contact_spots`), ``n_spots``, ``asperity_peak``
         (``1.5 p_m`` per asperity in contact, Pa), ``asperity_p_m``, ``asperity_beta`` (rad),
         ``asperity_a``, ``asperity_b`` (m), and scalars ``max_pressure``, ``mean_pressure``
         (Pa), ``alpha``, ``n_contact``, ``n_points``, ``n_asperities``, ``separation`` (m),

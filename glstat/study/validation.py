@@ -12,7 +12,11 @@ import numpy as np
 
 from .analysis_settings import (
     AREA_CHECKS,
-    PASS_FRACTION,
+    CHECK_MAX_MISS,
+    CHECK_POWER,
+    CHECK_SIGNIFICANCE,
+    GROUPED_SAMPLES,
+    SEED_SLOTS,
     AnalysisSettings,
     fit_order,
     pool,
@@ -21,7 +25,7 @@ from .analysis_settings import (
 )
 from .fit_choice import choose_fit
 
-__all__ = ["Validation", "hardness_levels", "validate_sample", "wilson_interval"]
+__all__ = ["Validation", "hardness_levels", "held_out_check", "validate_sample", "wilson_interval"]
 
 
 def wilson_interval(k: int, n: int, level: float = 0.95) -> tuple[float, float]:
@@ -73,7 +77,13 @@ class Validation:
         ``m / sum_i n_i (-log F(M_i))`` (1 when the n values behave as independent draws).
     calibration : pandas.DataFrame
         Predicted against observed damage probability per hardness level and area factor
-        (columns of ``damage_calibration.csv``).
+        (columns of ``damage_calibration.csv``, with the exact binomial test's ``p_value``).
+    damage_check : glstat.BinomialCheck or None
+        The predicted damage probability at the hardness on one area against the fraction of
+        held-out surfaces whose maximal pressure exceeds it (exact binomial test).
+    coverage_check : glstat.BinomialCheck or None
+        The number of held-out maxima inside their predicted interval against the interval's
+        level (exact binomial test).
     error : str
         Why the validation could not be done ("" when it was).
     """
@@ -87,6 +97,8 @@ class Validation:
     reject: bool = False
     theta: float = math.nan
     calibration: Any = None
+    damage_check: Any = None
+    coverage_check: Any = None
     error: str = ""
 
     def damage_hits(self, area_factor: float = 1) -> tuple[int, int]:
@@ -99,23 +111,83 @@ class Validation:
         inside = (one["predicted"] >= one["observed_low"]) & (one["predicted"] <= one["observed_high"])
         return int(inside.sum()), len(one)
 
-    def passes(self, level: float) -> bool:
-        """Whether the result passes its check: the coverage's Wilson interval contains the
-        nominal level, the centring test does not reject, and the predicted damage lies inside
-        the observed interval at >= 80 % of the hardness levels."""
-        if self.error or self.table is None:
-            return False
-        hits, m = self.damage_hits()
-        lo, hi = self.coverage_interval
-        return bool(lo <= level <= hi and not self.reject and m and hits >= PASS_FRACTION * m)
+    def verdict(self) -> str:
+        """The held-out check: ``"failed"`` when the damage probability at the hardness or the
+        coverage of the maximum's interval is rejected by its exact binomial test at 5 %;
+        ``"not checkable"`` when neither is rejected but the held-out surfaces are too few to
+        detect a miss of 20 percentage points with 80 % power; ``"passed"`` otherwise;
+        ``"not checked"`` without a validation."""
+        checks = [c for c in (self.damage_check, self.coverage_check) if c is not None]
+        if self.error or self.table is None or len(checks) < 2:
+            return "not checked"
+        if any(c.verdict == "failed" for c in checks):
+            return "failed"
+        if any(c.verdict == "not checkable" for c in checks):
+            return "not checkable"
+        return "passed"
+
+    def passes(self, level: float | None = None) -> bool:
+        """Whether the result passes its check (:meth:`verdict` is ``"passed"``); ``level``
+        is accepted for compatibility (the coverage check uses the interval's own level)."""
+        return self.verdict() == "passed"
+
+    def short_text(self) -> str:
+        """The verdict in a few words, for a table cell: what failed, or how many held-out
+        surfaces a check would need."""
+        v = self.verdict()
+        d, c = self.damage_check, self.coverage_check
+        if v == "not checked":
+            return f"not checked ({self.error})" if self.error else "not checked"
+        if v == "failed":
+            parts = []
+            if d is not None and d.verdict == "failed":
+                parts.append(f"{d.hits} of {d.n} held-out surfaces damaged, "
+                             f"{_pct(d.predicted)} predicted (p = {d.p_value:.2g})")
+            if c is not None and c.verdict == "failed":
+                parts.append(f"{c.hits} of {c.n} held-out maxima inside the "
+                             f"{_pct(c.predicted)} interval (p = {c.p_value:.2g})")
+            return "failed: " + "; ".join(parts)
+        miss = max(x.detectable_miss for x in (d, c))
+        if v == "not checkable":
+            return (f"not checkable with {d.n} held-out surfaces: misses under "
+                    f"{_pp(miss)} go undetected")
+        return f"passed ({d.hits} of {d.n} damaged; a miss of {_pp(miss)} would show)"
+
+    def verdict_text(self) -> str:
+        """The verdict with the reason, in one line (for the report and the command)."""
+        v = self.verdict()
+        if v == "not checked":
+            return f"not checked ({self.error})" if self.error else "not checked"
+        parts = []
+        if self.damage_check is not None:
+            parts.append("damage " + self.damage_check.text())
+        if self.coverage_check is not None:
+            parts.append("coverage of the maximum " + self.coverage_check.text())
+        return f"{v} — " + "; ".join(parts)
+
+
+def _pct(p: float) -> str:
+    return f"{100 * p:.3g} %"
+
+
+def _pp(d: float) -> str:
+    return "any size" if not math.isfinite(d) else f"{100 * d:.2g} percentage points"
+
+
+def held_out_check(predicted: float, hits: int, n: int):
+    """:func:`glstat.binomial_check` at the study's level, power and largest undetected miss."""
+    from ..checks import binomial_check
+
+    return binomial_check(min(max(float(predicted), 0.0), 1.0), int(hits), int(n),
+                          significance=CHECK_SIGNIFICANCE, power=CHECK_POWER,
+                          max_miss=CHECK_MAX_MISS)
 
 
 def hardness_levels(maxima: np.ndarray, hardness: float, n_levels: int) -> np.ndarray:
-    """Hardness levels spanning the observed per-surface maxima (quantiles 5 %–95 %) and the
-    hardness itself, in MPa (rounded to 3 significant digits)."""
+    """Hardness levels spanning the observed per-surface maxima (quantiles 5 %–95 %, rounded
+    to 3 significant digits) and the hardness itself (exact), in MPa."""
     q = np.quantile(maxima, np.linspace(0.05, 0.95, n_levels))
-    levels = np.unique(np.concatenate([[hardness], q]))
-    return np.unique(np.array([float(f"{v:.3g}") for v in levels]))
+    return np.unique(np.concatenate([[float(hardness)], [float(f"{v:.3g}") for v in q]]))
 
 
 def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: int, param: str, method: str,
@@ -134,11 +206,12 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
         if x.size < 5:
             return Validation(error=f"only {x.size} values in a fitting fold (at least 5 needed)")
         p, m, order = param, method, None
-        if sample == "asperity":
+        grouped = sample in GROUPED_SAMPLES
+        if grouped:
             ch = choose_fit([per[i] for i in train])
             p, m, order = ch.param, ch.method, ch.order()
-        grouped = sample == "asperity"
-        pred = predict_sample(x, a, sample_rng(a, ih, il, 1 if sample == "grid" else 2, f),
+        _, fold_slot, maxima_slot, _ = SEED_SLOTS[sample]
+        pred = predict_sample(x, a, sample_rng(a, ih, il, fold_slot, f),
                               fit_order(a, p, m, order), groups=labels if grouped else None,
                               n=None if grouped else max(float(counts.mean()), 1.0),
                               n_resamples=a.grid_resamples if sample == "grid" else None)
@@ -150,7 +223,7 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
         if tested:
             ns = np.array([per[i][1] for i in tested], dtype=float)
             obs = np.array([per[i][2] for i in tested])
-            v = sample_rng(a, ih, il, 3 if sample == "grid" else 4, f).random((bf.n_successful, len(tested)))
+            v = sample_rng(a, ih, il, maxima_slot, f).random((bf.n_successful, len(tested)))
             draws = bf.maximum_quantiles(ns[None, :], v)
             alpha = 1 - a.confidence_level
             lo, hi = np.nanquantile(draws, [alpha / 2, 1 - alpha / 2], axis=0)
@@ -198,9 +271,17 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
         ci = [wilson_interval(h, n) for h, n in zip(g["hits"], g["n_surfaces"], strict=True)]
         g["observed_low"] = [c_[0] for c_ in ci]
         g["observed_high"] = [c_[1] for c_ in ci]
+        checks = [held_out_check(pr, h, n) for pr, h, n in
+                  zip(g["predicted"], g["hits"], g["n_surfaces"], strict=True)]
+        g["p_value"] = [c_.p_value for c_ in checks]
+        at = np.flatnonzero(np.isclose(g["hardness_mpa"], a.hardness, rtol=1e-12)
+                            & (g["area_factor"] == 1))
+        if at.size:
+            val.damage_check = checks[int(at[0])]
         val.calibration = g.drop(columns=["wpred", "hits"])[
             ["hardness_mpa", "area_factor", "predicted", "observed", "observed_low", "observed_high",
-             "n_surfaces"]]
+             "n_surfaces", "p_value"]]
+    val.coverage_check = held_out_check(a.confidence_level, k_cov, mcount)
     return val
 
 
