@@ -33,13 +33,16 @@ def _check_hurst(hurst: float) -> float:
     return h
 
 
-def _scale(w: np.ndarray, rq: float | None) -> np.ndarray:
-    """``w`` centred and scaled to the RMS height ``rq`` (m); ``w`` itself when ``rq`` is None."""
+def _scale(w: np.ndarray, rq: float | None, pad: int = 0) -> np.ndarray:
+    """``w`` centred and scaled to the RMS height ``rq`` (m); ``w`` itself when ``rq`` is None.
+    The mean and the scale are those of the central part, without ``pad`` points each side."""
     if rq is None:
         return w
     rq = positive_finite(rq, "rq", "RMS height in metres")
-    w = w - w.mean()
-    s = math.sqrt(float(np.mean(w * w)))
+    core = w[pad:w.shape[0] - pad, pad:w.shape[1] - pad] if pad else w
+    w = w - core.mean()
+    core = w[pad:w.shape[0] - pad, pad:w.shape[1] - pad] if pad else w
+    s = math.sqrt(float(np.mean(core * core)))
     if s == 0:
         raise ValueError("the generated surface is flat; it cannot be scaled to the requested rq")
     w *= rq / s
@@ -56,6 +59,7 @@ def weierstrass(
     *,
     n_terms: int | Sequence[int] | None = None,
     method: str = "matrix",
+    pad: int = 0,
 ) -> Surface:
     """2-D random Weierstrass surface (Bigerelle et al. 2019; docs/method.md §2).
 
@@ -87,11 +91,18 @@ def weierstrass(
         ``"matrix"`` evaluates the sum as one product of small matrices, O(n^2 M) work for
         M terms per axis; ``"direct"`` evaluates both cosines of every term at every grid
         point, O(n^2 M^2) cosines, as a reference.
+    pad : int, default 0
+        Extra grid points on every side (a guard band): the result has shape
+        ``(nx + 2 pad, ny + 2 pad)`` and holds the same function on ``x = (i - pad) dx``, so its
+        central ``nx x ny`` part is exactly the surface without ``pad`` (the terms, the
+        frequencies ``gamma^n / L`` with L from ``length`` and the ``rq`` scaling all come from
+        the central part). Used to solve a contact on a larger area and analyse the central
+        one, away from the edges of an isolated patch.
 
     Returns
     -------
     Surface
-        Heights in metres at ``x = i dx``, ``y = j dy``.
+        Heights in metres at ``x = i dx``, ``y = j dy`` (``x = (i - pad) dx`` with a pad).
 
     Notes
     -----
@@ -131,8 +142,11 @@ def weierstrass(
     coef = rng.standard_normal((n1, n2)) * amp
     phi = rng.uniform(0.0, 2 * np.pi, (n1, n2))
     psi = rng.uniform(0.0, 2 * np.pi, (n1, n2))
-    x = np.arange(nx) * dx
-    y = np.arange(ny) * dy
+    if isinstance(pad, bool) or int(pad) != pad or pad < 0:
+        raise ValueError(f"pad must be an integer >= 0 (grid points per side), got {pad!r}")
+    pad = int(pad)
+    x = np.arange(-pad, nx + pad) * dx
+    y = np.arange(-pad, ny + pad) * dy
     ux = (2 * np.pi / big) * np.outer(x, k1)
     uy = (2 * np.pi / big) * np.outer(y, k2)
     if method == "matrix":
@@ -144,14 +158,14 @@ def weierstrass(
     else:
         # Every term's two cosines at every grid point: O(nx ny M1 M2) cosines.
         gx, gy = np.meshgrid(x, y, indexing="ij")
-        w = np.zeros((nx, ny))
+        w = np.zeros((x.size, y.size))
         for p in range(n1):
             for q in range(n2):
                 w += coef[p, q] * (
                     np.cos((2 * np.pi * k1[p] / big) * gx + phi[p, q])
                     * np.cos((2 * np.pi * k2[q] / big) * gy + psi[p, q])
                 )
-    return Surface(_scale(w, rq), dx, dy)
+    return Surface(_scale(w, rq, pad), dx, dy)
 
 
 def self_affine(

@@ -14,6 +14,7 @@ from .bootstrap import (
 )
 from .checks import BinomialCheck, binomial_check
 from .counts import CountDistribution, ObservedCounts, PoissonCount
+from .cross_validation import MaximumCrossValidation, cross_validate_maximum
 from .damage import damage_probability, guaranteed_threshold, integrity_probability
 from .distributions import gld_fkml, gld_rs
 from .errors import ConvergenceWarning, FitError, FitWarning, InvalidParameterError
@@ -46,6 +47,7 @@ __all__ = [
     "GeneralizedLambda",
     "InvalidParameterError",
     "MaximumCountDistribution",
+    "MaximumCrossValidation",
     "MaximumDistribution",
     "MaximumMixture",
     "MaximumPrediction",
@@ -55,6 +57,7 @@ __all__ = [
     "binomial_check",
     "bootstrap",
     "compare_families",
+    "cross_validate_maximum",
     "damage_probability",
     "edf_statistics",
     "fit",

@@ -5,8 +5,10 @@ Reads one column of values from a delimited text, Parquet, Excel or NPY file
 tabulates every root found and the goodness of fit (:func:`glstat.gof_report`), bootstraps
 the fit (:func:`glstat.bootstrap`) and, on request, gives the distribution of the maximum of
 ``--n-max`` values and the damage probability at a hardness ``--hardness`` for the analysed
-area and for areas ``--area-factor`` times larger. Figures, ``fit.json`` and ``summary.csv``
-go to ``--out``. Phases longer than two seconds announce themselves on stderr.
+area and for areas ``--area-factor`` times larger, and checks that prediction by block
+cross-validation (:func:`glstat.cross_validate_maximum`). Figures, ``fit.json``,
+``summary.csv`` and ``cross_validation.csv`` go to ``--out``. Phases longer than two seconds
+announce themselves on stderr.
 
 Run as ``glstat fit FILE ...`` or ``python -m glstat.cli_fit FILE ...``; ``--help`` lists the
 options and ``docs/cli_fit.md`` shows an example session. Exit status: 0 on success, 2 for bad
@@ -38,11 +40,13 @@ from .cli_fit_options import (
     check_options,
     check_output_dir,
     check_sample,
+    cross_validation_plan,
     gof_resamples_for,
     parse_n_max,
 )
 from .cli_fit_output import (
     print_bootstrap,
+    print_cross_validation,
     print_damage,
     print_fit,
     print_gof,
@@ -167,6 +171,15 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         with phase("damage probability"):
             res.damage = damage_summary(res, args.hardness, n, factors, args.confidence_level, args.count)
         print_damage(res.damage, args, emit)
+    k_cv, b_cv, res.cross_validation_note = cross_validation_plan(args, x.size)
+    if k_cv:
+        from .cross_validation import cross_validate_maximum
+
+        with phase(f"block cross-validation ({k_cv} blocks x {b_cv} resamples)"):
+            res.cross_validation = cross_validate_maximum(
+                x, [(args.param, args.method)], n_blocks=k_cv, threshold=args.hardness,
+                confidence_level=args.confidence_level, n_resamples=b_cv, rng=seed)
+    print_cross_validation(res, emit)
     return res
 
 

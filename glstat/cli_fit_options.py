@@ -14,9 +14,10 @@ from ._validate import FIT_METHODS, PARAMS
 from .cli_input import InputError, Sample, quoted
 from .fitting._stats import MIN_N
 
-__all__ = ["GOF_BUDGET", "GOF_MIN_RESAMPLES", "GOF_RESAMPLES", "METHODS", "METHOD_NAMES", "PARAMS",
-           "build_parser", "check_options", "check_output_dir", "check_sample", "gof_resamples_for",
-           "parse_n_max"]
+__all__ = ["CV_BLOCKS", "CV_LIKELIHOOD_RESAMPLES", "CV_MIN_BLOCK", "CV_RESAMPLES", "GOF_BUDGET",
+           "GOF_MIN_RESAMPLES", "GOF_RESAMPLES", "METHODS", "METHOD_NAMES", "PARAMS", "build_parser",
+           "check_options", "check_output_dir", "check_sample", "cross_validation_plan",
+           "gof_resamples_for", "parse_n_max"]
 
 METHODS = FIT_METHODS
 METHOD_NAMES = {"moments": "method of moments", "percentiles": "percentiles (Karian–Dudewicz)",
@@ -28,6 +29,13 @@ METHOD_NAMES = {"moments": "method of moments", "percentiles": "percentiles (Kar
 GOF_RESAMPLES = 99
 GOF_BUDGET = 10_000_000
 GOF_MIN_RESAMPLES = 19
+#: Block cross-validation of the maximum: blocks by default, the fewest values per block, and
+#: the bootstrap resamples of every fold (at most --bootstrap; fewer for the fits that optimise
+#: a likelihood per resample, which are skipped unless --cross-validate is given).
+CV_BLOCKS = 25
+CV_MIN_BLOCK = 10
+CV_RESAMPLES = 200
+CV_LIKELIHOOD_RESAMPLES = 50
 GOF_ROWS = (("loglik", None), ("aic", None), ("bic", None), ("ks", "ks_pvalue"), ("ad", "ad_pvalue"),
              ("cvm", "cvm_pvalue"), ("chi2", "chi2_pvalue"), ("max_qdev_iqr", None))
 
@@ -43,8 +51,8 @@ def build_parser() -> argparse.ArgumentParser:
         prog="glstat fit",
         description="Fit a Generalized Lambda Distribution to a sample (one column of a CSV, "
                     "Parquet, Excel, NPY or text file); print the fit, the goodness of fit and, given a "
-                    "hardness, the damage probability with its bootstrap interval; write figures, "
-                    "fit.json and summary.csv.",
+                    "hardness, the damage probability with its bootstrap interval, checked by block "
+                    "cross-validation; write figures, fit.json and summary.csv.",
         epilog="example: glstat fit pressures.csv --column pressure --n-max 1048576 "
                "--hardness 2050 --area-factor 1 10 100 --bootstrap 1000 --out fit_out --seed 1",
     )
@@ -75,12 +83,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--hardness", type=float, default=None, metavar="P",
                    help="hardness / yield pressure, in the units of the data: report the damage "
                         "probability P(max > P)")
+    cv = p.add_mutually_exclusive_group()
+    cv.add_argument("--cross-validate", type=int, default=None, metavar="K",
+                    help=f"check the predicted maximum by block cross-validation on K blocks: each "
+                         f"block's maximum against the interval predicted from the other blocks "
+                         f"(default: on with K = {CV_BLOCKS} when --n-max or --hardness is given; "
+                         f"fewer blocks for fewer than {CV_MIN_BLOCK} values per block)")
+    cv.add_argument("--no-cross-validate", action="store_true",
+                    help="skip the block cross-validation")
     p.add_argument("--out", default=None, metavar="DIR",
                    help="output directory for figures, fit.json and summary.csv (default "
                         "glstat_fit_<file stem> in the current directory)")
     p.add_argument("--seed", type=int, default=None, metavar="S",
-                   help="random seed of the bootstrap and of the goodness-of-fit p-values (default: fresh "
-                        "entropy, recorded in fit.json)")
+                   help="random seed of the bootstrap, of the goodness-of-fit p-values and of the block "
+                        "cross-validation (default: fresh entropy, recorded in fit.json)")
     p.add_argument("--nan-policy", choices=("raise", "omit"), default="raise",
                    help="missing/NaN/infinite entries: refuse the file (raise, default) or drop them (omit)")
     p.add_argument("--gof-resamples", type=int, default=None, metavar="B",
@@ -110,6 +126,9 @@ def check_options(args: argparse.Namespace) -> None:
         raise InputError(f"--hardness must be a finite number, got {args.hardness}")
     if args.gof_resamples is not None and (args.gof_resamples < 0 or args.gof_resamples == 1):
         raise InputError(f"--gof-resamples must be 0 or at least 2, got {args.gof_resamples}")
+    if getattr(args, "cross_validate", None) is not None and args.cross_validate < 2:
+        raise InputError(f"--cross-validate must be at least 2 blocks (default {CV_BLOCKS}), got "
+                         f"{args.cross_validate}; pass --no-cross-validate to skip the check")
 
 
 def check_output_dir(path: str | Path) -> Path:
@@ -203,6 +222,52 @@ def check_sample(args: argparse.Namespace, sample: Sample) -> None:
         raise InputError(f"column {quoted(sample.column)} has only {x.size} values: too few to "
                          f"bootstrap a 4-parameter fit (resamples repeat values); give at least "
                          f"{2 * MIN_N} values or pass --bootstrap 0")
+
+
+def cross_validation_plan(args: argparse.Namespace, n: int) -> tuple[int, int, str | None]:
+    """Blocks and resamples of the block cross-validation of ``glstat fit``, or why it is skipped.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The checked options (``--cross-validate``, ``--no-cross-validate``, ``--n-max``,
+        ``--hardness``, ``--bootstrap``, ``--method``).
+    n : int
+        Sample size.
+
+    Returns
+    -------
+    (int, int, str or None)
+        Blocks K and bootstrap resamples per fold (K = 0: not run), and one sentence for the
+        report: why the check is skipped, or why it uses fewer blocks than asked (None when
+        there is nothing to say, e.g. with ``--no-cross-validate``).
+    """
+    from .prediction import LIKELIHOOD_METHODS
+
+    asked = getattr(args, "cross_validate", None)
+    if getattr(args, "no_cross_validate", False):
+        return 0, 0, None
+    if asked is None and args.n_max is None and args.hardness is None:
+        return 0, 0, None
+    if not args.bootstrap:
+        return 0, 0, ("skipped: it checks the bootstrap interval of the maximum, and --bootstrap is "
+                      "0")
+    k = asked if asked is not None else CV_BLOCKS
+    b = min(args.bootstrap, CV_RESAMPLES)
+    if args.method in LIKELIHOOD_METHODS:
+        if asked is None:
+            return 0, 0, (f"skipped by default for {METHOD_NAMES[args.method]}: it would refit "
+                          f"{CV_BLOCKS} x {min(args.bootstrap, CV_LIKELIHOOD_RESAMPLES)} resamples "
+                          f"(minutes); pass --cross-validate {CV_BLOCKS} to run it")
+        b = min(args.bootstrap, CV_LIKELIHOOD_RESAMPLES)
+    most = n // CV_MIN_BLOCK
+    if most < 2:
+        return 0, 0, (f"skipped: {n} values are too few (at least 2 blocks of {CV_MIN_BLOCK} values "
+                      f"are needed, {2 * CV_MIN_BLOCK} values)")
+    if k > most:
+        return most, b, (f"{most} blocks instead of {k}: {n} values make at most {most} blocks of "
+                         f"{CV_MIN_BLOCK} or more values")
+    return k, b, None
 
 
 def gof_resamples_for(n: int, requested: int | None) -> tuple[int, str | None]:

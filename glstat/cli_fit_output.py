@@ -19,8 +19,8 @@ from .formatting import fmt_number
 if TYPE_CHECKING:  # pragma: no cover
     from .bootstrap import BootstrapFit
 
-__all__ = ["print_bootstrap", "print_damage", "print_fit", "print_gof", "print_header",
-           "print_maximum", "write_figures", "write_tables"]
+__all__ = ["print_bootstrap", "print_cross_validation", "print_damage", "print_fit", "print_gof",
+           "print_header", "print_maximum", "write_figures", "write_tables"]
 
 
 def fmt_g(v: float, digits: int = 6) -> str:
@@ -140,6 +140,42 @@ def print_damage(d: dict[str, Any], args: argparse.Namespace, emit: Callable[[st
     if above or below:
         emit(f"  in the bootstrap, {above} fit(s) have the hardness above their support (damage 0) and "
              f"{below} below it (damage 1)")
+
+
+def print_cross_validation(res: FitResults, emit: Callable[[str], None]) -> None:
+    """The verdict of the block cross-validation (first line ``check by block cross-validation:
+    ...``), or why it was skipped; nothing when it was neither run nor asked for."""
+    cv, note = res.cross_validation, res.cross_validation_note
+    if cv is None and note is None:
+        return
+    emit("")
+    if cv is None:
+        emit(f"check by block cross-validation: {note}")
+        return
+    emit(cv.text())
+    if note is not None:
+        emit(f"  ({note})")
+
+
+def cross_validation_doc(res: FitResults) -> dict[str, Any] | None:
+    """The block cross-validation for ``fit.json``: settings, checks and verdict (the table of
+    blocks goes to ``cross_validation.csv``), or why it was skipped."""
+    cv, note = res.cross_validation, res.cross_validation_note
+    if cv is None:
+        return None if note is None else {"verdict": None, "note": note}
+
+    def check(c) -> dict[str, Any] | None:
+        if c is None:
+            return None
+        return {"verdict": c.verdict, "predicted": c.predicted, "hits": c.hits, "n": c.n,
+                "p_value": c.p_value, "detectable_miss": c.detectable_miss, "text": c.text()}
+
+    return {"verdict": cv.verdict, "note": note, "n_blocks": cv.n_blocks,
+            "block_size": cv.block_size, "n_dropped": cv.n_dropped,
+            "n_resamples": cv.n_resamples, "confidence_level": cv.confidence_level,
+            "threshold": cv.threshold, "n_above": cv.n_above, "n_below": cv.n_below,
+            "coverage": check(cv.coverage_check), "damage": check(cv.damage_check),
+            "meaning": cv.meaning(), "fold_notes": list(cv.notes)}
 
 
 def new_figure(figsize: tuple[float, float] = (6.4, 4.8)):
@@ -289,12 +325,15 @@ def write_tables(res: FitResults, args: argparse.Namespace, out: Path) -> None:
                      "count": None if args.count is None else repr(args.count),
                      "area_factors": args.area_factor, "hardness": args.hardness, "seed": res.seed,
                      "gof_resamples": res.gof_resamples,
-                     "gof_resamples_requested": args.gof_resamples, "gof_note": res.gof_note},
+                     "gof_resamples_requested": args.gof_resamples, "gof_note": res.gof_note,
+                     "cross_validate": getattr(args, "cross_validate", None),
+                     "no_cross_validate": getattr(args, "no_cross_validate", False)},
         "fit": {"lambdas": list(f.lambdas), "param": f.param, "method": f.method, "region": f.region,
                 "n": f.n, "support": list(res.support), "statistics": f.statistics,
                 "options": f.options, "solutions": records(f.solutions)},
         "gof": records(res.gof)[0],
-        "bootstrap": None, "maximum": None, "damage": None, "notes": res.notes,
+        "bootstrap": None, "maximum": None, "damage": None,
+        "cross_validation": cross_validation_doc(res), "notes": res.notes,
     }
     if res.boot is not None:
         doc["bootstrap"] = {"n_resamples": res.boot.n_resamples, "n_failed": res.boot.n_failed,
@@ -305,7 +344,11 @@ def write_tables(res: FitResults, args: argparse.Namespace, out: Path) -> None:
     if res.damage is not None:
         doc["damage"] = {k: v for k, v in res.damage.items() if k != "boot_values"}
     names = ["fit.json", "summary.csv"]
+    if res.cross_validation is not None:
+        names.append("cross_validation.csv")
     doc["files"] = sorted(res.files + names)
     (out / "fit.json").write_text(json.dumps(jsonable(doc), indent=2) + "\n", encoding="utf-8")
     summary_frame(res).to_csv(out / "summary.csv", index=False)
+    if res.cross_validation is not None:
+        res.cross_validation.to_frame().to_csv(out / "cross_validation.csv", index=False)
     res.files.extend(names)

@@ -12,6 +12,7 @@ from .cli_input import Sample
 
 if TYPE_CHECKING:  # pragma: no cover
     from .bootstrap import BootstrapFit
+    from .cross_validation import MaximumCrossValidation
     from .fitting import GLDFit
     from .prediction import MaximumPrediction
 
@@ -58,6 +59,10 @@ class FitResults:
     gof_note : str or None
         Why fewer than the default replicates (or none) were used, when the default was
         adapted to the sample size.
+    cross_validation : glstat.MaximumCrossValidation or None
+        The block cross-validation of the maximum (None when it was not run).
+    cross_validation_note : str or None
+        Why it was skipped, or why it used fewer blocks than asked.
     """
 
     sample: Sample
@@ -74,6 +79,8 @@ class FitResults:
     files: list[str] = field(default_factory=list)
     gof_resamples: int = 0
     gof_note: str | None = None
+    cross_validation: MaximumCrossValidation | None = None
+    cross_validation_note: str | None = None
 
 
 def collect_notes(caught, notes: list[str]) -> None:

@@ -307,7 +307,7 @@ def _lambda_array(lambdas) -> np.ndarray:
     return arr
 
 
-def plot_lambda_densities(lambdas, true=None, axes=None) -> Any:
+def plot_lambda_densities(lambdas, true=None, axes=None, *, true_label: str = "true") -> Any:
     """Kernel density estimates of bootstrapped lambda1..lambda4 on a 2 × 2 grid.
 
     Parameters
@@ -321,13 +321,18 @@ def plot_lambda_densities(lambdas, true=None, axes=None) -> Any:
         simulation), drawn as vertical dashed lines.
     axes : array of 4 matplotlib.axes.Axes, optional
         Axes to draw on (any shape holding 4 Axes, in the order lambda1..lambda4).
+    true_label : str
+        Legend label of the reference lines (e.g. ``"full-sample fit"`` when ``true`` is the
+        fit to the whole sample rather than known true values).
 
     Returns
     -------
     matplotlib.figure.Figure
         Each panel: the Gaussian kernel density estimate (``scipy.stats.gaussian_kde``,
         Scott's bandwidth; label ``"KDE"``) on 200 points, or a vertical line when all
-        values are equal (label ``"all equal"``), then the reference line (label ``"true"``).
+        values are equal (label ``"all equal"``), then the reference line (label
+        ``true_label``). Tick labels use at most 5 ticks and scientific notation for very small
+        or large values, so they do not overlap.
         lambda1 is in data units, lambda2 in 1/(data unit), lambda3 and lambda4 are
         dimensionless.
     """
@@ -360,11 +365,15 @@ def plot_lambda_densities(lambdas, true=None, axes=None) -> Any:
             grid = np.linspace(v.min() - 3 * bw, v.max() + 3 * bw, 200)
             ax.plot(grid, kde(grid), color="C0", label="KDE")
         if true is not None:
-            ax.axvline(true[j], color="C3", linestyle="--", label="true")
+            ax.axvline(true[j], color="C3", linestyle="--", label=true_label)
+        from matplotlib.ticker import MaxNLocator
+
+        ax.xaxis.set_major_locator(MaxNLocator(5))
+        ax.ticklabel_format(axis="both", style="sci", scilimits=(-3, 4), useOffset=False)
         ax.set_title(f"lambda{j + 1} ({v.size} values)")
         ax.set_xlabel(f"lambda{j + 1}")
         ax.set_ylabel("density")
-        ax.legend()
+        ax.legend(fontsize=8)
     if created:
         fig.tight_layout()
     return fig

@@ -113,11 +113,15 @@ def test_csv_full_run_tables_files_and_damage(tmp_path, capsys):
     bm = bf.maximum(n_max)
     assert f"maximum of 100000 values: mean {bm.mean:.6g}" in out
 
+    # the block cross-validation, on by default with --n-max: 300 values make 25 blocks of 12
+    assert out.index("check by block cross-validation: ") > out.index("damage probability P(max >")
+    assert "(25 blocks of 12 values, each predicted from the other 288 by RS moments, 40 resamples)" in out
+
     # files
     names = {p.name for p in out_dir.iterdir() if not p.name.startswith(".")}
     assert names == {"histogram.png", "qq.png", "pp.png", "lambda_densities.png", "maximum_density.png",
-                     "integrity_vs_area.png", "fit.json", "summary.csv"}
-    for name in names - {"fit.json", "summary.csv"}:
+                     "integrity_vs_area.png", "fit.json", "summary.csv", "cross_validation.csv"}
+    for name in names - {"fit.json", "summary.csv", "cross_validation.csv"}:
         assert (out_dir / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     doc = json.loads((out_dir / "fit.json").read_text())
     assert doc["fit"]["lambdas"] == list(ref.lambdas)
@@ -133,6 +137,110 @@ def test_csv_full_run_tables_files_and_damage(tmp_path, capsys):
     dm = summary[summary["quantity"] == f"damage_at_{hardness:g}"]
     np.testing.assert_allclose(dm["estimate"], want.estimate, rtol=1e-12)
     np.testing.assert_allclose(dm["high"], want.high, rtol=1e-12)
+
+
+# ---------------------------------------------------------------------------------------------
+# the block cross-validation of the maximum
+# ---------------------------------------------------------------------------------------------
+def _low_outliers(n: int = 2000, seed: int = 0) -> np.ndarray:
+    """N(0, 1) with 5 % of the values replaced by -3 - Exp(scale 3): the RS moment fit spends
+    its skewness on the lower tail and ends its support below the normal's block maxima
+    (tests/glstat/test_cross_validation.py)."""
+    g = np.random.default_rng(seed)
+    x = g.normal(0.0, 1.0, n)
+    far = g.random(n) < 0.05
+    x[far] = -3.0 - g.exponential(3.0, far.sum())
+    return x
+
+
+def test_cross_validation_fails_a_too_light_tail_and_writes_its_table(tmp_path, capsys):
+    x = _low_outliers()
+    npy = tmp_path / "low.npy"
+    np.save(npy, x)
+    out_dir = tmp_path / "o"
+    code, out, err = _run(capsys, [npy, "--bootstrap", 50, "--gof-resamples", 0, "--n-max", 1000,
+                                   "--hardness", 2.0, "--out", out_dir, "--seed", SEED])
+    assert code == 0, err
+    lines = _section(out, "check by block cross-validation: failed (25 blocks of 80 values, each "
+                          "predicted from the other 1920 by RS moments, 50 resamples)")
+    assert lines[0].startswith("coverage of the 90 % interval of the maximum: failed: ")
+    assert lines[1].startswith("damage P(max of 80 > 2): failed: ")
+    assert lines[2].startswith("the fitted tail is too light: observed block maxima lie above the "
+                               "predicted interval in ")
+    assert out.index("check by block cross-validation") > out.index("damage probability P(max > 2)")
+    # the table is the library's, with the run's seed, level and resamples
+    want = glstat.cross_validate_maximum(x, [("rs", "moments")], n_blocks=25, threshold=2.0,
+                                         n_resamples=50, confidence_level=0.9, rng=SEED)
+    got = pd.read_csv(out_dir / "cross_validation.csv")
+    assert list(got.columns) == list(want.table.columns) and len(got) == 25
+    np.testing.assert_allclose(got[["observed", "low", "high", "pit", "predicted_damage"]],
+                               want.table[["observed", "low", "high", "pit", "predicted_damage"]],
+                               rtol=1e-12)
+    assert list(got["covered"]) == list(want.table["covered"])
+    doc = json.loads((out_dir / "fit.json").read_text())
+    cv = doc["cross_validation"]
+    assert cv["verdict"] == "failed" and cv["n_blocks"] == 20 and cv["block_size"] == 100
+    assert cv["coverage"]["hits"] == want.coverage_check.hits and cv["n_above"] == want.n_above
+    assert "cross_validation.csv" in doc["files"]
+
+
+def test_cross_validation_options_and_skips(tmp_path, capsys):
+    x = _pressures(150, seed=9)
+    npy = tmp_path / "p.npy"
+    np.save(npy, x)
+    common = [npy, "--bootstrap", 20, "--gof-resamples", 0, "--seed", 1]
+    # explicit, without --n-max: 5 blocks are too few to check anything, never "passed"
+    code, out, err = _run(capsys, [*common, "--cross-validate", 5, "--out", tmp_path / "a"])
+    assert code == 0, err
+    first = next(line for line in out.splitlines() if line.startswith("check by block"))
+    assert first.startswith("check by block cross-validation: not checkable (5 blocks of 30 values")
+    assert "passed" not in first
+    # 150 values make at most 15 blocks of 10
+    code, out, err = _run(capsys, [*common, "--n-max", 100, "--out", tmp_path / "b"])
+    assert code == 0, err
+    assert "(15 blocks instead of 20: 150 values make at most 15 blocks of 10 or more values)" in out
+    assert len(pd.read_csv(tmp_path / "b" / "cross_validation.csv")) == 15
+    # skipped: on request (silently), and without a bootstrap (with the reason)
+    code, out, err = _run(capsys, [*common, "--n-max", 100, "--no-cross-validate", "--out", tmp_path / "c"])
+    assert code == 0, err
+    assert "cross-validation" not in out and not (tmp_path / "c" / "cross_validation.csv").exists()
+    assert json.loads((tmp_path / "c" / "fit.json").read_text())["cross_validation"] is None
+    code, out, err = _run(capsys, [npy, "--bootstrap", 0, "--gof-resamples", 0, "--n-max", 100,
+                                   "--out", tmp_path / "d"])
+    assert code == 0, err
+    assert ("check by block cross-validation: skipped: it checks the bootstrap interval of the "
+            "maximum, and --bootstrap is 0") in out
+    # bad values
+    err = _bad(capsys, [*common, "--cross-validate", 1, "--out", tmp_path / "e"])
+    assert "--cross-validate must be at least 2 blocks (default 20), got 1" in err
+    assert "--no-cross-validate" in err
+    code, out, err = _run(capsys, [*common, "--cross-validate", 5, "--no-cross-validate"])
+    assert code == 2 and "not allowed with argument" in err
+
+
+@pytest.mark.parametrize("options, n, want", [
+    ({}, 1000, (0, 0, None)),  # neither --n-max nor --hardness: not run
+    ({"n_max": 10.0}, 1000, (20, 200, None)),
+    ({"hardness": 5.0, "bootstrap": 50}, 1000, (20, 50, None)),
+    ({"n_max": 10.0, "cross_validate": 40}, 1000, (40, 200, None)),
+    ({"n_max": 10.0, "no_cross_validate": True}, 1000, (0, 0, None)),
+    ({"n_max": 10.0}, 120, (12, 200, "12 blocks instead of 20: 120 values make at most 12 blocks of "
+                                      "10 or more values")),
+    ({"n_max": 10.0}, 19, (0, 0, "skipped: 19 values are too few (at least 2 blocks of 10 values are "
+                                 "needed, 20 values)")),
+    ({"n_max": 10.0, "bootstrap": 0}, 1000, (0, 0, "skipped: it checks the bootstrap interval of the "
+                                                   "maximum, and --bootstrap is 0")),
+    ({"n_max": 10.0, "method": "mle"}, 1000,
+     (0, 0, "skipped by default for maximum likelihood: it would refit 20 x 50 resamples (minutes); "
+            "pass --cross-validate 20 to run it")),
+    ({"n_max": 10.0, "method": "mps", "cross_validate": 20}, 1000, (20, 50, None)),
+])
+def test_cross_validation_plan(options, n, want):
+    import argparse
+
+    args = argparse.Namespace(**{"n_max": None, "hardness": None, "bootstrap": 1000, "method": "moments",
+                                 "cross_validate": None, "no_cross_validate": False, **options})
+    assert cli_fit_options.cross_validation_plan(args, n) == want
 
 
 def test_npy_fkml_percentiles_without_bootstrap(tmp_path, capsys):

@@ -101,10 +101,14 @@ def test_study_report_contents(tiny_study):
         assert all(c == "—" or (c.endswith("]") and "%" in c) for c in (r[6], r[8]))
         assert re.fullmatch(r"[\d,]+", r[3])
     answer_part = md.split("## Main results")[0]
-    assert "Integrity against area: the probability that no point of k analysed areas" in answer_part
-    integrity = _md_table(answer_part, "case | integrity, 1 area [90 % interval]")
-    assert [r[0] for r in integrity] == ["H = 0", "H = 0.5", "H = 1"]
-    assert all(c == "—" or "%" in c for r in integrity for c in r[1:])
+    assert "Growth with the area: the probability that the pressure exceeds" in answer_part
+    areas = _md_table(answer_part, "case | damage on 1 mm² [90 % interval]")
+    assert [r[0] for r in areas] == ["H = 0", "H = 0.5", "H = 1"]
+    assert all("%" in c for r in areas for c in r[1:])
+    # the damage grows with the area
+    for r in areas:
+        est = [float(c.split(" %")[0].lstrip("<> ")) for c in r[1:]]
+        assert est == sorted(est)
     assert "Wilson" in md and "t-test" in md
     assert "n_terms" in md and "Nyquist" in md
     settings_rows = dict((r[0], r[1]) for r in _md_table(md, "setting"))
@@ -470,7 +474,8 @@ def test_report_with_hardness_far_above_the_pressures(tmp_path, capsys):
     assert "H = 1, asperity model:" in printed
     # a damage probability far below 1 % is printed as a percentage, never as "nan"
     assert not re.search(r"\bnan\b", printed, flags=re.IGNORECASE)
-    assert re.search(r"H = 1, asperity model: (\S+ %|—)", printed)
+    assert re.search(r"H = 1, asperity model: +(\S+ %|—)", printed)
+    assert re.search(r"H = 1, elastic BEM \(reference\): +(\S+ %|—)", printed)
     md = (out / "report.md").read_text()
     assert "certain" not in md
     assert "77 GPa" not in md and "3.4 TPa" not in md

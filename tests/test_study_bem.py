@@ -30,7 +30,7 @@ from glstat.study import bem as bem_mod
 from glstat.study.bem import bem_path, contact_record, findings
 
 ARGS = ["study", "--surfaces", "2", "--grid", "64", "--rq", "5", "--bootstrap", "30", "--no-progress",
-        "--workers", "1"]
+        "--workers", "1", "--model", "asperity"]
 CASES = ["H = 0, 20 MPa", "H = 0.5, 20 MPa", "H = 1, 20 MPa"]
 TINY = CampaignSettings(n_surfaces=2, grid=64, rq=5 * 1e-6,  # as the command computes it
                          n_terms=(6,), hurst=(0.0, 0.5, 1.0), n_examples=1)
@@ -339,3 +339,46 @@ def test_a_surface_without_a_spot_inside_the_patch_has_no_maximum_to_compare():
     row = c.summary().set_index("quantity").loc["max_pressure_MPa"]
     assert row["ratio_mean"] == pytest.approx((0.5 + 0.25) / 2)
     assert row["bem_mean"] == pytest.approx(450.0) and row["asperity_mean"] == pytest.approx(150.0)
+
+
+def test_contact_record_with_a_guard_band_describes_the_central_area():
+    import contact
+    from glstat.study.both_models import contact_record, interior
+
+    surf = contact.weierstrass((64, 64), 1e-3, 0.5, rq=1.6e-6, rng=5, n_terms=5, pad=8)
+    res = contact.solve_bem(surf, 20e6, 210e9, 0.3, tol=1e-8)
+    spots = contact.contact_spots(res)
+    rec = contact_record(res, guard=8)
+    centre = res.pressure[8:-8, 8:-8]
+    assert int(rec["n_points"]) == 64 * 64
+    np.testing.assert_array_equal(rec["samples"], centre[centre > 0])
+    # a spot belongs to the area when its peak lies in it
+    i, j = spots.peak_index[:, 0], spots.peak_index[:, 1]
+    mine = (i >= 8) & (i < 72) & (j >= 8) & (j < 72)
+    np.testing.assert_array_equal(rec["cluster_peaks"], spots.peak_pressure[mine])
+    assert int(rec["n_clusters"]) == int(mine.sum())
+    inner = interior(rec)
+    kept = spots.peak_pressure[mine & ~spots.touches_border]
+    assert inner["max_pressure"] == pytest.approx(float(kept.max()))
+    # without a guard band: the whole grid, spots cut by its border left out
+    whole = contact_record(res)
+    np.testing.assert_array_equal(whole["cluster_peaks"], spots.peak_pressure)
+    np.testing.assert_array_equal(whole["cluster_on_border"], spots.touches_border)
+    assert float(whole["max_pressure"]) == res.max_pressure
+    with pytest.raises(ValueError, match="guard"):
+        contact_record(res, guard=40)
+
+
+def test_bem_settings_grid_and_guard():
+    from glstat.study import BEMSettings
+
+    s = CampaignSettings(n_surfaces=2, grid=128)
+    b = BEMSettings(n_compare=2, grid=64, guard=8)
+    assert b.solve_grid(s) == 64 and b.guard_points(s) == 8
+    assert b.identity()["grid"] == 64 and b.identity()["guard"] == 8
+    assert "guard" not in BEMSettings().identity() and "grid" not in BEMSettings().identity()
+    assert BEMSettings(grid=128).solve_grid(s) is None  # the campaign's own grid
+    with pytest.raises(ValueError, match="bem_guard"):
+        BEMSettings(guard=-1)
+    with pytest.raises(ValueError, match="bem_grid"):
+        BEMSettings(grid=8)

@@ -116,6 +116,10 @@ class SampleAnalysis:
         Integrity probability against the area factors.
     guaranteed : dict
         Area factor -> pressure (MPa) that the area stays below with ``integrity_level``.
+    area_damage : pandas.DataFrame or None
+        Damage probability at the hardness on the areas of :data:`DAMAGE_AREAS_MM2`:
+        ``area_mm2``, ``area_factor`` (over the analysed area), ``estimate``, ``low``,
+        ``high``.
     upper_end : float
         Upper end of the fitted GLD's support (MPa; inf when unbounded).
     end_note : str
@@ -134,6 +138,7 @@ class SampleAnalysis:
     prediction: MaximumPrediction | None = None
     integrity: Any = None
     guaranteed: dict = field(default_factory=dict)
+    area_damage: Any = None
     upper_end: float = math.nan
     end_note: str = ""
     damage_curve: Any = None
@@ -194,8 +199,12 @@ def _end_note(sa: SampleAnalysis, hardness: float) -> str:
     return ""
 
 
+#: Areas (mm²) on which the damage probability is reported: 1 mm², 1 cm², 10 cm².
+DAMAGE_AREAS_MM2 = (1.0, 100.0, 1000.0)
+
+
 def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
-                   ih: int, il: int) -> SampleAnalysis:
+                   ih: int, il: int, area_m2: float | None = None) -> SampleAnalysis:
     """Fit, bootstrap, maximum, damage, integrity and validation of one sample.
 
     Parameters
@@ -208,6 +217,8 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
     a : AnalysisSettings
     ih, il : int
         Indices of the Hurst exponent and load (seeds).
+    area_m2 : float, optional
+        The analysed area in m², for the damage on :data:`DAMAGE_AREAS_MM2`.
     """
     import pandas as pd
 
@@ -244,6 +255,12 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
     for k in (1.0, 10.0, 100.0, 1000.0):
         sa.guaranteed[k] = float(glstat.guaranteed_threshold(
             dist, probability=a.integrity_level, area_factor=k, **full_kw))
+    if area_m2:
+        factors = np.array(DAMAGE_AREAS_MM2) * 1e-6 / area_m2
+        d = bf.damage_probability(a.hardness, area_factor=factors, **count_kw)
+        sa.area_damage = pd.DataFrame({"area_mm2": DAMAGE_AREAS_MM2, "area_factor": factors,
+                                       "estimate": np.ravel(d.estimate), "low": np.ravel(d.low),
+                                       "high": np.ravel(d.high)})
     sa.upper_end = float(dist.support()[1])
     sa.end_note = _end_note(sa, a.hardness)
     maxima = np.array([q[2] for q in per])
@@ -306,7 +323,8 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                 if progress is not None:
                     progress(f"analysis ({MODEL_NAMES[model]}): H = {settings.hurst[ih]:g}, "
                              f"{settings.pressures[il] / 1e6:g} MPa, {SAMPLE_LABELS[sample]}")
-                case[sample] = analyse_sample(results, keys, sample, a, ih + slot, il)
+                case[sample] = analyse_sample(results, keys, sample, a, ih + slot, il,
+                                              area_m2=settings.size[0] * settings.size[1])
             case["summary"] = summary
             out[(ih, il)] = case
     return out

@@ -223,16 +223,19 @@ def overlap_note(settings, analysis: dict, threshold: float = 0.1) -> str:
 
 def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
                       bem_analysis: dict | None = None) -> tuple[list[list[Any]], list[str]]:
-    """Rows of the report's first table, one per (H, load) and model (the paper's columns
-    only for the simulated Weierstrass scene)."""
+    """Rows of the report's first table, one per (H, load) and model: with the elastic BEM on
+    every surface (``bem_analysis``) its row, the reference answer, comes first and the
+    asperity model (the paper's) follows; otherwise the asperity model with the BEM's damage
+    probability on the compared surfaces beside it. The paper's columns only for the
+    simulated Weierstrass scene."""
     lvl = round(100 * asettings.confidence_level)
     simulated = not getattr(settings, "topographies", ())
     rows = []
     cases = [(k, r, "") for k, r in analysis.items()]
     if bem_analysis:
         cases = [c for k, r in analysis.items() for c in
-                 [(k, r, ", asperity model")] + ([(k, bem_analysis[k], ", elastic BEM")]
-                                                 if k in bem_analysis else [])]
+                 ([(k, bem_analysis[k], ", elastic BEM (reference)")] if k in bem_analysis else [])
+                 + [(k, r, f", asperity model (c = {settings.cone_factor:g}, the paper's)")]]
     for (ih, il), r, label in cases:
         h = settings.hurst[ih]
         sa = r[PRIMARY_SAMPLE]
@@ -256,7 +259,7 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
             case_name(settings, ih) + (f", {settings.pressures[il] / 1e6:g} MPa"
                                        if len(settings.pressures) > 1 else "") + label,
             answer, check, fmt_probability(r["summary"].get("observed_damage", math.nan)),
-            elastic, fmt_mpa(r["summary"]["mean_pressure"]),
+            *([] if bem_analysis else [elastic]), fmt_mpa(r["summary"]["mean_pressure"]),
         ]
         if simulated:
             row += [PAPER_VERDICTS.get(h, "—") if abs(asettings.hardness - 2050) < 1e-9 else "—",
@@ -264,7 +267,8 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
         rows.append(row)
     columns = ["case", f"damage probability at {asettings.hardness:g} MPa, one area "
                        f"[{lvl} % interval]", "check on held-out surfaces",
-               "observed fraction of surfaces damaged", "elastic BEM", "mean contact pressure"]
+               "observed fraction of surfaces damaged",
+               *([] if bem_analysis else ["elastic BEM (first surfaces)"]), "mean contact pressure"]
     return rows, columns + (["paper: damage", "paper: mean pressure"] if simulated else [])
 
 
@@ -299,42 +303,45 @@ def scene_choice_sentence(settings, analysis: dict | None) -> str:
         f"glstat.study.rq_for_pressure another level).")
 
 
-#: Area factors quoted in the first screen's integrity sentence.
-INTEGRITY_FACTORS = (1.0, 10.0, 100.0)
-
-
 def _readable(p: float) -> str:
-    """A probability in percent for a reader, "< 0.001 %" below 1e-5."""
-    return "< 0.001 %" if 0 <= p < 1e-5 else fmt_probability(p)
+    """A probability in percent for a reader: "< 0.001 %" below 1e-5, "> 99.999 %" above
+    1 − 1e-5."""
+    if 0 <= p < 1e-5:
+        return "< 0.001 %"
+    if 1 - 1e-5 < p < 1:
+        return "> 99.999 %"
+    return fmt_probability(p)
 
 
-def integrity_rows(settings, asettings, analysis: dict) -> tuple[list[list[str]], list[str]]:
-    """Integrity against area for the first screen: per case, the probability that no point
-    of k analysed areas exceeds the hardness (contact-spot predictor, with its interval) at
-    k = 1, 10 and 100; no rows when no case has an integrity curve."""
+def _area_text(mm2: float) -> str:
+    """An area in the unit a reader uses: mm² below 1 cm², cm² above."""
+    return f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²"
+
+
+def area_damage_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = None
+                     ) -> tuple[list[list[str]], list[str]]:
+    """Growth with the area for the first screen: per case (and model, the elastic BEM first
+    when it ran on every surface), the damage probability at the hardness on 1 mm², 1 cm² and
+    10 cm² (contact-spot predictor, with its interval); no rows when no case has one."""
+    from .analysis import DAMAGE_AREAS_MM2
+
+    cases = [(k, r, "") for k, r in analysis.items()]
+    if bem_analysis:
+        cases = [c for k, r in analysis.items() for c in
+                 ([(k, bem_analysis[k], ", elastic BEM")] if k in bem_analysis else [])
+                 + [(k, r, ", asperity model")]]
     rows = []
-    for (ih, il), r in analysis.items():
-        it = r[PRIMARY_SAMPLE].integrity
-        if it is None:
+    for (ih, il), r, label in cases:
+        table = r[PRIMARY_SAMPLE].area_damage
+        if table is None:
             continue
-        k = np.asarray(it.area_factor, dtype=float).ravel()
-        est, low, high = (np.asarray(v, dtype=float).ravel() for v in (it.estimate, it.low, it.high))
         row = [case_name(settings, ih) + (f", {settings.pressures[il] / 1e6:g} MPa"
-                                          if len(settings.pressures) > 1 else "")]
-        for factor in INTEGRITY_FACTORS:
-            j = np.flatnonzero(np.isclose(k, factor))
-            if not j.size:
-                row.append("—")
-                continue
-            i = int(j[0])
-            if high[i] < 1e-5:
-                row.append("< 0.001 %")
-            else:
-                row.append(f"{_readable(est[i])} [{_readable(low[i])}, {_readable(high[i])}]")
+                                          if len(settings.pressures) > 1 else "") + label]
+        for _, t in table.iterrows():
+            row.append(f"{_readable(t['estimate'])} [{_readable(t['low'])}, {_readable(t['high'])}]")
         rows.append(row)
     lvl = round(100 * asettings.confidence_level)
-    columns = ["case", *(f"integrity, {f:g} area{'s' if f != 1 else ''} [{lvl} % interval]"
-                         for f in INTEGRITY_FACTORS)]
+    columns = ["case", *(f"damage on {_area_text(a)} [{lvl} % interval]" for a in DAMAGE_AREAS_MM2)]
     return rows, columns
 
 

@@ -54,6 +54,7 @@ from .model_comparison import (
     compare_bem,
     compare_records,
 )
+from .surface_task import weierstrass_surface
 
 __all__ = [
     "MODELS",
@@ -102,12 +103,31 @@ class BEMSettings:
         Relative tolerance of the BEM iteration (:func:`contact.solve_bem`).
     max_iter : int
         Iteration limit of the BEM.
+    grid : int, optional
+        Points per side of the grid both models are solved on for the comparison: the same
+        band-limited Weierstrass surface sampled on a coarser (or finer) square grid. None
+        (default): the campaign's grid. Measured surfaces and rectangular grids are always
+        solved on their own grid. The peaks of the contact spots inside the patch converge
+        with the grid (docs/benchmarks.md "spots": at 384² within 1.1 % of 1024², at 512²
+        within 0.7 %), at about a quarter of the cost per halving of the grid side.
+    guard : int, default 0
+        Width of a guard band in points of the BEM grid: each simulated surface is solved on
+        its area and ``guard`` points more on every side (the same Weierstrass function,
+        ``contact.weierstrass(pad=...)``), at the same nominal pressure, and only the central
+        area is analysed; a contact spot belongs to it when its peak lies in it. The edge of the
+        isolated patch, where the elastic pressure of a cut spot is singular, then lies outside
+        the analysed area instead of cutting spots that are dropped. This is another scene, the
+        area as part of a larger surface: its load depends on the band, and so do its peaks
+        (docs/benchmarks.md "spots"). 0: no guard band, the isolated patch (spots touching its
+        border are left out). Measured surfaces are solved without one.
     """
 
     n_compare: int = 5
     periodic: bool = False
     tol: float = 1e-8
     max_iter: int = 1000
+    grid: int | None = None
+    guard: int = 0
 
     def __post_init__(self) -> None:
         from contact._validate import flag, positive_integer, tolerance
@@ -116,12 +136,36 @@ class BEMSettings:
         flag(self.periodic, "periodic")
         tolerance(self.tol, "tol", 1.0)
         positive_integer(self.max_iter, "max_iter", "iteration limit of the BEM")
+        if self.grid is not None:
+            positive_integer(self.grid, "bem_grid", "points per side of the BEM grid")
+            if self.grid < 16:
+                raise ValueError(f"bem_grid must be at least 16 points per side, got {self.grid}")
+        if isinstance(self.guard, bool) or int(self.guard) != self.guard or self.guard < 0:
+            raise ValueError(f"bem_guard must be an integer >= 0 (points per side), got {self.guard!r}")
 
     def identity(self) -> dict[str, Any]:
         """The settings that define a stored BEM solve (everything but ``n_compare``: the
         solve of surface i does not depend on how many surfaces are compared)."""
-        return {"periodic": bool(self.periodic), "tol": float(self.tol),
-                "max_iter": int(self.max_iter), "format_version": BEM_FORMAT_VERSION}
+        out = {"periodic": bool(self.periodic), "tol": float(self.tol),
+               "max_iter": int(self.max_iter), "format_version": BEM_FORMAT_VERSION}
+        if self.grid is not None:  # absent: files written before the BEM grid existed match
+            out["grid"] = int(self.grid)
+        if self.guard:
+            out["guard"] = int(self.guard)
+        return out
+
+    def guard_points(self, settings: CampaignSettings) -> int:
+        """Guard band (points per side) the BEM solves ``settings``' surfaces with: 0 for
+        measured surfaces, whose heights end at the file's edge."""
+        return 0 if settings.measured else int(self.guard)
+
+    def solve_grid(self, settings: CampaignSettings) -> int | None:
+        """Points per side the BEM solves ``settings``' surfaces on, or None for the campaign's
+        own grid (measured surfaces, rectangular grids, or no BEM grid asked for)."""
+        if (self.grid is None or settings.measured or settings.shape[0] != settings.shape[1]
+                or self.grid == settings.shape[0]):
+            return None
+        return int(self.grid)
 
 
 def bem_path(root: str | os.PathLike, settings: CampaignSettings, ih: int, il: int, i: int) -> Path:
@@ -133,7 +177,8 @@ def bem_path(root: str | os.PathLike, settings: CampaignSettings, ih: int, il: i
 # -- one surface -------------------------------------------------------------------------------
 def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il: int,
                  i: int) -> dict[str, np.ndarray | np.generic]:
-    """Regenerate campaign surface (ih, il, i) and solve it with both models (a task).
+    """Regenerate campaign surface (ih, il, i) and solve it with both models (a task), on the
+    BEM grid when one is set (:meth:`BEMSettings.solve_grid`).
 
     Returns
     -------
@@ -144,15 +189,19 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
         ``asperity_pressure`` and ``bem_pressure`` (Pa, float32).
     """
 
-    surf = campaign_surface(settings, ih, il, i)
+    grid = bsettings.solve_grid(settings)
+    guard = bsettings.guard_points(settings)
+    surf = (campaign_surface(settings, ih, il, i) if grid is None and not guard
+            else weierstrass_surface(settings, ih, il, i, grid=grid, pad=guard))
     asp, bem, ta, tb = solve_both(surf, settings.pressures[il], settings.E, settings.nu,
                                    settings.cone_factor, None, bsettings.periodic, bsettings.tol,
                                    bsettings.max_iter, 1, True)
     out: dict[str, np.ndarray | np.generic] = {}
     for model, res in (("asperity", asp), ("bem", bem)):
-        out.update({f"{model}_{k}": v for k, v in contact_record(res).items()})
+        out.update({f"{model}_{k}": v for k, v in contact_record(res, guard).items()})
         if i < settings.n_examples:
-            out[f"{model}_pressure"] = res.pressure.astype(np.float32)
+            n0, n1 = res.pressure.shape
+            out[f"{model}_pressure"] = res.pressure[guard:n0 - guard, guard:n1 - guard].astype(np.float32)
     out["seconds_asperity"] = np.float64(ta)
     out["seconds_bem"] = np.float64(tb)
     out["rq"] = np.float64(measured_rq(surf))
@@ -415,13 +464,14 @@ def compare_study(out: str | os.PathLike, settings: CampaignSettings, bsettings:
         results of another surface generator or solver version).
     """
     stored = load_bem(out, settings, bsettings)
+    same_grid = bsettings.solve_grid(settings) is None and not bsettings.guard_points(settings)
     res = {}
     for ih in range(len(settings.hurst)):
         for il in range(len(settings.pressures)):
             entries = []
             for i in range(bsettings.n_compare):
                 rec = split_models(stored[(ih, il, i)])
-                if campaign is not None and (ih, il, i) in campaign:
+                if campaign is not None and (ih, il, i) in campaign and same_grid:
                     c = campaign[(ih, il, i)]
                     if not np.isclose(float(c["max_pressure"]), float(rec["asperity"]["max_pressure"]),
                                       rtol=1e-9) or int(c["n_contact"]) != int(rec["asperity"]["n_contact"]):

@@ -22,59 +22,80 @@ MODELS = ("asperity", "bem")
 MODEL_LABELS = {"asperity": "asperity model", "bem": "elastic BEM"}
 
 
-def contact_record(res: Any) -> dict[str, np.ndarray | np.generic]:
+def contact_record(res: Any, guard: int = 0) -> dict[str, np.ndarray | np.generic]:
     """The figures of one contact solution that the comparison uses.
 
     Parameters
     ----------
     res : contact.ContactResult
         A solution of :func:`contact.solve` or :func:`contact.solve_bem`.
+    guard : int, default 0
+        Width in grid points of a guard band around the analysed area: the solution covers
+        the analysed area and ``guard`` points more on every side (a surface generated with
+        ``pad=guard``), and only the central part is described. A spot belongs to the analysed
+        area when its peak lies there; the guard band keeps the edge of the isolated patch
+        (and its punch-edge singularity) away from it.
 
     Returns
     -------
     dict of ndarray
-        ``samples`` (non-zero grid pressures, Pa, row-major order), ``max_pressure`` and
-        ``mean_pressure`` (Pa, the mean over the points in contact), ``contact_fraction``,
-        ``n_contact``, ``n_points``, ``n_clusters`` (connected contact spots, 8-neighbour
-        connectivity), ``cluster_peaks`` (highest pressure of every spot, Pa),
-        ``border_load_fraction`` (share of the force carried by the outermost rows and
-        columns of the grid), ``cluster_on_border`` (whether each spot touches the outermost
-        rows or columns), ``samples_on_border_spot`` (whether each of ``samples`` belongs to
-        such a spot), ``interior_max_pressure`` (Pa, the largest pressure of the other spots,
-        0 when there is none), ``force_error``, ``converged`` and ``n_iterations``.
+        For the analysed area: ``samples`` (non-zero grid pressures, Pa, row-major order),
+        ``max_pressure`` and ``mean_pressure`` (Pa, the mean over the points in contact),
+        ``contact_fraction``, ``n_contact``, ``n_points``, ``n_clusters`` (connected contact
+        spots whose peak lies in the area, 8-neighbour connectivity), ``cluster_peaks``
+        (highest pressure of every such spot, Pa), ``cluster_on_border`` (whether each spot
+        touches the outermost rows or columns of the solved grid), ``samples_on_border_spot``
+        (whether each of ``samples`` belongs to such a spot), ``interior_max_pressure`` (Pa,
+        the largest peak of the other spots, 0 when there is none); for the whole solution
+        ``border_load_fraction`` (share of the force carried by the outermost rows and columns
+        of the solved grid), ``force_error``, ``converged`` and ``n_iterations``.
 
     Notes
     -----
     A spot cut by the border of an isolated patch ends where the surface ends, as at the edge
     of a punch: the elastic pressure there grows without bound as the grid is refined (about
-    as √n on the default scene, docs/benchmarks.md "spots"). The study's elastic analysis
-    therefore uses the spots inside the patch (:func:`interior`).
+    as √n on the default scene, docs/benchmarks.md "spots"). Without a guard band the study's
+    elastic analysis therefore uses the spots inside the patch (:func:`interior`); with one,
+    such spots lie in the guard band and every spot of the analysed area is kept.
     """
     import contact
 
-    p = np.asarray(res.pressure, dtype=np.float64)
-    inc = p > 0
+    full = np.asarray(res.pressure, dtype=np.float64)
     spots = contact.contact_spots(res)
-    n, peaks = spots.n_spots, spots.peak_pressure
-    border = np.zeros(p.shape, dtype=bool)
+    g = int(guard)
+    if g < 0 or 2 * g >= min(full.shape):
+        raise ValueError(f"guard must be an integer in [0, {min(full.shape) // 2}), got {guard!r}")
+    window = (slice(g, full.shape[0] - g), slice(g, full.shape[1] - g))
+    p = full[window]
+    inc = p > 0
+    peak_i, peak_j = spots.peak_index[:, 0], spots.peak_index[:, 1]
+    in_area = ((peak_i >= g) & (peak_i < full.shape[0] - g)
+               & (peak_j >= g) & (peak_j < full.shape[1] - g))
+    on_border = spots.touches_border
+    peaks = spots.peak_pressure[in_area]
+    kept = in_area & ~on_border
+    # the spot of every grid point of the area; points of a spot whose peak lies in the guard
+    # band are left out with the spots cut by the grid's border
+    excluded = np.concatenate(([False], ~kept))[spots.labels[window]]
+    border = np.zeros(full.shape, dtype=bool)
     border[[0, -1], :] = True
     border[:, [0, -1]] = True
-    total = float(p.sum())
-    in_border_spot = np.concatenate(([False], spots.touches_border))[spots.labels]
-    inside = inc & ~in_border_spot
+    total = float(full.sum())
     return {
         "samples": p[inc],
-        "max_pressure": np.float64(res.max_pressure),
-        "mean_pressure": np.float64(res.mean_pressure),
-        "contact_fraction": np.float64(res.contact_fraction),
+        "max_pressure": np.float64(res.max_pressure if not g else p.max()),
+        "mean_pressure": np.float64(res.mean_pressure if not g else
+                                    (p[inc].mean() if inc.any() else 0.0)),
+        "contact_fraction": np.float64(res.contact_fraction if not g else
+                                       np.count_nonzero(inc) / p.size),
         "n_contact": np.int64(np.count_nonzero(inc)),
         "n_points": np.int64(p.size),
-        "n_clusters": np.int64(n),
+        "n_clusters": np.int64(np.count_nonzero(in_area)),
         "cluster_peaks": peaks,
-        "border_load_fraction": np.float64(p[border].sum() / total if total > 0 else math.nan),
-        "cluster_on_border": spots.touches_border,
-        "samples_on_border_spot": in_border_spot[inc],
-        "interior_max_pressure": np.float64(p[inside].max() if inside.any() else 0.0),
+        "border_load_fraction": np.float64(full[border].sum() / total if total > 0 else math.nan),
+        "cluster_on_border": on_border[in_area],
+        "samples_on_border_spot": excluded[inc],
+        "interior_max_pressure": np.float64(spots.peak_pressure[kept].max() if kept.any() else 0.0),
         "force_error": np.float64(res.force_error),
         "converged": np.bool_(res.converged),
         "n_iterations": np.int64(res.n_iterations),

@@ -3,6 +3,7 @@ results and returns it (the report's sections add it with its caption)."""
 
 from __future__ import annotations
 
+import math
 import textwrap
 from typing import Any
 
@@ -221,9 +222,11 @@ def lambda_figure(settings, asettings, ih: int, il: int, sa):
     """Kernel densities of the bootstrapped λ1..λ4 of one grid-point sample."""
     from ..plot import plot_lambda_densities
 
-    pyplot()
-    fig = plot_lambda_densities(sa.boot.lambdas, true=sa.boot.fit.lambdas)
-    fig.suptitle(f"{case_label(settings, ih, il)}: {SAMPLE_LABELS['grid']}, B = {asettings.n_resamples}")
+    fig, axes = pyplot().subplots(2, 2, figsize=(8, 6.4), layout="constrained")
+    plot_lambda_densities(sa.boot.lambdas, true=sa.boot.fit.lambdas, axes=axes,
+                          true_label="full-sample fit")
+    fig.suptitle(f"{case_label(settings, ih, il)}: {SAMPLE_LABELS['grid']}, "
+                 f"B = {len(sa.boot.lambdas)} resamples")
     return fig
 
 
@@ -232,14 +235,20 @@ def maximum_figure(settings, asettings, records: list):
     per sample; ``records`` from :func:`glstat.study.report_numbers.maximum_records`."""
     fig, panels = sample_panels()
     for ax, sample in panels:
-        for rec in records:
-            if rec["sample"] != sample:
-                continue
+        mine = [rec for rec in records if rec["sample"] == sample]
+        observed = max((rec["observed_max"] for rec in mine), default=math.nan)
+        for rec in mine:
             bm, lo, hi = rec["maximum"], rec["low"], rec["high"]
             span = hi - lo
-            xs = np.linspace(max(bm.mixture.ppf(1e-4), lo - span), bm.mixture.isf(1e-4), 120)
+            # the axis ends a little beyond the interval and the largest observed pressure,
+            # not at the far tail of the fit
+            end = min(bm.mixture.isf(1e-4), max(hi + 0.5 * span, 1.2 * rec["observed_max"]))
+            xs = np.linspace(max(bm.mixture.ppf(1e-4), lo - span), end, 160)
             ax.plot(xs, bm.mixture.pdf(xs), label=case_label(settings, rec["ih"], rec["il"]))
             ax.axvspan(lo, hi, alpha=0.08)
+        if math.isfinite(observed):
+            ax.axvline(observed, color="0.4", ls="--", lw=1,
+                       label=f"largest observed {observed:.4g} MPa (beyond: extrapolated)")
         ax.axvline(asettings.hardness, color="k", ls=":", label=f"hardness {asettings.hardness:g} MPa")
         ax.set_xlabel("maximal pressure (MPa)")
         ax.set_ylabel("density (1/MPa)")

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..formatting import fmt_probability
 from .analysis import SAMPLE_LABELS
 from .answer import case_label
@@ -131,6 +133,15 @@ def validation_section(settings, asettings, analysis: dict) -> Blocks:
     return out
 
 
+def _guaranteed_cell(value: float, observed_max: float, e_star: float) -> str:
+    """A guaranteed pressure (MPa) marked * beyond the largest observed pressure and † above
+    the contact modulus E* (MPa)."""
+    if not np.isfinite(value):
+        return "—"
+    mark = "†" if value > e_star else "*" if value > observed_max else ""
+    return f"{value:.4g}{mark}"
+
+
 def damage_section(settings, asettings, analysis: dict) -> Blocks:
     """"Damage probability at the hardness" per case and sample, and "Integrity against
     area" with the guaranteed pressures."""
@@ -148,9 +159,16 @@ def damage_section(settings, asettings, analysis: dict) -> Blocks:
     out.figure("integrity_vs_area", integrity_figure(settings, asettings, analysis),
                f"Integrity probability F(Pd)^(k n) against the area factor k, with the {lvl} % "
                f"bootstrap band.")
+    e_star = settings.E / (1 - settings.nu ** 2) / 1e6
     out.table(["case", "sample", "k = 1", "k = 10", "k = 100", "k = 1000"],
-              [[case_label(settings, ih, il), SAMPLE_LABELS[sample], *g]
+              [[case_label(settings, ih, il), SAMPLE_LABELS[sample],
+                *(_guaranteed_cell(v, float(np.max(analysis[(ih, il)][sample].data)), e_star)
+                  for v in g)]
                for ih, il, sample, g in guaranteed_records(analysis)],
               f"Guaranteed pressure Q(p^(1/(k n))) (MPa): all points of an area k times the analysed "
-              f"one stay below it with probability p = {asettings.integrity_level:g}.")
+              f"one stay below it with probability p = {asettings.integrity_level:g}. "
+              f"* beyond the largest pressure observed in the sample (an extrapolation of the "
+              f"fitted tail); † above the contact modulus E* = {e_star / 1e3:.0f} GPa, where no "
+              f"elastic contact pressure can be trusted (the material would have yielded long "
+              f"before): read such values as 'far above the hardness', not as pressures.")
     return out

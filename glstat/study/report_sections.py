@@ -8,13 +8,13 @@ from ..formatting import fmt_number
 from .analysis import SAMPLE_LABELS
 from .analysis_settings import PRIMARY_SAMPLE
 from .answer import (
+    area_damage_rows,
     area_scaling_sentence,
     case_label,
     case_name,
     check_rows,
     degenerate_scene,
     first_screen_rows,
-    integrity_rows,
     overlap_note,
     scene_choice_sentence,
 )
@@ -56,22 +56,28 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
             out.paragraph("⚠ " + warn)
     rows, columns = first_screen_rows(settings, asettings, analysis, bem, info.get("bem_analysis"))
     out.table(columns, rows,
-              f"Probability that the contact pressure exceeds the hardness {hard:g} MPa somewhere on "
-              f"one analysed area ({area_text(settings)}), "
+              f"Probability that the contact pressure exceeds the hardness Pd = {hard:g} MPa "
+              f"somewhere on one analysed area ({area_text(settings)}; H is the Hurst exponent of "
+              f"the surfaces, not the hardness), "
               f"predicted from the peak pressures of the connected contact spots of each surface's "
               f"pressure map with their number per surface as a random count (docs/method.md §6; "
               f"the largest spot peak of a surface is its maximal pressure), with its {lvl} % "
               f"bootstrap interval (surfaces resampled). 'Check' tests the prediction on held-out "
               f"surfaces: the fraction damaged and the coverage of the maximum's interval, each by "
               f"an exact binomial test ('not checkable' when the surfaces are too few to detect a "
-              f"miss of 20 percentage points). The elastic BEM column is the same predictor on the "
-              f"elastic solution.")
-    rows, columns = integrity_rows(settings, asettings, analysis)
+              f"miss of 20 percentage points). "
+              + ("The elastic BEM solves every surface: it is the reference answer; the asperity "
+                 "model is the paper's, shown with its own check." if info.get("bem_analysis") else
+                 "The elastic BEM column is the same predictor on the elastic solution of the first "
+                 "surfaces, without a check of its own (run --model both for the reference)."))
+    rows, columns = area_damage_rows(settings, asettings, analysis, info.get("bem_analysis"))
     if rows:
         out.table(columns, rows,
-                  f"Integrity against area: the probability that no point of k analysed areas "
-                  f"exceeds {hard:g} MPa (contact-spot predictor; the figure \"Integrity against "
-                  f"area\" below draws it for k = 1 to 1000).")
+                  f"Growth with the area: the probability that the pressure exceeds {hard:g} MPa "
+                  f"somewhere on an area of 1 mm², 1 cm² or 10 cm² (contact-spot predictor; an area "
+                  f"k times the analysed one holds k independent analysed areas, docs/method.md §7; "
+                  f"the figure \"Integrity against area\" below draws the integrity, 1 − damage, "
+                  f"against k).")
     if bem:
         ratios = [f"{case_name(settings, ih)}: mean pressure ×{mean:.2g}, maximal pressure ×{peak:.2g}"
                   for ih, _, mean, peak in model_error_factors(bem)]

@@ -25,7 +25,7 @@ MEASURED_PARAMETERS = ("Sq", "Ssk", "Sku", "Sdq", "Sp", "Sv", "hurst")
 
 
 def weierstrass_surface(settings: CampaignSettings, ih: int, il: int, i: int, *,
-                        rq: float | None = None, grid: int | None = None) -> Any:
+                        rq: float | None = None, grid: int | None = None, pad: int = 0) -> Any:
     """The Weierstrass surface of seed ``settings.seed_sequence(ih, il, i)`` (a
     :class:`contact.Surface`, metres).
 
@@ -41,6 +41,9 @@ def weierstrass_surface(settings: CampaignSettings, ih: int, il: int, i: int, *,
         surface sampled on another grid when the truncation fits under its Nyquist limit).
         Without it the surface has the settings' grid ``shape`` and side lengths ``size``,
         rectangular or square.
+    pad : int, default 0
+        A guard band of ``pad`` points on every side (``contact.weierstrass(pad=...)``): the
+        central part is the surface without it.
     """
     import contact
 
@@ -49,7 +52,7 @@ def weierstrass_surface(settings: CampaignSettings, ih: int, il: int, i: int, *,
     length = settings.size if grid is None else settings.length
     return contact.weierstrass(shape, length, settings.hurst[ih], settings.gamma,
                                rq=settings.rq_of(ih) if rq is None else rq, rng=rng,
-                               n_terms=settings.n_terms[ih])
+                               n_terms=settings.n_terms[ih], pad=pad)
 
 
 def campaign_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> Any:

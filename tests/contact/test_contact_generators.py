@@ -93,3 +93,22 @@ def test_self_affine_cutoff_removes_short_wavelengths():
     f = np.fft.fftfreq(128, d=1e-3 / 128)
     q = 2 * math.pi * np.hypot(f[:, None], f[None, :])
     assert spec[q > 2 * math.pi * 20e3].max() < 1e-12 * spec.max()
+
+
+def test_weierstrass_guard_band_holds_the_same_surface_in_its_centre():
+    # pad adds points on every side of the same function: the centre is the surface without
+    # it, to rounding (the rq scaling comes from the centre); the direct sum agrees
+    plain = contact.weierstrass((96, 64), 1e-3, 0.5, rq=1.6e-6, rng=3, n_terms=6)
+    padded = contact.weierstrass((96, 64), 1e-3, 0.5, rq=1.6e-6, rng=3, n_terms=6, pad=12)
+    assert padded.heights.shape == (120, 88)
+    assert (padded.dx, padded.dy) == (plain.dx, plain.dy)
+    np.testing.assert_allclose(padded.heights[12:-12, 12:-12], plain.heights, rtol=0, atol=1e-20)
+    direct = contact.weierstrass((96, 64), 1e-3, 0.5, rq=1.6e-6, rng=3, n_terms=6, pad=12,
+                                 method="direct")
+    np.testing.assert_allclose(direct.heights, padded.heights, rtol=0, atol=1e-19)
+    # the band continues the function: no step where the centre ends
+    step = np.abs(np.diff(padded.heights[:, 12:-12], axis=0))
+    assert step[10:13].max() < 1.5 * np.abs(np.diff(plain.heights, axis=0)).max()
+    for bad in (-1, 1.5, True):
+        with pytest.raises(ValueError, match="pad must be an integer"):
+            contact.weierstrass((32, 32), 1e-3, 0.5, rng=1, n_terms=4, pad=bad)

@@ -65,3 +65,9 @@ def test_a_side_with_no_room_for_the_miss_is_not_needed():
 def test_bad_input_names_the_problem(args, match):
     with pytest.raises(ValueError, match=match):
         glstat.binomial_check(*args)
+
+
+def test_detectable_miss_quoted_in_the_method():
+    # docs/method.md §9: for a predicted 50 %, 42 points with 10 surfaces, 25 with 30, 15 with 100
+    got = [glstat.binomial_check(0.5, n // 2, n).detectable_miss for n in (10, 30, 100)]
+    assert [round(100 * g) for g in got] == [42, 25, 15]
