@@ -179,7 +179,7 @@ def test_cross_validation_fails_a_too_light_tail_and_writes_its_table(tmp_path, 
     assert list(got["covered"]) == list(want.table["covered"])
     doc = json.loads((out_dir / "fit.json").read_text())
     cv = doc["cross_validation"]
-    assert cv["verdict"] == "failed" and cv["n_blocks"] == 20 and cv["block_size"] == 100
+    assert cv["verdict"] == "failed" and cv["n_blocks"] == 25 and cv["block_size"] == 80
     assert cv["coverage"]["hits"] == want.coverage_check.hits and cv["n_above"] == want.n_above
     assert "cross_validation.csv" in doc["files"]
 
@@ -198,7 +198,7 @@ def test_cross_validation_options_and_skips(tmp_path, capsys):
     # 150 values make at most 15 blocks of 10
     code, out, err = _run(capsys, [*common, "--n-max", 100, "--out", tmp_path / "b"])
     assert code == 0, err
-    assert "(15 blocks instead of 20: 150 values make at most 15 blocks of 10 or more values)" in out
+    assert "(15 blocks instead of 25: 150 values make at most 15 blocks of 10 or more values)" in out
     assert len(pd.read_csv(tmp_path / "b" / "cross_validation.csv")) == 15
     # skipped: on request (silently), and without a bootstrap (with the reason)
     code, out, err = _run(capsys, [*common, "--n-max", 100, "--no-cross-validate", "--out", tmp_path / "c"])
@@ -212,7 +212,7 @@ def test_cross_validation_options_and_skips(tmp_path, capsys):
             "maximum, and --bootstrap is 0") in out
     # bad values
     err = _bad(capsys, [*common, "--cross-validate", 1, "--out", tmp_path / "e"])
-    assert "--cross-validate must be at least 2 blocks (default 20), got 1" in err
+    assert "--cross-validate must be at least 2 blocks (default 25), got 1" in err
     assert "--no-cross-validate" in err
     code, out, err = _run(capsys, [*common, "--cross-validate", 5, "--no-cross-validate"])
     assert code == 2 and "not allowed with argument" in err
@@ -220,19 +220,19 @@ def test_cross_validation_options_and_skips(tmp_path, capsys):
 
 @pytest.mark.parametrize("options, n, want", [
     ({}, 1000, (0, 0, None)),  # neither --n-max nor --hardness: not run
-    ({"n_max": 10.0}, 1000, (20, 200, None)),
-    ({"hardness": 5.0, "bootstrap": 50}, 1000, (20, 50, None)),
+    ({"n_max": 10.0}, 1000, (25, 200, None)),
+    ({"hardness": 5.0, "bootstrap": 50}, 1000, (25, 50, None)),
     ({"n_max": 10.0, "cross_validate": 40}, 1000, (40, 200, None)),
     ({"n_max": 10.0, "no_cross_validate": True}, 1000, (0, 0, None)),
-    ({"n_max": 10.0}, 120, (12, 200, "12 blocks instead of 20: 120 values make at most 12 blocks of "
+    ({"n_max": 10.0}, 120, (12, 200, "12 blocks instead of 25: 120 values make at most 12 blocks of "
                                       "10 or more values")),
     ({"n_max": 10.0}, 19, (0, 0, "skipped: 19 values are too few (at least 2 blocks of 10 values are "
                                  "needed, 20 values)")),
     ({"n_max": 10.0, "bootstrap": 0}, 1000, (0, 0, "skipped: it checks the bootstrap interval of the "
                                                    "maximum, and --bootstrap is 0")),
     ({"n_max": 10.0, "method": "mle"}, 1000,
-     (0, 0, "skipped by default for maximum likelihood: it would refit 20 x 50 resamples (minutes); "
-            "pass --cross-validate 20 to run it")),
+     (0, 0, "skipped by default for maximum likelihood: it would refit 25 x 50 resamples (minutes); "
+            "pass --cross-validate 25 to run it")),
     ({"n_max": 10.0, "method": "mps", "cross_validate": 20}, 1000, (20, 50, None)),
 ])
 def test_cross_validation_plan(options, n, want):

@@ -229,7 +229,8 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
     sa = SampleAnalysis(sample=sample, data=data, n_ref=max(float(counts.mean()) if per else 0.0, 1.0),
                         counts=counts)
     if data.size < 5:
-        sa.note = f"only {data.size} values pooled over {len(keys)} surfaces; at least 5 are needed"
+        sa.note = (f"only {data.size} values pooled over {len(keys)} surfaces; at least 5 are "
+                   f"needed: analyse more surfaces (--surfaces) or larger areas (--size)")
         return sa
     grouped = sample in GROUPED_SAMPLES
     param = method = order = None

@@ -201,10 +201,12 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
     for f in (0, 1):
         train, test = folds[1 - f], folds[f]
         if not train or not test:
-            return Validation(error="needs at least two surfaces (one per fold)")
+            return Validation(error="needs at least two surfaces (one per fold): analyse more "
+                                    "surfaces (--surfaces, or more --topographies files)")
         x, labels, counts = pool([per[i] for i in train])
         if x.size < 5:
-            return Validation(error=f"only {x.size} values in a fitting fold (at least 5 needed)")
+            return Validation(error=f"only {x.size} values in a fitting fold (at least 5 needed): "
+                                    f"analyse more surfaces (--surfaces) or larger areas (--size)")
         p, m, order = param, method, None
         grouped = sample in GROUPED_SAMPLES
         if grouped:
