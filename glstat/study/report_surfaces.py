@@ -24,9 +24,9 @@ _ISO_DISPLAY = {"Sq": ("Sq (µm)", 1e6), "Ssk": ("Ssk", 1.0), "Sku": ("Sku", 1.0
 
 
 def area_text(settings) -> str:
-    """The side lengths of one surface, ``"Lx × Ly mm²"``."""
+    """The side lengths of one surface, ``"Lx × Ly mm²"`` (three significant digits)."""
     lx, ly = settings.size
-    return f"{lx * 1e3:g} × {ly * 1e3:g} mm²"
+    return f"{lx * 1e3:.3g} × {ly * 1e3:.3g} mm²"
 
 
 def grid_text(settings) -> str:
