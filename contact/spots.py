@@ -209,10 +209,17 @@ def contact_spots(
         empty = np.zeros(0)
         return ContactSpots(labels, empty, np.zeros((0, 2), dtype=np.intp), empty, empty,
                             np.zeros(0, dtype=np.intp), float(area), bool(periodic))
-    peak = np.asarray(ndimage.maximum(p, labels, index), dtype=np.float64)
-    where = ndimage.maximum_position(p, labels, index)
-    load = np.asarray(ndimage.sum_labels(p, labels, index), dtype=np.float64) * area
-    count = np.bincount(labels.ravel(), minlength=n + 1)[1:]
+    # per spot, from the points in contact only (a small part of the map): the largest
+    # pressure and the first point holding it in row-major order, as ndimage.maximum_position
+    flat = np.flatnonzero(labels.ravel())
+    lab = labels.ravel()[flat]
+    val = p.ravel()[flat]
+    order = np.lexsort((flat, -val, lab))
+    first = order[np.r_[0, np.flatnonzero(np.diff(lab[order])) + 1]]
+    peak = val[first].astype(np.float64)
+    where = np.column_stack(np.unravel_index(flat[first], p.shape))
+    load = np.bincount(lab, weights=val, minlength=n + 1)[1:] * area
+    count = np.bincount(lab, minlength=n + 1)[1:]
     return ContactSpots(
         labels=labels,
         peak_pressure=peak,

@@ -119,3 +119,24 @@ def test_spots_touching_the_border_are_flagged_unless_the_map_is_periodic():
     periodic = contact_spots(p, cell_area=1e-12, periodic=True)
     assert periodic.touches_border.tolist() == [False] * periodic.n_spots
     assert contact_spots(np.zeros((4, 4)), cell_area=1e-12).touches_border.size == 0
+
+
+def test_spot_peaks_and_positions_match_ndimage_with_ties():
+    # scipy.ndimage as the reference for the largest pressure, load and points of each spot;
+    # the peak's position is the first point in row-major order holding it (the documented
+    # rule; ndimage.maximum_position picks any of the tied points); pressures rounded to make
+    # ties
+    from scipy import ndimage
+
+    rng = np.random.default_rng(7)
+    p = np.round(rng.random((60, 50)) * 4) * (rng.random((60, 50)) < 0.35) * 1e8
+    spots = contact.contact_spots(p, cell_area=1e-12)
+    labels, n = ndimage.label(p > 0, structure=np.ones((3, 3), dtype=bool))
+    index = np.arange(1, n + 1)
+    assert spots.n_spots == n > 10
+    np.testing.assert_array_equal(spots.peak_pressure, ndimage.maximum(p, labels, index))
+    for k in index:
+        first = np.argwhere((labels == k) & (p == spots.peak_pressure[k - 1]))[0]
+        np.testing.assert_array_equal(spots.peak_index[k - 1], first)
+    np.testing.assert_allclose(spots.load, ndimage.sum_labels(p, labels, index) * 1e-12, rtol=1e-13)
+    np.testing.assert_array_equal(spots.n_points, np.bincount(labels.ravel())[1:])
