@@ -204,7 +204,6 @@ def contact_spots(
     labels, n = ndimage.label(p > 0, structure=_EIGHT)
     if periodic and n > 1:
         labels, n = _join_periodic(labels, n)
-    index = np.arange(1, n + 1)
     if n == 0:
         empty = np.zeros(0)
         return ContactSpots(labels, empty, np.zeros((0, 2), dtype=np.intp), empty, empty,
