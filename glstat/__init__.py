@@ -28,6 +28,7 @@ from .extremes import (
 from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
 from .gld import GLD
 from .gof import compare_families, edf_statistics, gof_report
+from .pot import TailPrediction, predict_maximum_pot
 from .prediction import MaximumPrediction, predict_maximum
 from .regions import rs_region
 
@@ -54,6 +55,7 @@ __all__ = [
     "ObservedCounts",
     "OrderStatisticDistribution",
     "PoissonCount",
+    "TailPrediction",
     "binomial_check",
     "bootstrap",
     "compare_families",
@@ -73,6 +75,7 @@ __all__ = [
     "maximum",
     "order_statistic",
     "predict_maximum",
+    "predict_maximum_pot",
     "rs_region",
 ]
 
