@@ -505,6 +505,13 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
               f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}]; observed "
               f"{fmt_probability(r['observed_damage'])} of {r['n_surfaces']} surfaces; mean contact "
               f"pressure {fmt_mpa(r['mean_pressure_mpa'])}{check}")
+    for model, an in (("elastic BEM", res.bem_analysis or {}), ("asperity model", res.analysis)):
+        for (ih, _), r in an.items():
+            sa = r[PRIMARY_SAMPLE]
+            why = sa.note if not sa.ok else sa.validation.error
+            if why:
+                what = "no prediction" if not sa.ok else "not checked"
+                print(f"  {case_name(settings, ih)}, {model}: {what}: {why}")
     for warn in (degenerate_scene(res.analysis), overlap_note(settings, res.analysis)):
         if warn:
             print(f"warning: {warn}")

@@ -530,3 +530,13 @@ def test_report_calibration_sentence_matches_the_validation_table(tiny_study):
         assert verdict.startswith("calibrated") == calibrated, (r, verdict)
         if cov_ok and not calibrated:
             assert "but biased (centring test rejects)" in verdict
+
+
+def test_one_surface_says_why_there_is_no_answer_and_what_to_do(tmp_path, capsys):
+    rc = main(["study", "--surfaces", "1", "--grid", "64", "--hurst", "0.5", "--bootstrap", "20",
+               "--out", str(tmp_path / "one"), "--workers", "1", "--no-progress"])
+    assert rc == 0
+    out = capsys.readouterr().out
+    assert re.search(r"H = 0\.5, asperity model: (no prediction|not checked): ", out)
+    assert "more or larger surfaces (--surfaces" in out or "analyse more surfaces" in out
+    assert "passed" not in out

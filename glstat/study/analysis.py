@@ -230,7 +230,8 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
                         counts=counts)
     if data.size < 5:
         sa.note = (f"only {data.size} values pooled over {len(keys)} surfaces; at least 5 are "
-                   f"needed: analyse more surfaces (--surfaces) or larger areas (--size)")
+                   f"needed: analyse more or larger surfaces (--surfaces, --size; more files "
+                   f"with --topographies)")
         return sa
     grouped = sample in GROUPED_SAMPLES
     param = method = order = None

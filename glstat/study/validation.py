@@ -202,11 +202,12 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
         train, test = folds[1 - f], folds[f]
         if not train or not test:
             return Validation(error="needs at least two surfaces (one per fold): analyse more "
-                                    "surfaces (--surfaces, or more --topographies files)")
+                                    "surfaces (--surfaces; more files with --topographies)")
         x, labels, counts = pool([per[i] for i in train])
         if x.size < 5:
             return Validation(error=f"only {x.size} values in a fitting fold (at least 5 needed): "
-                                    f"analyse more surfaces (--surfaces) or larger areas (--size)")
+                                    f"analyse more or larger surfaces (--surfaces, --size; more "
+                                    f"files with --topographies)")
         p, m, order = param, method, None
         grouped = sample in GROUPED_SAMPLES
         if grouped:
