@@ -453,11 +453,8 @@ def predict_tail_gld(x: np.ndarray, ms: np.ndarray, thresholds: np.ndarray, rng:
 
 
 def gpd_zhang_stephens(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Generalized Pareto shape and scale of every row by Zhang and Stephens (2009).
-
-    The profile likelihood in theta = -xi / sigma averaged over a fixed grid (their
-    "empirical Bayes" estimator, without the weakly informative prior on xi that PSIS adds):
-    no optimiser, vectorised over the rows, defined for every sample.
+    """Generalized Pareto shape and scale of every row by Zhang and Stephens (2009): the
+    library's estimator (:func:`glstat.pot.fit_gpd`), vectorised over the rows.
 
     Parameters
     ----------
@@ -469,17 +466,9 @@ def gpd_zhang_stephens(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     xi, sigma : ndarray, shape (B,)
         Shape (> 0: power tail) and scale.
     """
-    k = y.shape[1]
-    m = 30 + int(math.sqrt(k))
-    j = np.arange(1, m + 1, dtype=float)
-    xstar = y[:, math.floor(k / 4 + 0.5) - 1]  # the first quartile
-    theta = 1.0 / y[:, -1:] + (1.0 - np.sqrt(m / (j - 0.5)))[None, :] / (3.0 * xstar[:, None])
-    kk = np.mean(np.log1p(-theta[:, :, None] * y[:, None, :]), axis=2)
-    ll = k * (np.log(-theta / kk) - kk - 1.0)
-    w = np.exp(ll - ll.max(axis=1, keepdims=True))
-    theta_hat = np.sum(theta * w, axis=1) / np.sum(w, axis=1)
-    xi = np.mean(np.log1p(-theta_hat[:, None] * y), axis=1)
-    return xi, -xi / theta_hat
+    from glstat.pot import fit_gpd
+
+    return fit_gpd(y)
 
 
 def gpd_scipy_mle(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
