@@ -180,7 +180,29 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
                 x, [(args.param, args.method)], n_blocks=k_cv, threshold=args.hardness,
                 confidence_level=args.confidence_level, n_resamples=b_cv, rng=seed)
     print_cross_validation(res, emit)
+    if args.pareto_tail:
+        _pareto_tail(args, res, x, n, factors, seed, emit)
     return res
+
+
+def _pareto_tail(args, res: FitResults, x: np.ndarray, n: float, factors, seed,
+                 emit: Callable[[str], None]) -> None:
+    """``--pareto-tail``: the maximum and the damage from a generalized Pareto tail."""
+    from .pot import predict_maximum_pot
+
+    emit("")
+    if args.count is not None:
+        emit("generalized Pareto tail: skipped: it takes a fixed number of points (--n-max N), "
+             "not a random count")
+        return
+    try:
+        res.pareto_tail = predict_maximum_pot(
+            x, n=n, threshold=args.hardness, area_factor=factors,
+            n_resamples=max(args.bootstrap, 10), confidence_level=args.confidence_level, rng=seed)
+    except ValueError as exc:
+        emit(f"generalized Pareto tail: skipped: {exc}")
+        return
+    emit(res.pareto_tail.text())
 
 
 # ---------------------------------------------------------------------------------------------

@@ -91,6 +91,11 @@ def build_parser() -> argparse.ArgumentParser:
                          f"fewer blocks for fewer than {CV_MIN_BLOCK} values per block)")
     cv.add_argument("--no-cross-validate", action="store_true",
                     help="skip the block cross-validation")
+    p.add_argument("--pareto-tail", action="store_true",
+                   help="also predict the maximum and the damage from a generalized Pareto tail "
+                        "fitted to the ceil(sqrt(n)) largest values (glstat.predict_maximum_pot): "
+                        "better calibrated than a GLD on data that are not GLD-distributed "
+                        "(docs/extremes.md); a fixed number of points only")
     p.add_argument("--out", default=None, metavar="DIR",
                    help="output directory for figures, fit.json and summary.csv (default "
                         "glstat_fit_<file stem> in the current directory)")

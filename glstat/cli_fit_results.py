@@ -61,6 +61,8 @@ class FitResults:
         adapted to the sample size.
     cross_validation : glstat.MaximumCrossValidation or None
         The block cross-validation of the maximum (None when it was not run).
+    pareto_tail : glstat.TailPrediction or None
+        The generalized Pareto tail's prediction (``--pareto-tail``).
     cross_validation_note : str or None
         Why it was skipped, or why it used fewer blocks than asked.
     """
@@ -81,6 +83,7 @@ class FitResults:
     gof_note: str | None = None
     cross_validation: MaximumCrossValidation | None = None
     cross_validation_note: str | None = None
+    pareto_tail: Any = None
 
 
 def collect_notes(caught, notes: list[str]) -> None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -11,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from scipy import stats
 
 import glstat
 from glstat import cli_fit, cli_fit_options
@@ -645,3 +647,26 @@ def test_large_sample_runs_with_the_adapted_default(tmp_path, capsys):
                                    "--out", tmp_path / "o2"])
     assert code == 0, err
     assert "(B=2)" in out and "instead of" not in out
+
+
+def test_pareto_tail_on_data_whose_gld_fit_misses_the_tail(tmp_path, capsys):
+    # N(100, 10) with 5 % far lower outliers: the RS moment fit ends below the upper tail and
+    # gives damage 0; the generalized Pareto tail of the largest values follows the normal
+    # tail (exact: 1 - (1 - P(N(100, 10) > 125))^1000 = 0.9980)
+    x = 100.0 + 10.0 * _low_outliers()
+    npy = tmp_path / "low.npy"
+    np.save(npy, x)
+    code, out, err = _run(capsys, [npy, "--bootstrap", 200, "--gof-resamples", 0, "--n-max", 1000,
+                                   "--hardness", 125.0, "--no-cross-validate", "--pareto-tail",
+                                   "--out", tmp_path / "o", "--seed", SEED])
+    assert code == 0, err
+    line = next(ln for ln in out.splitlines() if ln.startswith("  damage P(max > 125) on 1 area"))
+    est, low, high = (float(v) for v in re.findall(r"[\d.]+(?:e-?\d+)?", line.split(":")[1]))
+    exact = 1 - (1 - stats.norm.sf(125.0, 100.0, 10.0)) ** 1000
+    assert low <= exact <= high and est > 0.9
+    assert out.index("generalized Pareto tail on the 45 largest values") > out.index("damage probability")
+    # a random count is not supported: said, not computed
+    code, out, err = _run(capsys, [npy, "--bootstrap", 20, "--gof-resamples", 0, "--n-max", "poisson:50",
+                                   "--no-cross-validate", "--pareto-tail", "--out", tmp_path / "p"])
+    assert code == 0, err
+    assert "generalized Pareto tail: skipped: it takes a fixed number of points" in out
