@@ -284,9 +284,6 @@ def _study_settings(args, argv: list[str]):
                               f"surfaces per H (--surfaces); lower K or add surfaces")
     if args.bem_grid is None:
         args.bem_grid = min(DEFAULT_BEM_GRID, max(settings.shape))
-    if (settings.measured or args.bem_grid == max(settings.shape)
-            or settings.shape[0] != settings.shape[1]):
-        args.bem_grid = None  # the campaign's own grid (stored solves do not name it)
     if args.compare_bem == 0 and not any(a == "--model" or a.startswith("--model=") for a in argv):
         args.model = "asperity"  # --compare-bem 0: no elastic model at all
     return settings, asettings, surfaces

@@ -300,6 +300,10 @@ def run_study(
     if compare_bem is not None and not (isinstance(compare_bem, int) and compare_bem == 0):
         bsettings = (compare_bem if isinstance(compare_bem, BEMSettings)
                      else BEMSettings(n_compare=compare_bem))
+        # the grid and guard band these surfaces are solved with: a BEM grid equal to the
+        # campaign's, or one asked for measured or rectangular surfaces, is the campaign's own
+        bsettings = dataclasses.replace(bsettings, grid=bsettings.solve_grid(settings),
+                                        guard=bsettings.guard_points(settings))
         if bsettings.n_compare > settings.n_surfaces:
             raise ValueError(
                 f"compare_bem: K = {bsettings.n_compare} surfaces per H cannot exceed the campaign's "

@@ -117,7 +117,8 @@ class SampleAnalysis:
     guaranteed : dict
         Area factor -> pressure (MPa) that the area stays below with ``integrity_level``.
     area_damage : pandas.DataFrame or None
-        Damage probability at the hardness on the areas of :data:`DAMAGE_AREAS_MM2`:
+        Damage probability at the hardness on the areas of :data:`DAMAGE_AREAS_MM2` (the
+        primary sample only):
         ``area_mm2``, ``area_factor`` (over the analysed area), ``estimate``, ``low``,
         ``high``.
     upper_end : float
@@ -257,7 +258,7 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
     for k in (1.0, 10.0, 100.0, 1000.0):
         sa.guaranteed[k] = float(glstat.guaranteed_threshold(
             dist, probability=a.integrity_level, area_factor=k, **full_kw))
-    if area_m2:
+    if area_m2 and sample == PRIMARY_SAMPLE:  # the answer's growth with the area
         factors = np.array(DAMAGE_AREAS_MM2) * 1e-6 / area_m2
         d = bf.damage_probability(a.hardness, area_factor=factors, **count_kw)
         sa.area_damage = pd.DataFrame({"area_mm2": DAMAGE_AREAS_MM2, "area_factor": factors,

@@ -53,6 +53,18 @@ def _samples(r: dict) -> list[str]:
     return [sample for sample in SAMPLES if sample in r]
 
 
+def _model_cases(analysis: dict, bem_analysis: dict | None, bem_label: str,
+                 asperity_label: str) -> list[tuple[tuple[int, int], dict, str]]:
+    """``((ih, il), case analysis, label)`` in table order: per case the elastic BEM first (the
+    reference) when it ran on every surface, then the asperity model; the asperity model alone,
+    unlabelled, otherwise."""
+    if not bem_analysis:
+        return [(k, r, "") for k, r in analysis.items()]
+    return [c for k, r in analysis.items() for c in
+            ([(k, bem_analysis[k], bem_label)] if k in bem_analysis else [])
+            + [(k, r, asperity_label)]]
+
+
 def _check_numbers(v) -> dict:
     """The held-out check's columns of ``summary.csv`` (NaN where there is no check)."""
     d, c = v.damage_check, v.coverage_check
@@ -231,11 +243,8 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
     lvl = round(100 * asettings.confidence_level)
     simulated = not getattr(settings, "topographies", ())
     rows = []
-    cases = [(k, r, "") for k, r in analysis.items()]
-    if bem_analysis:
-        cases = [c for k, r in analysis.items() for c in
-                 ([(k, bem_analysis[k], ", elastic BEM (reference)")] if k in bem_analysis else [])
-                 + [(k, r, f", asperity model (c = {settings.cone_factor:g}, the paper's)")]]
+    cases = _model_cases(analysis, bem_analysis, ", elastic BEM (reference)",
+                         f", asperity model (c = {settings.cone_factor:g}, the paper's)")
     for (ih, il), r, label in cases:
         h = settings.hurst[ih]
         sa = r[PRIMARY_SAMPLE]
@@ -249,12 +258,10 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
             if sa.end_note:
                 answer += " ⚠ near or beyond the fit's end point (below)"
         check = v.short_text() if sa.ok else "—"
+        # without the BEM on every surface, its damage on the compared surfaces beside it
         elastic = "—"
-        if bem_analysis and (ih, il) in bem_analysis and bem_analysis[(ih, il)][PRIMARY_SAMPLE].ok:
-            elastic = fmt_probability(_scalar(bem_analysis[(ih, il)][PRIMARY_SAMPLE].damage.estimate))
-        elif bem and (ih, il) in bem and bem[(ih, il)].fits["bem"].damage is not None:
-            de = bem[(ih, il)].fits["bem"].damage
-            elastic = fmt_probability(_scalar(de.estimate))
+        if not bem_analysis and bem and (ih, il) in bem and bem[(ih, il)].fits["bem"].damage is not None:
+            elastic = fmt_probability(_scalar(bem[(ih, il)].fits["bem"].damage.estimate))
         row = [
             case_name(settings, ih) + (f", {settings.pressures[il] / 1e6:g} MPa"
                                        if len(settings.pressures) > 1 else "") + label,
@@ -325,13 +332,9 @@ def area_damage_rows(settings, asettings, analysis: dict, bem_analysis: dict | N
     10 cm² (contact-spot predictor, with its interval); no rows when no case has one."""
     from .analysis import DAMAGE_AREAS_MM2
 
-    cases = [(k, r, "") for k, r in analysis.items()]
-    if bem_analysis:
-        cases = [c for k, r in analysis.items() for c in
-                 ([(k, bem_analysis[k], ", elastic BEM")] if k in bem_analysis else [])
-                 + [(k, r, ", asperity model")]]
     rows = []
-    for (ih, il), r, label in cases:
+    for (ih, il), r, label in _model_cases(analysis, bem_analysis, ", elastic BEM",
+                                           ", asperity model"):
         table = r[PRIMARY_SAMPLE].area_damage
         if table is None:
             continue
@@ -373,11 +376,8 @@ def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = 
     """Rows of the table of checks on held-out surfaces: one per (H, load, model, sample)."""
     lvl = round(100 * asettings.confidence_level)
     rows = []
-    items = [(k, r, "") for k, r in analysis.items()]
-    if bem_analysis:
-        items = ([(k, r, ", asperity model") for k, r in analysis.items()]
-                 + [(k, r, ", elastic BEM") for k, r in bem_analysis.items()])
-    for (ih, il), r, label in items:
+    for (ih, il), r, label in _model_cases(analysis, bem_analysis, ", elastic BEM",
+                                           ", asperity model"):
         for sample in _samples(r):
             v = r[sample].validation
             case = case_name(settings, ih) + (

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..formatting import fmt_probability
 from .analysis_settings import (
     AREA_CHECKS,
     CHECK_MAX_MISS,
@@ -142,10 +143,10 @@ class Validation:
             parts = []
             if d is not None and d.verdict == "failed":
                 parts.append(f"{d.hits} of {d.n} held-out surfaces damaged, "
-                             f"{_pct(d.predicted)} predicted (p = {d.p_value:.2g})")
+                             f"{fmt_probability(d.predicted)} predicted (p = {d.p_value:.2g})")
             if c is not None and c.verdict == "failed":
                 parts.append(f"{c.hits} of {c.n} held-out maxima inside the "
-                             f"{_pct(c.predicted)} interval (p = {c.p_value:.2g})")
+                             f"{fmt_probability(c.predicted)} interval (p = {c.p_value:.2g})")
             return "failed: " + "; ".join(parts)
         miss = max(x.detectable_miss for x in (d, c))
         if v == "not checkable":
@@ -164,10 +165,6 @@ class Validation:
         if self.coverage_check is not None:
             parts.append("coverage of the maximum " + self.coverage_check.text())
         return f"{v} — " + "; ".join(parts)
-
-
-def _pct(p: float) -> str:
-    return f"{100 * p:.3g} %"
 
 
 def _pp(d: float) -> str:
