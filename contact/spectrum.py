@@ -5,6 +5,17 @@ Tukey window, quarter-octave rings) and the fit of a self-affine spectrum
 ``C(q) ∝ q^(-2(H+1))`` to it over ``q_r <= q <= q_s`` (:func:`fit_spectrum`), which gives the
 RMS roughness Rq, the Hurst exponent H and the range that :mod:`contact.like` reproduces
 (docs/contact.md, "Surfaces like a measurement").
+
+Normalisation. ``C(q)`` is per unit area of angular wavevector, (rad/m)²: the sum of the 2-D
+PSD over the FFT grid times the wavevector cell ``(2π/Lx)(2π/Ly)`` is Rq², i.e.
+``Rq² = ∫ C(q) d²q``. SurfaceTopography's ``power_spectrum_from_area`` is per unit area of
+wavenumber, (1/m)², with ``Rq² = ∫ C(q) d²q / (2π)²``: its values are (2π)² ≈ 39.48 times
+ours on the same wavevectors (both in m^4). ``convention="surfacetopography"`` returns its
+normalisation (:data:`CONVENTIONS`).
+
+Missing points. A surface with up to :data:`~contact._fill.MAX_FILLED_FRACTION` (5 %) of
+its points missing is filled by harmonic interpolation (:func:`contact._fill.harmonic_fill`)
+before the FFT; the fraction filled is reported (:attr:`SpectrumFit.filled_fraction`).
 """
 
 from __future__ import annotations
@@ -15,9 +26,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .surface import Surface, require_surface
+from ._fill import MAX_FILLED_FRACTION, harmonic_fill
+from .roughness import level_heights
+from .surface import Surface, require_surface, surface_arrays
 
-__all__ = ["SpectrumFit", "fit_spectrum", "radial_psd"]
+__all__ = ["CONVENTIONS", "SpectrumFit", "fit_spectrum", "radial_psd"]
+
+#: PSD normalisations: name -> factor on ``C`` relative to ``"contact"``. ``"contact"``:
+#: ``Rq² = ∫ C d²q`` (per (rad/m)²); ``"surfacetopography"``: ``Rq² = ∫ C d²q / (2π)²``
+#: (per (1/m)², SurfaceTopography's ``power_spectrum_from_area``).
+CONVENTIONS = {"contact": 1.0, "surfacetopography": 4 * math.pi**2}
+#: Windows applied to the heights before the FFT.
+WINDOWS = ("tukey", None)
 
 #: Smallest number of grid points per side for a spectrum fit.
 MIN_POINTS = 32
@@ -69,6 +89,9 @@ class SpectrumFit:
         Grid of the fitted surface.
     dx, dy : float
         Grid spacing of the fitted surface in metres.
+    filled_fraction : float
+        Fraction of the points that were missing and filled by harmonic interpolation
+        before the FFT (0 for a fully measured surface; dimensionless).
     """
 
     rq: float
@@ -85,6 +108,7 @@ class SpectrumFit:
     shape: tuple[int, int]
     dx: float
     dy: float
+    filled_fraction: float = 0.0
 
     @property
     def fractal_dimension(self) -> float:
@@ -125,6 +149,53 @@ def fully_measured(surface, what: str) -> Surface:
     return surface
 
 
+def filled_surface(
+    surface, what: str, max_filled: float = MAX_FILLED_FRACTION
+) -> tuple[Surface, float]:
+    """A fully measured version of ``surface`` and the fraction of its points filled.
+
+    Missing points are filled by harmonic interpolation (:func:`contact._fill.harmonic_fill`:
+    each the mean of its axis neighbours, measured heights unchanged).
+
+    Parameters
+    ----------
+    surface : Surface
+        The surface (heights and spacing in metres).
+    what : str
+        The caller's name, for messages.
+    max_filled : float, default 0.05
+        Largest fraction of missing points that is filled.
+
+    Returns
+    -------
+    Surface
+        ``surface`` itself when no point is missing, else a new surface without a mask.
+    float
+        Fraction of the points that were filled (dimensionless).
+
+    Raises
+    ------
+    TypeError
+        Not a :class:`~contact.surface.Surface`.
+    ValueError
+        More than ``max_filled`` of the points are missing.
+    """
+    surface = require_surface(surface)
+    h, valid = surface_arrays(surface)
+    n_missing = int(valid.size - np.count_nonzero(valid))
+    if n_missing == 0:
+        return surface, 0.0
+    fraction = n_missing / valid.size
+    if fraction > max_filled:
+        raise ValueError(
+            f"{what}: {n_missing} of {valid.size} points ({100 * fraction:.3g} %) are "
+            f"missing (masked), more than the {100 * max_filled:g} % that are filled by "
+            "interpolation for a spectrum; crop the surface to a better measured rectangle, "
+            "or fill the missing points yourself and pass contact.Surface(filled, dx, dy)"
+        )
+    return Surface(harmonic_fill(h, ~valid), surface.dx, surface.dy), fraction
+
+
 def _taper(n: int) -> np.ndarray:
     """Tukey window: a cosine taper over the outer quarter of the points at each end."""
     x = (np.arange(n) + 0.5) / n
@@ -132,28 +203,50 @@ def _taper(n: int) -> np.ndarray:
     return np.where(edge < TAPER / 2, 0.5 * (1.0 - np.cos(2 * np.pi * edge / TAPER)), 1.0)
 
 
-def spectrum_2d(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
+def check_convention(convention: str, window: str | None = "tukey") -> float:
+    """Factor of the PSD normalisation ``convention`` (:data:`CONVENTIONS`); checks ``window``."""
+    if window not in WINDOWS:
+        raise ValueError(f"window must be 'tukey' or None, got {window!r}")
+    try:
+        return CONVENTIONS[convention]
+    except (KeyError, TypeError):
+        raise ValueError(
+            f"convention must be one of {sorted(CONVENTIONS)}, got {convention!r}"
+        ) from None
+
+
+def spectrum_2d(
+    surface: Surface, convention: str = "contact", window: str | None = "tukey"
+) -> tuple[np.ndarray, np.ndarray]:
     """|q| (rad/m) and the 2-D PSD (m^4) of the plane-levelled, tapered heights.
 
     Parameters
     ----------
     surface : Surface
         A fully measured surface (heights and spacing in metres).
+    convention : {"contact", "surfacetopography"}
+        Normalisation (:data:`CONVENTIONS`).
+    window : {"tukey", None}
+        The Tukey window of :func:`radial_psd`, or none (for a periodic surface).
 
     Returns
     -------
     q : ndarray, shape (nx, ny)
-        Magnitude of the wavevector of every FFT coefficient, rad/m.
+        Magnitude of the wavevector of every FFT coefficient (layout of
+        :func:`numpy.fft.fft2`), rad/m.
     psd : ndarray, shape (nx, ny)
-        ``|FFT(z w)|² dx dy / (nx ny 4π²)`` in m^4 (see :func:`radial_psd`).
+        ``|FFT(z w)|² dx dy / (nx ny 4π²)`` in m^4 for ``"contact"`` (whose sum times the
+        wavevector cell ``(2π/Lx)(2π/Ly)`` is the mean square of ``z w``), ``(2π)²`` times
+        that for ``"surfacetopography"``.
     """
+    factor = check_convention(convention, window)
     nx, ny = surface.shape
     z = surface.detrend("plane").heights
-    window = np.outer(_taper(nx), _taper(ny))
-    window /= math.sqrt(float(np.mean(window * window)))
-    z_hat = np.fft.fft2(z * window)
-    # Normalised so that sum(C) (2π/Lx)(2π/Ly) = mean(z^2 w^2) ≈ Rq^2.
-    psd = np.abs(z_hat) ** 2 * (surface.dx * surface.dy) / (nx * ny * 4 * math.pi**2)
+    if window == "tukey":
+        w = np.outer(_taper(nx), _taper(ny))
+        z = z * (w / math.sqrt(float(np.mean(w * w))))
+    z_hat = np.fft.fft2(z)
+    psd = np.abs(z_hat) ** 2 * (factor * surface.dx * surface.dy / (nx * ny * 4 * math.pi**2))
     qx = 2 * math.pi * np.fft.fftfreq(nx, d=surface.dx)
     qy = 2 * math.pi * np.fft.fftfreq(ny, d=surface.dy)
     q = np.hypot(qx[:, None], qy[None, :])
@@ -202,7 +295,14 @@ def ring_means(
         return np.exp(logq / counts), csum / counts, counts
 
 
-def radial_psd(surface: Surface, edges: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+def radial_psd(
+    surface: Surface,
+    edges: np.ndarray | None = None,
+    *,
+    convention: str = "contact",
+    window: str | None = "tukey",
+    max_filled: float = MAX_FILLED_FRACTION,
+) -> tuple[np.ndarray, np.ndarray]:
     """Radially averaged (isotropic) power spectral density of a surface.
 
     The heights are levelled by their least-squares plane and multiplied by a separable
@@ -210,15 +310,26 @@ def radial_psd(surface: Surface, edges: np.ndarray | None = None) -> tuple[np.nd
     normalised to unit mean square) before the FFT, so that a non-periodic measurement does
     not leak power from its edges. The 2-D PSD
     ``C(qx, qy) = |FFT(z w)|² dx dy / (nx ny 4π²)`` (m^4), whose sum times the wavevector
-    cell ``(2π/Lx)(2π/Ly)`` is Rq², is averaged over logarithmic rings of a quarter octave.
+    cell ``(2π/Lx)(2π/Ly)`` is Rq² (``Rq² = ∫ C d²q``, q in rad/m), is averaged over
+    logarithmic rings of a quarter octave.
 
     Parameters
     ----------
     surface : Surface
-        A fully measured surface (no mask).
+        The surface; up to ``max_filled`` of its points may be missing (masked), and are
+        filled by harmonic interpolation first (each the mean of its axis neighbours).
     edges : ndarray, optional
         Ring edges in rad/m; default: quarter-octave rings from ``2π / max(Lx, Ly)`` to the
         Nyquist wavevector ``π / max(dx, dy)``.
+    convention : {"contact", "surfacetopography"}
+        ``"contact"``: the normalisation above, per (rad/m)². ``"surfacetopography"``: per
+        (1/m)², ``Rq² = ∫ C d²q / (2π)²``, the normalisation of SurfaceTopography's
+        ``power_spectrum_from_area``: ``(2π)² ≈ 39.48`` times larger. m^4 either way.
+    window : {"tukey", None}
+        ``None`` leaves the heights unwindowed (for periodic surfaces; SurfaceTopography's
+        default for periodic topographies).
+    max_filled : float, default 0.05
+        Largest fraction of missing points that is filled.
 
     Returns
     -------
@@ -226,6 +337,12 @@ def radial_psd(surface: Surface, edges: np.ndarray | None = None) -> tuple[np.nd
         Geometric mean of the wavevector magnitudes in each non-empty ring, rad/m.
     psd : ndarray
         Mean PSD in each ring, m^4.
+
+    Raises
+    ------
+    ValueError
+        More than ``max_filled`` of the points are missing; an unknown ``convention`` or
+        ``window``.
 
     Examples
     --------
@@ -236,8 +353,9 @@ def radial_psd(surface: Surface, edges: np.ndarray | None = None) -> tuple[np.nd
     >>> q.shape == c.shape, bool((c > 0).all())
     (True, True)
     """
-    surface = fully_measured(surface, "radial_psd")
-    q, psd = spectrum_2d(surface)
+    check_convention(convention, window)
+    surface, _ = filled_surface(surface, "radial_psd", max_filled)
+    q, psd = spectrum_2d(surface, convention, window)
     q, c, counts = ring_means(q, psd, ring_edges(surface) if edges is None else np.asarray(edges, float))
     return q[counts > 0], c[counts > 0]
 
@@ -271,7 +389,12 @@ def _knee(x: np.ndarray, y: np.ndarray, w: np.ndarray) -> int | None:
     return None
 
 
-def fit_spectrum(surface: Surface, *, q_range: Sequence[float] | None = None) -> SpectrumFit:
+def fit_spectrum(
+    surface: Surface,
+    *,
+    q_range: Sequence[float] | None = None,
+    max_filled: float = MAX_FILLED_FRACTION,
+) -> SpectrumFit:
     """Fit a self-affine power spectrum to a measured surface.
 
     The heights are levelled by their least-squares plane; Rq is their RMS. The radially
@@ -283,23 +406,29 @@ def fit_spectrum(surface: Surface, *, q_range: Sequence[float] | None = None) ->
     Parameters
     ----------
     surface : Surface
-        A fully measured surface of at least 32 x 32 points (heights and spacing in metres).
+        A surface of at least 32 x 32 points (heights and spacing in metres). Up to
+        ``max_filled`` of its points may be missing (masked): they are filled by harmonic
+        interpolation for the spectrum (each the mean of its axis neighbours), and Rq is
+        taken over the measured points only.
     q_range : (float, float), optional
         Wavevectors ``(q_min, q_max)`` in rad/m between which the rings are fitted; default:
         the rule below.
+    max_filled : float, default 0.05
+        Largest fraction of missing points that is filled; more is refused.
 
     Returns
     -------
     SpectrumFit
         Rq (m), H with its standard error, the roll-off ``q_r`` and cut-off ``q_s`` (rad/m),
-        the fitted range, R² and the number of rings.
+        the fitted range, R², the number of rings and the fraction of points filled.
 
     Raises
     ------
     TypeError
         ``surface`` is not a :class:`contact.Surface`.
     ValueError
-        A masked surface (crop or fill it first), fewer than 32 points on a side, a flat
+        More than ``max_filled`` of the points missing (crop or fill the surface first),
+        fewer than 32 points on a side, a flat
         surface, a ``q_range`` holding fewer than 4 rings.
 
     Notes
@@ -332,18 +461,20 @@ def fit_spectrum(surface: Surface, *, q_range: Sequence[float] | None = None) ->
     >>> round(fit.hurst, 1), fit.rolloff_detected, fit.n_bins
     (0.5, False, 17)
     """
-    surface = fully_measured(surface, "fit_spectrum")
+    surface = require_surface(surface)
     nx, ny = surface.shape
     if min(nx, ny) < MIN_POINTS:
         raise ValueError(
             f"fit_spectrum needs at least {MIN_POINTS} x {MIN_POINTS} points to resolve a "
             f"power law over more than an octave, got {surface.shape}"
         )
-    z = surface.detrend("plane").heights
+    h, valid = surface_arrays(surface)
+    z = level_heights(h, valid, surface.dx, surface.dy, "plane")[valid]
     rq = math.sqrt(float(np.mean(z * z)))
-    if rq <= 1e-12 * float(np.max(np.abs(surface.heights))):
+    if rq <= 1e-12 * float(np.max(np.abs(h[valid]))):
         # zero up to rounding: a plane, or constant heights
         raise ValueError("the surface is flat (Rq = 0 about its mean plane); it has no spectrum")
+    surface, filled = filled_surface(surface, "fit_spectrum", max_filled)
     lx, ly = surface.size
     q_low = 2 * math.pi / max(lx, ly)
     q_nyq = math.pi / max(surface.dx, surface.dy)
@@ -397,4 +528,5 @@ def fit_spectrum(surface: Surface, *, q_range: Sequence[float] | None = None) ->
         shape=(nx, ny),
         dx=surface.dx,
         dy=surface.dy,
+        filled_fraction=filled,
     )

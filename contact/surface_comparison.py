@@ -13,8 +13,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ._fill import MAX_FILLED_FRACTION
 from .roughness import UNITS
-from .spectrum import fit_spectrum, fully_measured, ring_edges, ring_means, spectrum_2d
+from .spectrum import (
+    check_convention,
+    filled_surface,
+    fit_spectrum,
+    ring_edges,
+    ring_means,
+    spectrum_2d,
+)
 from .surface import Surface, require_surface
 
 if TYPE_CHECKING:
@@ -57,7 +65,8 @@ def compare_surfaces(
     -------
     pandas.DataFrame
         One row per parameter of :meth:`contact.Surface.roughness` (``Sa, Sq, ..., hurst,
-        ...``) plus ``psd_hurst`` (H of :func:`fit_spectrum`; NaN for a masked surface);
+        ...``) plus ``psd_hurst`` (H of :func:`fit_spectrum`; NaN for a surface with more
+        than 5 % of its points missing, which the spectrum does not fill);
         columns ``measured`` (mean over the measured surfaces), ``measured_std`` (their
         standard deviation, NaN for one), ``simulated_mean``, ``simulated_std`` (ddof = 1,
         NaN for one), ``z`` (``(measured - simulated_mean) / simulated_std``) and ``unit``.
@@ -108,19 +117,30 @@ def compare_surfaces(
 
 
 def psd_comparison(
-    measured: Surface | Iterable[Surface], simulated: Iterable[Surface]
+    measured: Surface | Iterable[Surface],
+    simulated: Iterable[Surface],
+    *,
+    convention: str = "contact",
+    max_filled: float = MAX_FILLED_FRACTION,
 ) -> pd.DataFrame:
     """Radially averaged PSDs of measured and simulated surfaces on common rings.
 
     The rings are those of the first measured surface (:func:`radial_psd`); every surface's
-    PSD is averaged on them.
+    PSD (plane-levelled, Tukey-windowed heights) is averaged on them.
 
     Parameters
     ----------
     measured : Surface or iterable of Surface
-        The measured surface(s), fully measured.
+        The measured surface(s); up to ``max_filled`` of the points of each may be missing,
+        and are filled by harmonic interpolation first.
     simulated : Surface or iterable of Surface
         The simulated surfaces.
+    convention : {"contact", "surfacetopography"}
+        PSD normalisation. ``"contact"``: ``Rq² = ∫ C d²q`` with q in rad/m;
+        ``"surfacetopography"``: ``Rq² = ∫ C d²q / (2π)²``, as SurfaceTopography's
+        ``power_spectrum_from_area``, ``(2π)² ≈ 39.48`` times larger. m^4 either way.
+    max_filled : float, default 0.05
+        Largest fraction of missing points that is filled.
 
     Returns
     -------
@@ -140,12 +160,15 @@ def psd_comparison(
     """
     import pandas as pd
 
-    meas = [fully_measured(s, "psd_comparison") for s in _as_list(measured, "measured")]
-    sims = [fully_measured(s, "psd_comparison") for s in _as_list(simulated, "simulated")]
+    check_convention(convention)
+    meas = [filled_surface(s, "psd_comparison", max_filled)[0]
+            for s in _as_list(measured, "measured")]
+    sims = [filled_surface(s, "psd_comparison", max_filled)[0]
+            for s in _as_list(simulated, "simulated")]
     edges = ring_edges(meas[0])
-    q, _, counts = ring_means(*spectrum_2d(meas[0]), edges)
-    m = np.array([ring_means(*spectrum_2d(x), edges)[1] for x in meas])
-    s = np.array([ring_means(*spectrum_2d(x), edges)[1] for x in sims])
+    q, _, counts = ring_means(*spectrum_2d(meas[0], convention), edges)
+    m = np.array([ring_means(*spectrum_2d(x, convention), edges)[1] for x in meas])
+    s = np.array([ring_means(*spectrum_2d(x, convention), edges)[1] for x in sims])
     ok = (counts > 0) & np.isfinite(m).all(axis=0) & np.isfinite(s).all(axis=0)
     return pd.DataFrame(
         {
@@ -159,7 +182,11 @@ def psd_comparison(
 
 
 def plot_psd_comparison(
-    measured: Surface | Iterable[Surface], simulated: Iterable[Surface], ax=None
+    measured: Surface | Iterable[Surface],
+    simulated: Iterable[Surface],
+    ax=None,
+    *,
+    convention: str = "contact",
 ):
     """Plot the measured and simulated radially averaged PSDs on log-log axes.
 
@@ -171,6 +198,8 @@ def plot_psd_comparison(
         The simulated surfaces.
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; a new figure is made when omitted.
+    convention : {"contact", "surfacetopography"}
+        PSD normalisation (see :func:`psd_comparison`).
 
     Returns
     -------
@@ -180,7 +209,7 @@ def plot_psd_comparison(
     """
     import matplotlib.pyplot as plt
 
-    table = psd_comparison(measured, simulated)
+    table = psd_comparison(measured, simulated, convention=convention)
     fit = fit_spectrum(_as_list(measured, "measured")[0])
     if ax is None:
         _, ax = plt.subplots()
