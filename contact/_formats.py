@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["FORMATS", "file_format"]
+__all__ = ["FORMATS", "OTHER_FORMATS", "file_format"]
 
 #: Built-in format of each file extension (lower case, with the dot).
 FORMATS = {
@@ -18,6 +18,11 @@ FORMATS = {
     ".x3p": "x3p",
 }
 
+#: Formats chosen by a file's content or by the caller, never by an extension alone: Zygo
+#: MetroPro binaries (``.dat``, recognised by their magic number) and whatever
+#: SurfaceTopography reads.
+OTHER_FORMATS = ("metropro", "surfacetopography")
+
 
 def file_format(path: Path, fmt: str | None) -> str:
     """The format of ``path``: ``fmt`` when given, else the one its extension names.
@@ -27,8 +32,8 @@ def file_format(path: Path, fmt: str | None) -> str:
     path : pathlib.Path
         The file.
     fmt : str or None
-        A format forced by the caller: one of the values of :data:`FORMATS` or
-        ``"surfacetopography"``.
+        A format forced by the caller: one of the values of :data:`FORMATS` or of
+        :data:`OTHER_FORMATS`.
 
     Returns
     -------
@@ -41,10 +46,10 @@ def file_format(path: Path, fmt: str | None) -> str:
         ``fmt`` names no format.
     """
     if fmt is not None:
-        if fmt not in set(FORMATS.values()) | {"surfacetopography"}:
+        if fmt not in set(FORMATS.values()) | set(OTHER_FORMATS):
             raise ValueError(
-                f"format must be one of {sorted(set(FORMATS.values()))} or "
-                f"'surfacetopography', got {fmt!r}"
+                f"format must be one of {sorted(set(FORMATS.values()) | set(OTHER_FORMATS))}, "
+                f"got {fmt!r}"
             )
         return fmt
     return FORMATS.get(path.suffix.lower(), "surfacetopography")

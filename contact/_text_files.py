@@ -2,8 +2,11 @@
 
 A text grid holds one row of heights per x (NaN for missing points) with optional
 ``# dx = ...``, ``# dy = ...`` (metres, or with a unit) and ``# shape = nx ny`` header lines;
-an XYZ file one ``x y z`` point per line (metres) with an optional ``# points = N`` line. The
-readers return what the file stores: heights (m), the spacing (m) when stored, no mask.
+an XYZ file one ``x y z`` point per line (metres) with an optional ``# points = N`` line.
+Text maps exported by Gwyddion or with a matrix header (``h= w=``, ``pixel size=``; see
+:mod:`contact._text_headers`) hold one row per y instead, and a text file of three columns
+whose first two form a complete regular x-y grid is an XYZ point list. The readers return
+heights (m), the spacing (m) when stored, no mask.
 """
 
 from __future__ import annotations
@@ -15,17 +18,18 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from ._text_headers import ForeignHeader, NotOwnText
+from ._units import UNITS, missing_unit
 from .errors import TopographyFileError
 
-__all__ = ["XYZ_MAX_FILL", "read_text", "read_xyz"]
+__all__ = ["XYZ_MAX_FILL", "NotOwnText", "read_text", "read_xyz"]
 
 #: What a reader returns: heights (m), the stored spacing dx, dy (m, None when the file
 #: stores none) and the mask of missing points (None: NaN marks them).
 Stored = tuple[np.ndarray, float | None, float | None, None]
 
 _HEADER = re.compile(r"^\s*#\s*(dx|dy)\s*[=:]\s*(.*?)\s*$", re.IGNORECASE)
-_VALUE = re.compile(r"^(?P<number>.+?)\s*(?P<unit>m|mm|um|µm|μm|nm)?\s*,?$")
-_HEADER_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9}
+_VALUE = re.compile(r"^(?P<number>.+?)\s*(?P<unit>m|mm|um|µm|μm|nm|pm|Å)?\s*,?$")
 _SHAPE = re.compile(r"^\s*#\s*shape\s*[=:]\s*(\d+)[\s,x]+(\d+)\s*,?\s*$", re.IGNORECASE)
 _POINTS = re.compile(r"^\s*#\s*points\s*[=:]\s*(\d+)\s*,?\s*$", re.IGNORECASE)
 
@@ -168,9 +172,9 @@ class _Rows:
         return out
 
 
-def _header_spacing(name: str, value: str, fname: str, lineno: int) -> float:
-    """A ``# dx = ...`` value in metres: a number, an optional unit (m, mm, um or µm, nm;
-    metres when absent) and an optional trailing comma."""
+def _header_spacing(name: str, value: str, fname: str, lineno: int) -> tuple[float, str | None]:
+    """A ``# dx = ...`` value: the number and its unit as written (m, mm, um or µm, nm, pm,
+    Å; None when absent, i.e. the file's unit), with an optional trailing comma."""
     m = _VALUE.match(value)
     number = None
     if m:
@@ -181,19 +185,41 @@ def _header_spacing(name: str, value: str, fname: str, lineno: int) -> float:
     if m is None or number is None:
         raise TopographyFileError(
             f"{fname}: line {lineno}: {name} = {value!r} is not a length; write a number "
-            "in metres, optionally followed by a unit (m, mm, um, µm or nm)"
+            "in metres, optionally followed by a unit (m, mm, um, µm, nm, pm or Å)"
         )
-    spacing = number * _HEADER_UNITS[m.group("unit") or "m"]
-    if not (math.isfinite(spacing) and spacing > 0):
+    if not (math.isfinite(number) and number > 0):
         raise TopographyFileError(
             f"{fname}: line {lineno}: {name} = {value!r} is not a positive finite spacing"
         )
-    return spacing
+    return number, m.group("unit")
 
 
-def read_text(path: os.PathLike, fname: str) -> Stored:
-    """Heights and spacing of a text grid: one row per x, values split by blanks (commas in
-    ``.csv`` files), ``#`` starting a comment.
+def _first_row(body: str, delimiter: str | None, lineno: int, fname: str) -> None:
+    """Refuse, as another program's text format, a first data line that is not numbers."""
+    try:
+        if "_" in body or not body.isascii():
+            raise ValueError(body)
+        [float(t) for t in body.split(delimiter)]
+    except ValueError:
+        raise NotOwnText(
+            f"{fname}: line {lineno} holds a non-number ({body[:60]!r}); write plain decimal "
+            "numbers (digits, '.', exponent; no '_' separators)"
+        ) from None
+
+
+def read_text(path: os.PathLike, fname: str, unit: str | None = None) -> Stored:
+    """Heights and spacing of a text map, ``#`` starting a comment, values split by blanks
+    (commas in ``.csv`` files).
+
+    Three layouts are read:
+
+    * this package's grid: one row per x, optional ``# dx = ...``, ``# dy = ...`` and
+      ``# shape = nx ny`` header lines; numbers without a unit are in ``unit`` (metres by
+      default);
+    * a Gwyddion or matrix export (see :mod:`contact._text_headers`): one row per y, the
+      size and units from its header;
+    * three columns without a header whose first two form a complete regular x-y grid: an
+      ``x y z`` point list, whose unit the caller gives in ``unit``.
 
     Parameters
     ----------
@@ -201,52 +227,96 @@ def read_text(path: os.PathLike, fname: str) -> Stored:
         The file (UTF-8, with or without a byte-order mark, or Latin-1).
     fname : str
         The file's name, for messages.
+    unit : str, optional
+        Canonical length unit (``m``, ``mm``, ``µm``, ``nm``, ``pm``, ``Å``) of the numbers
+        the file states no unit for.
 
     Returns
     -------
     heights : ndarray of float64, shape (nx, ny)
         Heights in metres, NaN at missing points.
     dx, dy : float or None
-        The spacing of the ``# dx = ...`` and ``# dy = ...`` header lines in metres, None
-        when absent.
+        The spacing the file states, in metres; None when absent.
     mask : None
 
     Raises
     ------
+    NotOwnText
+        A layout this reader does not know: a first data line that is not numbers (an
+        unknown header), no data rows, heights that are not lengths, several data blocks.
     TopographyFileError
-        An unreadable file, no data row, rows of different lengths, a non-number, a bad
-        spacing line, or fewer rows than the ``# shape`` line declares.
+        An unreadable file, rows of different lengths, a non-number among the rows, a bad
+        spacing line, fewer rows than the header declares.
+    ValueError
+        An XYZ list or an export that states no unit, without ``unit``; a ``unit`` that
+        contradicts the file's.
     """
-    found: dict[str, float | None] = {"dx": None, "dy": None}
+    found: dict[str, tuple[float, str | None] | None] = {"dx": None, "dy": None}
     shape = None
+    own_lines: list[int] = []
+    foreign = ForeignHeader()
     delimiter = "," if os.fspath(path).lower().endswith(".csv") else None
     rows = _Rows(fname, delimiter, path)
+    started = False
     for lineno, line in _text_lines(path, fname):
         if "#" in line:
             m = _HEADER.match(line)
             if m:
                 name = m.group(1).lower()
                 found[name] = _header_spacing(name, m.group(2), fname, lineno)
+                own_lines.append(lineno)
                 continue
             m = _SHAPE.match(line)
             if m:
                 shape = (int(m.group(1)), int(m.group(2)))
+                own_lines.append(lineno)
                 continue
+        if (not started or "#" in line or "=" in line) and foreign.add(line, lineno, fname):
+            if started:
+                raise NotOwnText(
+                    f"{fname}: line {lineno} starts a second header after data rows; read "
+                    "files with one data block (export one channel at a time)"
+                )
+            continue
         body = line.split("#", 1)[0].strip()
         if delimiter and body.endswith(delimiter):
             body = body[:-1].rstrip()  # spreadsheets end CSV rows with a comma
         if not body:
             continue
+        if not started:
+            _first_row(body, delimiter, lineno, fname)
+            started = True
         rows.add(lineno, body)
     h = rows.array()
     if h.shape[0] == 0:
-        raise TopographyFileError(f"{fname}: holds no data rows")
-    if shape is not None and h.shape != shape:
-        raise TopographyFileError(
-            f"{fname}: holds {h.shape[0]} rows of {h.shape[1]} values, but its header "
-            f"says shape = {shape[0]} {shape[1]} (truncated file?)"
-        )
-    return h, found["dx"], found["dy"], None
+        raise NotOwnText(f"{fname}: holds no data rows")
+    if foreign.seen:
+        if own_lines:
+            raise TopographyFileError(
+                f"{fname}: mixes '# dx'/'# shape' lines (line {own_lines[0]}) with an export "
+                f"header (line {foreign.lines[0]}); keep one kind"
+            )
+        h = h.T  # one line per y: the values of a line run along x
+        dx, dy, scale = foreign.resolve(h.shape, unit, fname)
+    elif not own_lines and h.shape[1] == 3 and (grid := _complete_grid(h, fname)) is not None:
+        if unit is None:
+            raise missing_unit(fname)
+        h, sx, sy = grid
+        scale = UNITS[unit]
+        dx, dy = sx * scale, sy * scale
+    else:
+        if shape is not None and h.shape != shape:
+            raise TopographyFileError(
+                f"{fname}: holds {h.shape[0]} rows of {h.shape[1]} values, but its header "
+                f"says shape = {shape[0]} {shape[1]} (truncated file?)"
+            )
+        own_unit = unit or "m"
+        scale = UNITS[own_unit]
+        dx, dy = (None if v is None else v[0] * UNITS[v[1] or own_unit]
+                  for v in (found["dx"], found["dy"]))
+    if scale != 1.0:
+        h *= scale
+    return h, dx, dy, None
 
 
 # Printed coordinates are rounded: ``%g`` keeps 6 significant digits, i.e. a relative
@@ -287,15 +357,17 @@ def _axis(values: np.ndarray, name: str, fname: str) -> tuple[np.ndarray, float]
 XYZ_MAX_FILL = 10
 
 
-def read_xyz(path: os.PathLike, fname: str) -> Stored:
+def read_xyz(path: os.PathLike, fname: str, unit: str | None = None) -> Stored:
     """Heights and spacing of an XYZ point list on a regular grid.
 
     Parameters
     ----------
     path : path-like
-        The file: one ``x y z`` point (metres) per line, ``#`` starting a comment.
+        The file: one ``x y z`` point per line, ``#`` starting a comment.
     fname : str
         The file's name, for messages.
+    unit : str, optional
+        Canonical length unit of the coordinates and heights; metres by default.
 
     Returns
     -------
@@ -337,6 +409,16 @@ def read_xyz(path: os.PathLike, fname: str) -> Stored:
             f"{fname}: holds {data.shape[0]} points, but its header says points = {count} "
             "(truncated file?)"
         )
+    h, sx, sy = _points_grid(data, fname)
+    scale = UNITS[unit or "m"]
+    if scale != 1.0:
+        h *= scale
+    return h, sx * scale, sy * scale, None
+
+
+def _points_grid(data: np.ndarray, fname: str) -> tuple[np.ndarray, float, float]:
+    """The grid of x y z points (rows of ``data``): heights (nx, ny), NaN where no point is
+    listed, and the x and y steps, in the unit of the coordinates."""
     ii, sx = _axis(data[:, 0], "x", fname)
     jj, sy = _axis(data[:, 1], "y", fname)
     nx, ny = int(ii.max()) + 1, int(jj.max()) + 1
@@ -351,4 +433,20 @@ def read_xyz(path: os.PathLike, fname: str) -> Stored:
         raise TopographyFileError(f"{fname}: several points share the same (x, y) position")
     h = np.full((nx, ny), np.nan)
     h[ii, jj] = data[:, 2]
-    return h, sx, sy, None
+    return h, sx, sy
+
+
+def _complete_grid(data: np.ndarray, fname: str) -> tuple[np.ndarray, float, float] | None:
+    """The grid of three columns read as x y z points when their first two columns list
+    each point of a regular x-y grid exactly once (heights may be NaN); None otherwise."""
+    xy = data[:, :2]
+    if not np.isfinite(xy).all():
+        return None
+    nx, ny = np.unique(xy[:, 0]).size, np.unique(xy[:, 1]).size
+    if nx * ny != data.shape[0]:
+        return None
+    try:
+        grid = _points_grid(data, fname)
+    except TopographyFileError:
+        return None
+    return grid if grid[0].shape == (nx, ny) else None

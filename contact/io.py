@@ -10,29 +10,41 @@ npz       ``.npz`` (``heights``, ``dx``, ``dy``,       yes
           optional ``mask``)
 text      ``.txt``, ``.asc``, ``.dat``, ``.csv``       in ``# dx = ...`` header lines
           (a grid: one row per x, NaN for missing;     (metres, or with a unit: m,
-          optional ``# shape = nx ny`` header)         mm, um/µm, nm), else pass ``dx``
+          optional ``# shape = nx ny`` header;         mm, um/µm, nm, pm, Å), else
+          Gwyddion and ``h= w=`` matrix exports:       pass ``dx``; exports: from
+          one row per y; three columns forming a       their header; XYZ lists: from
+          complete x-y grid: an XYZ point list)        the coordinates
 xyz       ``.xyz`` (one ``x y z`` point per line)      yes (from the coordinates)
 x3p       ``.x3p`` (ISO 25178-72)                      yes
+metropro  ``.dat`` starting with a Zygo MetroPro       yes (lateral resolution)
+          magic number
 ========  ===========================================  ==========================
 
 Other extensions are read with SurfaceTopography's readers when that optional package is
-installed (``pip install "glstat[topography]"``). All heights and lengths are in metres.
-Reading is all-or-nothing: a corrupt, truncated or inconsistent file raises
-:class:`~contact.errors.TopographyFileError` and returns nothing.
+installed (``pip install "glstat[topography]"``), and so are text files in a layout the
+text reader does not know. All heights and lengths are in metres. Numbers a file gives
+without a unit are in ``unit=`` (metres by default for ``.npy`` files, this package's text
+grids and ``.xyz`` files; XYZ lists in text files and other programs' files that state no
+unit need ``unit=``). Reading is all-or-nothing: a corrupt, truncated or inconsistent file
+raises :class:`~contact.errors.TopographyFileError` and returns nothing.
 """
 
 from __future__ import annotations
 
 import os
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
 from ._formats import FORMATS, file_format
+from ._metropro import is_metropro, read_metropro
 from ._npy_files import Stored, read_npy, read_npz
 from ._text_files import XYZ_MAX_FILL as XYZ_MAX_FILL
-from ._text_files import read_text, read_xyz
+from ._text_files import NotOwnText, read_text, read_xyz
+from ._units import UNITS as _UNITS
+from ._units import checked_unit, conflicting_unit, missing_unit, unit_name
 from ._validate import positive_finite
 from ._writers import write
 from .errors import TopographyFileError
@@ -41,8 +53,10 @@ from .x3p import read_x3p
 
 __all__ = ["FORMATS", "read", "write"]
 
-_UNITS = {"m": 1.0, "mm": 1e-3, "µm": 1e-6, "um": 1e-6, "μm": 1e-6, "nm": 1e-9, "pm": 1e-12,
-          "Å": 1e-10, "A": 1e-10}
+#: Largest text file handed to SurfaceTopography when the built-in text reader does not
+#: know its layout (bytes): SurfaceTopography holds a text file's values as Python lists,
+#: tens of bytes per value.
+TEXT_FALLBACK_MAX_BYTES = 16 * 2**20
 
 
 def _spacing(dx: float | None, dy: float | None, found_dx: float | None, found_dy: float | None,
@@ -73,8 +87,7 @@ def _surface(heights: np.ndarray, dx: float, dy: float, mask: np.ndarray | None,
         raise TopographyFileError(f"{fname}: {exc}") from None
 
 
-def _read_surfacetopography(path: Path, fname: str) -> Stored:
-    """Heights and spacing of a file that SurfaceTopography reads, in metres."""
+def _import_surfacetopography(fname: str):
     try:
         import SurfaceTopography
     except ImportError as exc:
@@ -83,26 +96,105 @@ def _read_surfacetopography(path: Path, fname: str) -> Stored:
             f"SurfaceTopography (pip install \"glstat[topography]\"); built-in formats are "
             f"{', '.join(sorted(FORMATS))}"
         ) from exc
+    return SurfaceTopography
+
+
+def _read_surfacetopography(path: Path, fname: str, unit: str | None = None) -> Stored:
+    """Heights and spacing, in metres, of a 2-D map that SurfaceTopography reads.
+
+    ``unit`` (canonical) is the unit of a file that states none; a file that states its
+    unit keeps it, and a different ``unit`` is refused.
+    """
+    st = _import_surfacetopography(fname)
     try:
-        topo = SurfaceTopography.read_topography(fname)
+        reader = st.open_topography(fname)
+        channel = reader.default_channel
     except Exception as exc:  # the reader's own exception types vary by format
         raise TopographyFileError(f"{fname}: SurfaceTopography cannot read it: {exc}") from None
+    if channel.dim != 2:
+        raise TopographyFileError(f"{fname}: holds a line profile (1-D); need an areal map")
+    stated = channel.unit
+    if stated is not None:
+        name = unit_name(stated)
+        if name is None:
+            raise TopographyFileError(f"{fname}: unknown length unit {stated!r}")
+        if unit is not None and unit != name:
+            raise conflicting_unit(fname, name, unit)
+    elif unit is None:
+        raise missing_unit(fname)
+    try:
+        topo = reader.topography(unit=unit if stated is None else None)
+    except Exception as exc:  # the reader's own exception types vary by format
+        raise TopographyFileError(f"{fname}: SurfaceTopography cannot read it: {exc}") from None
+    finally:
+        close = getattr(reader, "close", None)
+        if callable(close):
+            close()
     if topo.dim != 2:
-        raise TopographyFileError(f"{fname}: holds a {topo.dim}-D topography; need an areal map")
-    unit = topo.unit
-    if unit not in _UNITS:
-        raise TopographyFileError(f"{fname}: unknown length unit {unit!r}")
-    scale = _UNITS[unit]
+        raise TopographyFileError(f"{fname}: holds a line profile (1-D); need an areal map")
+    scale = _UNITS[unit_name(topo.unit) or ""]
     h = np.ma.filled(np.ma.asarray(topo.heights(), dtype=float), np.nan) * scale
     (nx, ny), (sx, sy) = topo.nb_grid_pts, topo.physical_sizes
     return h, sx / nx * scale, sy / ny * scale, None
 
 
-_READERS: dict[str, Callable[[Path, str], Stored]] = {
-    "npy": read_npy,
-    "npz": read_npz,
-    "text": read_text,
+def _short(exc: BaseException) -> str:
+    """The first line of an error message, at most 160 characters."""
+    text = str(exc).strip().splitlines()
+    first = text[0] if text else type(exc).__name__
+    return first if len(first) <= 160 else first[:157] + "..."
+
+
+def _read_text_or_other(path: Path, fname: str, unit: str | None) -> Stored:
+    """A text file: the built-in reader, else (for a layout it does not know, in a file of
+    at most :data:`TEXT_FALLBACK_MAX_BYTES`) SurfaceTopography's reading of a 2-D map."""
+    try:
+        return read_text(path, fname, unit)
+    except NotOwnText as own:
+        refusal = TopographyFileError(str(own))
+        if path.stat().st_size > TEXT_FALLBACK_MAX_BYTES:
+            raise refusal from None
+        try:
+            _import_surfacetopography(fname)
+        except ImportError:
+            raise refusal from None
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                return _read_surfacetopography(path, fname, unit)
+        except TopographyFileError as other:
+            if "line profile (1-D)" in str(other):
+                raise other from None
+            raise TopographyFileError(
+                f"{own}; SurfaceTopography cannot read it either: "
+                f"{_short(other).removeprefix(f'{fname}: SurfaceTopography cannot read it: ')}"
+            ) from None
+
+
+def _metres_only(reader: Callable[[Path, str], Stored]) -> Callable[[Path, str, str | None],
+                                                                    Stored]:
+    """A reader of a format that states metres: a different ``unit`` is refused."""
+    def read_in_metres(path: Path, fname: str, unit: str | None) -> Stored:
+        if unit not in (None, "m"):
+            raise conflicting_unit(fname, "m", unit)
+        return reader(path, fname)
+    return read_in_metres
+
+
+def _npy_in(path: Path, fname: str, unit: str | None) -> Stored:
+    h, dx, dy, mask = read_npy(path, fname)
+    if unit not in (None, "m"):
+        h = h * _UNITS[unit]
+    return h, dx, dy, mask
+
+
+_READERS: dict[str, Callable[[Path, str, str | None], Stored]] = {
+    "npy": _npy_in,
+    "npz": _metres_only(read_npz),
+    "text": _read_text_or_other,
     "xyz": read_xyz,
+    "x3p": _metres_only(lambda path, fname: read_x3p(path)),
+    "metropro": _metres_only(read_metropro),
     "surfacetopography": _read_surfacetopography,
 }
 
@@ -112,6 +204,7 @@ def read(
     *,
     dx: float | None = None,
     dy: float | None = None,
+    unit: str | None = None,
     format: str | None = None,
 ) -> Surface:
     """Read a measured or saved topography.
@@ -119,12 +212,19 @@ def read(
     Parameters
     ----------
     path : str or path-like
-        The file; its extension selects the format (see the module documentation).
+        The file; its extension selects the format (see the module documentation), except
+        that a ``.dat`` file starting with a Zygo MetroPro magic number is read as MetroPro.
     dx, dy : float, optional
         Grid spacing in metres; required when the file stores none (``.npy``, text grids
         without a header), and override the stored spacing otherwise. ``dy`` defaults to
         ``dx``.
-    format : {"npy", "npz", "text", "xyz", "x3p", "surfacetopography"}, optional
+    unit : {"m", "mm", "µm", "um", "nm", "pm", "Å"}, optional
+        Length unit of the numbers in a file that states none: its heights and its
+        coordinates or sizes. Needed for XYZ point lists in text files and for other
+        programs' files without a unit; ``.npy`` files, this package's text grids and
+        ``.xyz`` files are in metres unless ``unit`` says otherwise. A file that states its
+        unit keeps it; a different ``unit`` is an error.
+    format : {"npy", "npz", "text", "xyz", "x3p", "metropro", "surfacetopography"}, optional
         Force a format instead of guessing from the extension.
 
     Returns
@@ -135,7 +235,11 @@ def read(
     Raises
     ------
     TopographyFileError
-        Corrupt, truncated or inconsistent file (a subclass of ValueError).
+        Corrupt, truncated or inconsistent file, or one holding a line profile (a subclass
+        of ValueError).
+    ValueError
+        A bad ``dx``, ``dy`` or ``unit``; a file that stores no spacing without ``dx``; a
+        file that states no unit without ``unit``, or one whose unit ``unit`` contradicts.
     ImportError
         The format needs SurfaceTopography, which is not installed.
     FileNotFoundError
@@ -149,7 +253,10 @@ def read(
         dx = positive_finite(dx, "dx", "spacing in metres")
     if dy is not None:
         dy = positive_finite(dy, "dy", "spacing in metres")
+    unit = checked_unit(unit)
     fmt = file_format(p, format)
-    stored: Stored = read_x3p(p) if fmt == "x3p" else _READERS[fmt](p, fname)
-    h, found_dx, found_dy, mask = stored
+    if fmt == "text" and format is None and is_metropro(p):
+        fmt = "metropro"
+    h, found_dx, found_dy, mask = _READERS[fmt](p, fname, unit)
     return _surface(h, *_spacing(dx, dy, found_dx, found_dy, fname), mask, fname)
+

@@ -4,7 +4,8 @@ Supported: areal surfaces (feature type ``SUR``) on a regular grid (x and y axes
 ``I``, incremental), one z layer, data types I (int16), L (int32), F (float32) and D
 (float64), binary point data (``PointDataLink``) or an inline ``DataList``, optional
 validity bits (``ValidPointsLink``), and the MD5 checksums of the point data and of
-``main.xml``, which are verified when present.
+``main.xml`` (the line of the checksum file that names ``main.xml``), which are verified
+when present.
 """
 
 from __future__ import annotations
@@ -165,10 +166,38 @@ def _parse(archive: zipfile.ZipFile, fname: str) -> ET.Element:
         raise TopographyFileError(f"{fname}: main.xml is not well-formed XML: {exc}") from None
     checksum_name = _text(root, "Record4/ChecksumFile", fname, default="")
     if checksum_name:
-        listed = _member(archive, checksum_name, fname, 2**16).decode("ascii", "replace").split()
-        if listed and listed[0].lower() != hashlib.md5(xml_bytes).hexdigest():
-            raise TopographyFileError(f"{fname}: main.xml does not match its MD5 checksum")
+        listed = _member(archive, checksum_name, fname, 2**16).decode("utf-8", "replace")
+        expected = _listed_xml_md5(listed)
+        if expected is not None and expected != hashlib.md5(xml_bytes).hexdigest():
+            raise TopographyFileError(
+                f"{fname}: main.xml does not match its MD5 checksum in {checksum_name} "
+                "(corrupt or edited file)"
+            )
     return root
+
+
+def _listed_xml_md5(listed: str) -> str | None:
+    """The MD5 (lower-case hex) that a checksum file lists for ``main.xml``, None if none.
+
+    ISO 25178-72 has the checksum file hold the MD5 of ``main.xml``, one line in the
+    ``md5sum`` layout: 32 hex digits, a blank, ``*`` (binary mode) and the file name, e.g.
+    ``f4758b0e...e781 *main.xml``, as the openGPS reference implementation writes it. Hex
+    digits of either case are accepted, and a line without a name is taken as the one of
+    ``main.xml``. A line naming another member (some writers list the point data,
+    ``*bindata/data.bin``) says nothing about ``main.xml``; the point data are checked
+    against the checksum ``main.xml`` gives them.
+    """
+    for line in listed.splitlines():
+        parts = line.strip().split(None, 1)
+        if not parts or len(parts[0]) != 32:
+            continue
+        digest = parts[0].lower()
+        if any(c not in "0123456789abcdef" for c in digest):
+            continue
+        name = parts[1].strip().lstrip("*").strip() if len(parts) > 1 else ""
+        if name.replace("\\", "/").lower() in ("", "main.xml", "./main.xml"):
+            return digest
+    return None
 
 
 @dataclass(frozen=True)
