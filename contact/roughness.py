@@ -1,16 +1,20 @@
 """Areal roughness parameters (ISO 25178-2 field parameters) and the Hurst exponent.
 
-Functions here take plain arrays: heights (m), spacing (m) and a validity map.
+Functions here take plain arrays: heights (m), spacing (m) and a validity map. The
+numerics of the gradient, material-ratio and autocorrelation parameters are in
+:mod:`contact._iso25178`.
 """
 
 from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Iterable
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
+from . import _iso25178 as iso
 from ._asperity_kernels import find_summits
 from .errors import ContactWarning
 
@@ -18,6 +22,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
 __all__ = [
+    "GROUPS",
     "UNITS",
     "HurstFit",
     "hurst_exponent",
@@ -44,7 +49,43 @@ UNITS = {
     "hurst_r2": "1",
     "hurst_lag_min": "m",
     "hurst_lag_max": "m",
+    "Sk": "m",
+    "Spk": "m",
+    "Svk": "m",
+    "Smr1": "1",
+    "Smr2": "1",
+    "Sal": "m",
+    "Str": "1",
 }
+
+#: Parameter groups of :func:`roughness_parameters`: name -> the parameters it adds.
+#: ``"basic"`` is computed by default; ``"material_ratio"`` (a sort of the heights) and
+#: ``"spatial"`` (the autocorrelation function by FFT) on request.
+GROUPS = {
+    "basic": ("Sa", "Sq", "Ssk", "Sku", "Sp", "Sv", "Sz", "Sdq", "Sdr", "Spd", "Spc", "hurst",
+              "fractal_dimension", "hurst_r2", "hurst_lag_min", "hurst_lag_max"),
+    "material_ratio": ("Sk", "Spk", "Svk", "Smr1", "Smr2"),
+    "spatial": ("Sal", "Str"),
+}
+
+
+def parameter_groups(groups: str | Iterable[str]) -> tuple[str, ...]:
+    """The groups named by ``groups`` (a name of :data:`GROUPS`, ``"all"``, or several).
+
+    Raises
+    ------
+    ValueError
+        An unknown group name.
+    """
+    names = [groups] if isinstance(groups, str) else list(groups)
+    if "all" in names:
+        return tuple(GROUPS)
+    unknown = [g for g in names if g not in GROUPS]
+    if unknown or not names:
+        raise ValueError(
+            f"groups must name some of {sorted(GROUPS)} or 'all', got {groups!r}"
+        )
+    return tuple(g for g in GROUPS if g in names or g == "basic")
 
 
 def level_heights(
@@ -236,6 +277,10 @@ def roughness_parameters(
     level: str = "mean",
     hurst_min_r2: float = 0.5,
     warn: bool = True,
+    *,
+    groups: str | Iterable[str] = "basic",
+    stencil: str = "iso4287",
+    acf_threshold: float = iso.ACF_THRESHOLD,
 ) -> pd.Series:
     """ISO 25178-2 field parameters and the Hurst exponent of a height map.
 
@@ -254,6 +299,16 @@ def roughness_parameters(
     warn : bool, default True
         Warn when the surface has no physical Hurst exponent; False leaves ``hurst`` NaN
         silently (for worker threads, where changing the warning filters is not safe).
+    groups : str or iterable of str, default "basic"
+        Parameter groups (:data:`GROUPS`): ``"basic"`` (always), ``"material_ratio"`` (the
+        Sk family), ``"spatial"`` (Sal, Str), or ``"all"``. The last two cost a sort of
+        the heights and two FFTs of twice the map's size.
+    stencil : {"iso4287", "forward", "central"}, default "iso4287"
+        Finite-difference formula for the gradient in Sdq and Sdr
+        (:data:`contact._iso25178.STENCILS`): the 7-point local slope of ISO 4287:1997,
+        first differences (SurfaceTopography's ``rms_gradient``), or central differences.
+    acf_threshold : float, default 0.2
+        Threshold ``s`` of the autocorrelation function for Sal and Str.
 
     Returns
     -------
@@ -264,7 +319,12 @@ def roughness_parameters(
         (in [0, 1]) and ``fractal_dimension = 3 - hurst`` (in [2, 3]), both NaN when the
         surface has no physical Hurst exponent, then the quality of the Hurst fit:
         ``hurst_r2`` (R² of the log-log fit) and ``hurst_lag_min``, ``hurst_lag_max``
-        (lag range of the fit, m). Units are in :data:`UNITS`.
+        (lag range of the fit, m). With ``"material_ratio"``: ``Sk`` (core height),
+        ``Spk`` (reduced peak height), ``Svk`` (reduced dale depth), all m, and ``Smr1``,
+        ``Smr2`` (material ratios bounding the core, fractions, not %). With
+        ``"spatial"``: ``Sal`` (autocorrelation length, m) and ``Str`` (texture aspect
+        ratio, in (0, 1]; NaN when the autocorrelation stays above ``s`` out to half the
+        map in some direction). Units are in :data:`UNITS`.
 
     Warns
     -----
@@ -274,9 +334,18 @@ def roughness_parameters(
 
     Notes
     -----
-    Slopes are central differences at interior points whose four axis neighbours are
-    measured. ``Spd`` and ``Spc`` use the 8-neighbour summits of :func:`contact.summits`
-    without the Wolf pruning of ISO 25178-2 segmentation, so they depend on the sampling
+    ISO 25178-2 defines Sdq and Sdr on the continuous gradient and leaves its discrete
+    evaluation open. By default the gradient is the 7-point formula that ISO 4287:1997
+    gives for the local slope of a profile, applied along each axis at the points whose
+    three neighbours on each side along both axes are measured: on a sinusoid of
+    wavelength λ it underestimates the slope by a fraction ``(2π dx/λ)^6 / 140`` only,
+    first differences by ``(2π dx/λ)^2 / 24`` and central differences by
+    ``(2π dx/λ)^2 / 6``. On a rough surface with power up to the Nyquist wavevector the
+    three differ by several per cent (``contact._iso25178.STENCILS``). Sdr is the mean of
+    ``sqrt(1 + z_x² + z_y²) - 1`` over the same points.
+
+    ``Spd`` and ``Spc`` use the 8-neighbour summits of :func:`contact.summits` without the
+    Wolf pruning of ISO 25178-2 segmentation, so they depend on the sampling
     interval; ``Spc = -mean((z_xx + z_yy) / 2)`` over those summits with second
     differences.
 
@@ -289,6 +358,10 @@ def roughness_parameters(
     """
     import pandas as pd
 
+    chosen = parameter_groups(groups)
+    iso.check_stencil(stencil)
+    if "spatial" in chosen and not 0 < acf_threshold < 1:
+        raise ValueError(f"acf_threshold must be in (0, 1), got {acf_threshold!r}")
     if valid is None:
         valid = np.ones(h.shape, dtype=bool)
     z = level_heights(h, valid, dx, dy, level)
@@ -299,11 +372,8 @@ def roughness_parameters(
             "the surface is flat (Sq = 0): Ssk, Sku and the Hurst exponent are undefined"
         )
     sp, sv = float(zv.max()), float(-zv.min())
-    # Central differences where the four axis neighbours are measured.
-    zx = (z[2:, 1:-1] - z[:-2, 1:-1]) / (2 * dx)
-    zy = (z[1:-1, 2:] - z[1:-1, :-2]) / (2 * dy)
-    ok = valid[2:, 1:-1] & valid[:-2, 1:-1] & valid[1:-1, 2:] & valid[1:-1, :-2]
-    grad2 = (zx * zx + zy * zy)[ok]
+    zx, zy = iso.gradient(z, valid, dx, dy, stencil)
+    grad2 = zx * zx + zy * zy
     ii, jj = find_summits(np.ascontiguousarray(z), np.ascontiguousarray(valid))
     if ii.size:
         zxx = (z[ii + 1, jj] - 2 * z[ii, jj] + z[ii - 1, jj]) / dx**2
@@ -332,4 +402,8 @@ def roughness_parameters(
         "hurst_lag_min": fit.lag_min,
         "hurst_lag_max": fit.lag_max,
     }
+    if "material_ratio" in chosen:
+        values.update(iso.sk_parameters(zv))
+    if "spatial" in chosen:
+        values.update(iso.spatial_parameters(z, valid, dx, dy, acf_threshold))
     return pd.Series(values, name="roughness", dtype=float)

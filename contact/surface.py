@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from . import _interop
+from ._iso25178 import ACF_THRESHOLD, inverse_material_ratio, material_ratio
 from ._validate import height_map, positive_finite, real_array
 from ._writers import write
 from .roughness import level_heights, roughness_parameters
@@ -81,8 +84,65 @@ class Surface:
         lx, ly = self.size
         return lx * ly
 
+    @classmethod
+    def from_topography(cls, topography, *, unit: str | None = None) -> Surface:
+        """A surface from a SurfaceTopography topography map, in metres.
+
+        Parameters
+        ----------
+        topography : SurfaceTopography.Topography
+            A 2-D topography on a uniform grid (or a pipeline result of one, such as
+            ``t.detrend()``); its heights and sizes are converted from its unit (``m``,
+            ``mm``, ``µm``/``um``, ``nm``, ``pm``, ``Å``) to metres, and its missing
+            (masked) heights become the surface's mask.
+        unit : str, optional
+            Unit of the heights and sizes when the topography states none.
+
+        Returns
+        -------
+        Surface
+            Heights and spacing in metres.
+
+        Raises
+        ------
+        ImportError
+            SurfaceTopography is not installed (``pip install "glstat[topography]"``).
+        TypeError
+            Not a SurfaceTopography topography.
+        ValueError
+            A line scan or a nonuniform topography; no known length unit.
+        """
+        heights, dx, dy, mask = _interop.from_topography(topography, unit)
+        return cls(heights, dx, dy, mask=mask)
+
+    def to_topography(self, unit: str = "m"):
+        """The surface as a SurfaceTopography ``Topography``.
+
+        Parameters
+        ----------
+        unit : str, default "m"
+            Length unit of the topography (``m``, ``mm``, ``µm``/``um``, ``nm``, ``pm``,
+            ``Å``).
+
+        Returns
+        -------
+        SurfaceTopography.Topography
+            Heights in ``unit`` (a masked array when the surface has missing points),
+            ``physical_sizes = (Lx, Ly)`` in ``unit``, not periodic.
+
+        Raises
+        ------
+        ImportError
+            SurfaceTopography is not installed (``pip install "glstat[topography]"``).
+        ValueError
+            An unknown unit.
+        """
+        return _interop.to_topography(self, unit)
+
     def roughness(self, level: str = "mean", hurst_min_r2: float = 0.5, *,
-                  warn: bool = True) -> pd.Series:
+                  warn: bool = True, groups: str | Iterable[str] = "basic",
+                  stencil: str = "iso4287",
+                  acf_threshold: float = ACF_THRESHOLD) -> pd.Series:
         """ISO 25178-2 roughness parameters and the Hurst exponent.
 
         Parameters
@@ -94,6 +154,14 @@ class Surface:
         warn : bool, default True
             Warn when there is no physical Hurst exponent (False: NaN without a warning, for
             worker threads, where changing the warning filters is not safe).
+        groups : str or iterable of str, default "basic"
+            ``"basic"``, ``"material_ratio"`` (adds the Sk family), ``"spatial"`` (adds Sal,
+            Str) or ``"all"`` (:data:`contact.roughness.GROUPS`).
+        stencil : {"iso4287", "forward", "central"}, default "iso4287"
+            Finite differences for Sdq and Sdr: the 7-point local slope of ISO 4287:1997,
+            first differences (as SurfaceTopography's ``rms_gradient``) or central ones.
+        acf_threshold : float, default 0.2
+            Threshold ``s`` of the autocorrelation function for Sal and Str.
 
         Returns
         -------
@@ -101,7 +169,9 @@ class Surface:
             ``Sa, Sq, Sp, Sv, Sz`` (m), ``Ssk, Sku`` (1), ``Sdq`` (1), ``Sdr`` (fraction, not
             %), ``Spd`` (1/m^2), ``Spc`` (1/m), ``hurst`` (in [0, 1]) and
             ``fractal_dimension`` (in [2, 3]) or NaN when the surface has no physical Hurst
-            exponent, ``hurst_r2`` (1) and ``hurst_lag_min``, ``hurst_lag_max`` (m); see
+            exponent, ``hurst_r2`` (1) and ``hurst_lag_min``, ``hurst_lag_max`` (m); with
+            the groups asked for, ``Sk, Spk, Svk`` (m), ``Smr1, Smr2`` (fractions),
+            ``Sal`` (m) and ``Str`` (1); see
             :func:`contact.roughness.roughness_parameters`.
 
         Warns
@@ -112,7 +182,88 @@ class Surface:
         """
         h, valid = height_map(self.heights, self.mask)
         return roughness_parameters(h, self.dx, self.dy, valid, level=level,
-                                    hurst_min_r2=hurst_min_r2, warn=warn)
+                                    hurst_min_r2=hurst_min_r2, warn=warn, groups=groups,
+                                    stencil=stencil, acf_threshold=acf_threshold)
+
+    def material_ratio(self, c, level: str = "mean"):
+        """Areal material ratio ``Smr(c)`` (ISO 25178-2).
+
+        Parameters
+        ----------
+        c : float or array_like
+            Height(s) in metres above the reference (``level``).
+        level : {"mean", "plane"}
+            Reference: the mean height or the least-squares plane.
+
+        Returns
+        -------
+        float or ndarray
+            Fraction of the measured points at or above ``c`` (in [0, 1]; ×100 for %).
+        """
+        h, valid = height_map(self.heights, self.mask)
+        z = level_heights(h, valid, self.dx, self.dy, level)
+        return material_ratio(z[valid], c)
+
+    def inverse_material_ratio(self, mr, level: str = "mean"):
+        """Inverse areal material ratio ``Smc(mr)`` (ISO 25178-2).
+
+        Parameters
+        ----------
+        mr : float or array_like
+            Material ratio(s) as fractions in [0, 1] (a percentage divided by 100).
+        level : {"mean", "plane"}
+            Reference: the mean height or the least-squares plane.
+
+        Returns
+        -------
+        float or ndarray
+            Height(s) in metres above the reference at which the material ratio is ``mr``
+            (the k-th highest of n points sits at the ratio ``(k + 1/2) / n``; linear in
+            between).
+
+        Raises
+        ------
+        ValueError
+            A ratio outside [0, 1].
+        """
+        h, valid = height_map(self.heights, self.mask)
+        z = level_heights(h, valid, self.dx, self.dy, level)
+        return inverse_material_ratio(z[valid], mr)
+
+    def filled(self, max_fraction: float = 1.0) -> Surface:
+        """A new surface with the missing points filled by harmonic interpolation.
+
+        Each missing height becomes the mean of its axis neighbours on the grid (the
+        solution of the discrete Laplace equation with the measured heights fixed); the
+        measured heights are unchanged. This is what the spectrum functions do for up to
+        5 % of missing points.
+
+        Parameters
+        ----------
+        max_fraction : float, default 1.0
+            Largest fraction of missing points accepted.
+
+        Returns
+        -------
+        Surface
+            No mask; the same spacing.
+
+        Raises
+        ------
+        ValueError
+            More than ``max_fraction`` of the points, or all of them, are missing.
+        """
+        from ._fill import harmonic_fill
+
+        h, valid = height_map(self.heights, self.mask)
+        fraction = 1.0 - np.count_nonzero(valid) / valid.size
+        if fraction > max_fraction:
+            raise ValueError(
+                f"{100 * fraction:.3g} % of the points are missing, more than max_fraction = "
+                f"{max_fraction:g}; crop the surface to a better measured rectangle or raise "
+                "max_fraction"
+            )
+        return Surface(harmonic_fill(h, ~valid), self.dx, self.dy)
 
     def detrend(self, level: str = "plane") -> Surface:
         """A new surface with the mean (``"mean"``) or least-squares plane (``"plane"``)
