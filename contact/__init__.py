@@ -16,6 +16,7 @@ from .generators import self_affine, weierstrass
 from .io import read, write
 from .like import WeierstrassParameters, self_affine_like, weierstrass_like, weierstrass_parameters
 from .material import effective_modulus
+from .resample import resample
 from .result import ContactResult
 from .spectrum import SpectrumFit, fit_spectrum
 from .spots import contact_spots
@@ -40,6 +41,7 @@ __all__ = [
     "plot_psd_comparison",
     "psd_comparison",
     "read",
+    "resample",
     "self_affine",
     "self_affine_like",
     "solve",

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["BinomialCheck", "binomial_check"]
+__all__ = ["BinomialCheck", "binomial_check", "outcomes_needed"]
 
 #: Verdicts of a check.
 PASSED, FAILED, NOT_CHECKABLE = "passed", "failed", "not checkable"
@@ -208,3 +208,47 @@ def binomial_check(predicted: float, hits: int, n: int, *, significance: float =
         verdict = NOT_CHECKABLE
     return BinomialCheck(predicted, hits, n, float(pvals[hits]), float(detectable), significance,
                          power, max_miss, verdict)
+
+
+def outcomes_needed(predicted: float = 0.5, *, significance: float = 0.05, power: float = 0.8,
+                    max_miss: float = 0.2, limit: int = 10_000) -> int:
+    """The fewest outcomes with which a check of ``predicted`` can pass.
+
+    The smallest ``n`` for which :func:`binomial_check` of ``predicted`` with ``n`` outcomes
+    detects every miss larger than ``max_miss`` with probability ``power`` (for some number of
+    hits it passes); the exact test's discreteness makes a few larger ``n`` fail again, so
+    more outcomes than this are safer.
+
+    Parameters
+    ----------
+    predicted : float, default 0.5
+        The predicted probability, in [0, 1]; 0.5 needs about the most outcomes.
+    significance, power, max_miss : float
+        As in :func:`binomial_check`.
+    limit : int
+        Largest ``n`` tried.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        No ``n`` up to ``limit`` makes the check possible.
+
+    Examples
+    --------
+    >>> from glstat.checks import outcomes_needed
+    >>> outcomes_needed(0.5)
+    49
+    """
+    predicted = float(predicted)
+    for n in range(1, int(limit) + 1):
+        # the most likely count of hits: it passes whenever the check can pass
+        c = binomial_check(predicted, round(predicted * n), n, significance=significance,
+                           power=power, max_miss=max_miss)
+        if c.verdict == PASSED:
+            return n
+    raise ValueError(f"no number of outcomes up to {limit} can check {predicted:g} against a miss "
+                     f"of {max_miss:g} with power {power:g}")

@@ -206,6 +206,15 @@ def _study_parser() -> argparse.ArgumentParser:
                      help="simulate --surfaces Weierstrass surfaces statistically like this "
                           "measured topography (H, Rq, grid, spacing and truncation from its "
                           "spectrum) and compare them with it in the report")
+    p.add_argument("--tile", type=_positive(int), nargs="+", metavar="N",
+                   help="cut each measured file (--topographies) into NX × NY areas of equal size, "
+                        "each analysed as one surface: one scan studied as many areas (e.g. "
+                        "--tile 4 3; one value N gives N × N). The form is removed from each area")
+    p.add_argument("--spacing", type=_positive(float), nargs="+", metavar="UM",
+                   help="grid spacing in µm of measured files that store none (--topographies, "
+                        "--like): DX, or DX DY along x and y; overrides a stored spacing")
+    p.add_argument("--unit", choices=("m", "mm", "um", "µm", "nm", "pm", "Å"),
+                   help="length unit of measured files that state none (heights and sizes)")
     p.add_argument("--form", choices=("plane", "poly2", "poly3", "mean", "none"), default="plane",
                    help="form removed from each measured file (--topographies, --like), fitted by "
                         "least squares on its measured points: the plane, a polynomial of degree 2 "
@@ -248,6 +257,12 @@ def _study_settings(args, argv: list[str]):
         rq=tuple(v * 1e-6 for v in args.rq),
         gamma=args.gamma, n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
         cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
+    if not (args.topographies or args.like):
+        given = [o for o, v in (("--tile", args.tile), ("--spacing", args.spacing),
+                                ("--unit", args.unit)) if v is not None]
+        if given:
+            raise StudyInputError(f"{', '.join(given)}: options of measured files; use them with "
+                                  f"--topographies (or --spacing/--unit with --like)")
     if args.topographies or args.like:
         settings, surfaces = _measured_scene(args, argv, settings, surfaces)
     elif args.target_pressure is not None:
@@ -509,7 +524,7 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
             if why:
                 what = "no prediction" if not sa.ok else "not checked"
                 print(f"  {case_name(settings, ih)}, {model}: {what}: {why}")
-    for warn in (degenerate_scene(res.analysis), overlap_note(settings, res.analysis)):
+    for warn in (degenerate_scene(res.analysis, settings), overlap_note(settings, res.analysis)):
         if warn:
             print(f"warning: {warn}")
     if res.bem:
@@ -544,12 +559,27 @@ def _measured_scene(args, argv: list[str], settings, surfaces: int):
     from .study.measured import like_settings, measured_settings
 
     scene = {name: getattr(settings, name) for name in ("pressures", "E", "nu", "cone_factor", "seed")}
+    if args.spacing is not None:
+        if len(args.spacing) > 2:
+            raise ValueError(f"--spacing takes DX or DX DY in µm, got {len(args.spacing)} values")
+        dx = args.spacing[0] * 1e-6
+        scene["spacing"] = (dx, args.spacing[-1] * 1e-6)
+    if args.unit is not None:
+        scene["unit"] = "µm" if args.unit == "um" else args.unit
+    if args.tile is not None and not args.topographies:
+        raise ValueError("--tile cuts measured files into areas: use it with --topographies")
     if args.topographies:
         given = [o for o in SIMULATION_OPTIONS if any(a == o or a.startswith(o + "=") for a in argv)]
         if given:
             raise ValueError(f"{', '.join(given)}: options of simulated surfaces, which do not "
                              f"apply to --topographies (the files give grid, size and Rq)")
-        measured = measured_settings(args.topographies, form=args.form, **scene)
+        tiles = None
+        if args.tile is not None:
+            if len(args.tile) > 2:
+                raise ValueError(f"--tile takes NX NY (or one N for N × N), got {len(args.tile)} "
+                                 f"values")
+            tiles = (args.tile[0], args.tile[-1])
+        measured = measured_settings(args.topographies, form=args.form, tiles=tiles, **scene)
         return measured, measured.n_surfaces
     if args.target_pressure is not None:
         raise ValueError("--target-pressure chooses Rq, which --like takes from the measured file")

@@ -18,8 +18,8 @@ from glstat.study.measured import (
     like_settings,
     measured_settings,
     read_measured,
-    read_topography,
 )
+from glstat.study.topography import read_topography
 
 FAST = AnalysisSettings(n_resamples=20, grid_resamples=10)
 TILT = 0.05  # a form (plane) of 50 µm per mm, which the study must remove
@@ -189,3 +189,103 @@ def test_cli_names_a_missing_topography(tmp_path):
                        capture_output=True, text=True)
     assert r.returncode == 2 and "no such topography file or folder" in r.stderr
     assert "nowhere.x3p" in r.stderr
+
+
+# -- one scan as many areas (--tile) ---------------------------------------------------------
+
+
+def test_tiles_cut_a_grid_into_equal_areas_and_drop_the_rest():
+    from glstat.study.topography import cut_tile, tile_bounds
+
+    z = np.arange(70 * 50, dtype=float).reshape(70, 50)
+    s = contact.Surface(z, 1e-6, 2e-6, mask=z == 7.0)
+    seen = np.zeros(z.shape, dtype=int)
+    for t in range(4 * 3):
+        sx, sy = tile_bounds(s.shape, (4, 3), t)
+        seen[sx, sy] += 1
+        piece = cut_tile(s, (4, 3), t)
+        assert piece.shape == (17, 16) and (piece.dx, piece.dy) == (1e-6, 2e-6)
+        np.testing.assert_array_equal(piece.heights, z[sx, sy])
+    # every point of the 68 × 48 points the tiles cover is in exactly one tile, the rest in none
+    assert (seen[:68, :48] == 1).all() and seen[68:].sum() == 0 and seen[:, 48:].sum() == 0
+    assert cut_tile(s, (4, 3), 0).mask[0, 7] and not cut_tile(s, (4, 3), 1).mask.any()
+    a, b = divmod(5, 3)  # tile 5 is column 1 along x, row 2 along y
+    assert tile_bounds(s.shape, (4, 3), 5) == (slice(17 * a, 17 * a + 17), slice(16 * b, 16 * b + 16))
+    with pytest.raises(ValueError, match="tile 12 does not exist"):
+        tile_bounds(s.shape, (4, 3), 12)
+
+
+def test_one_scan_is_studied_as_many_areas(measured_dir, tmp_path):
+    scan = measured_dir / "scan_00.npz"
+    settings = measured_settings(scan, tiles=(4, 2))
+    assert settings.n_surfaces == 8 and settings.shape == (32, 64)
+    assert settings.size == pytest.approx((0.25e-3 / 4, 0.25e-3 / 2))
+    assert settings.surface_name(5) == "scan_00.npz, area (3, 2) of 4 × 2"
+    assert settings.identity()["tiles"] == [4, 2]
+    assert "tiles" not in measured_settings(scan).identity()  # earlier campaigns keep theirs
+    raw = contact.read(scan)
+    for i in (0, 5, 7):
+        a, b = divmod(i, 2)
+        piece = contact.Surface(raw.heights[32 * a:32 * (a + 1), 64 * b:64 * (b + 1)], raw.dx)
+        np.testing.assert_allclose(campaign_surface(settings, 0, 0, i).heights,
+                                   piece.detrend("plane").heights, atol=1e-15)
+    res = run_study(settings, FAST, tmp_path / "tiles", workers=1, progress=False, compare_bem=0)
+    assert res.summary()["n_surfaces"].eq(8).all()
+    text = res.report_md.read_text()
+    assert "8 areas of 1 measured scan (each cut into 4 × 2 areas" in text
+    assert "| scan_00.npz, area (4, 2) of 4 × 2 |" in text
+    assert "cannot tell how it varies between parts" in text and "takes about 25 surfaces" in text
+    with pytest.raises(ValueError, match=r"16 × 8 points \(its 128 × 128 points cut into 8 × 16 "
+                                         r"areas\) is too small .* at most 8 × 8 with --tile"):
+        measured_settings(scan, tiles=(8, 16))
+    with pytest.raises(ValueError, match="tiles cut measured files"):
+        CampaignSettings(tiles=(2, 2))
+
+
+def test_one_scan_without_tiles_says_to_cut_it_and_never_names_refused_options(measured_dir, tmp_path):
+    settings = measured_settings(measured_dir / "scan_01.npz")
+    res = run_study(settings, FAST, tmp_path / "one", workers=1, progress=False, compare_bem=0)
+    notes = [r.note for r in res.analysis[(0, 0)].values() if hasattr(r, "note") and r.note]
+    assert notes and all("--tile NX NY" in n and "--surfaces" not in n for n in notes)
+    assert any("one surface: the interval resamples whole surfaces" in n for n in notes)
+    text = res.report_md.read_text()
+    assert "--surfaces" not in text and "--rq" not in text and "--target-pressure" not in text
+
+
+def test_cli_reads_files_without_spacing_with_spacing_and_unit(tmp_path, capsys):
+    from glstat.cli import main
+
+    s = contact.self_affine((64, 48), 0.2e-3, hurst=0.7, rq=0.5e-6, rng=4)
+    np.save(tmp_path / "scan.npy", s.heights * 1e6)  # heights in µm, no spacing stored
+    assert main(["study", "--topographies", str(tmp_path / "scan.npy"), "--out",
+                 str(tmp_path / "a")]) == 2
+    assert "pass dx=" in capsys.readouterr().err
+    from glstat.study.measured import measured_settings as settings_of
+
+    scene = settings_of(tmp_path / "scan.npy", tiles=(2, 1), spacing=(s.dx, 2 * s.dy))
+    assert scene.spacing == pytest.approx((s.dx, 2 * s.dy)) and scene.shape == (32, 48)
+    assert scene.identity()["file_spacing"] == pytest.approx([s.dx, 2 * s.dy])
+    for argv, message in ((["--tile", "2"], "options of measured files"),
+                          (["--topographies", str(tmp_path / "scan.npy"), "--tile", "1", "2", "3"],
+                           "--tile takes NX NY"),
+                          (["--topographies", str(tmp_path / "scan.npy"), "--spacing", "1", "2",
+                            "3"], "--spacing takes DX or DX DY")):
+        assert main(["study", *argv, "--out", str(tmp_path / "b")]) == 2
+        assert message in capsys.readouterr().err
+
+
+def test_like_puts_a_scan_with_unequal_spacings_on_the_coarser_one(tmp_path):
+    from glstat.study.measured import like_template
+
+    s = contact.self_affine((128, 128), 0.128e-3, hurst=0.7, rq=0.5e-6, rng=6)
+    scan = contact.Surface(s.heights[:, ::2], s.dx, 2 * s.dy)  # pixels of 1 × 2 µm
+    contact.write(scan, tmp_path / "aniso.npz")
+    template, note = like_template(tmp_path / "aniso.npz")
+    assert (template.dx, template.dy) == pytest.approx((2e-6, 2e-6)) and template.shape == (64, 64)
+    assert "resampled to one spacing, the coarser 2 µm" in note
+    settings, params = like_settings(tmp_path / "aniso.npz", 4)
+    assert settings.spacing == pytest.approx((2e-6, 2e-6)) and settings.shape == (64, 64)
+    assert 0.4 < params.hurst <= 1.0
+    # the spectrum of the resampled template is the scan's at the wavelengths both grids hold
+    rq = float(np.sqrt(np.mean(template.heights ** 2)))
+    assert rq == pytest.approx(float(np.std(scan.detrend("plane").heights)), rel=0.05)

@@ -42,6 +42,7 @@ from .analysis_settings import (
     MODEL_NAMES,
     MODEL_SAMPLES,
     MODEL_SLOTS,
+    MORE_SURFACES,
     OVERLAP_MARGIN,
     PRIMARY_SAMPLE,
     SAMPLE_LABELS,
@@ -205,7 +206,8 @@ DAMAGE_AREAS_MM2 = (1.0, 100.0, 1000.0)
 
 
 def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
-                   ih: int, il: int, area_m2: float | None = None) -> SampleAnalysis:
+                   ih: int, il: int, area_m2: float | None = None,
+                   advice: str = MORE_SURFACES) -> SampleAnalysis:
     """Fit, bootstrap, maximum, damage, integrity and validation of one sample.
 
     Parameters
@@ -220,6 +222,9 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
         Indices of the Hurst exponent and load (seeds).
     area_m2 : float, optional
         The analysed area in m², for the damage on :data:`DAMAGE_AREAS_MM2`.
+    advice : str
+        What to do when the surfaces are too few, in options the study's mode accepts
+        (:meth:`CampaignSettings.more_surfaces_advice`).
     """
     import pandas as pd
 
@@ -231,10 +236,13 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
                         counts=counts)
     if data.size < 5:
         sa.note = (f"only {data.size} values pooled over {len(keys)} surfaces; at least 5 are "
-                   f"needed: analyse more or larger surfaces (--surfaces, --size; more files "
-                   f"with --topographies)")
+                   f"needed: {advice}")
         return sa
     grouped = sample in GROUPED_SAMPLES
+    if grouped and len(keys) < 2:
+        sa.note = (f"one surface: the interval resamples whole surfaces, so it needs at least "
+                   f"two; {advice}")
+        return sa
     param = method = order = None
     if grouped:
         sa.choice = choose_fit(per)
@@ -275,7 +283,7 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
                       "low": float(np.ravel(d.low)[0]), "high": float(np.ravel(d.high)[0]),
                       "observed": float(np.mean(maxima > lv))})
     sa.damage_curve = pd.DataFrame(curve)
-    sa.validation = validate_sample(per, sample, a, ih, il, p, m, levels)
+    sa.validation = validate_sample(per, sample, a, ih, il, p, m, levels, advice=advice)
     return sa
 
 
@@ -327,7 +335,8 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                     progress(f"analysis ({MODEL_NAMES[model]}): H = {settings.hurst[ih]:g}, "
                              f"{settings.pressures[il] / 1e6:g} MPa, {SAMPLE_LABELS[sample]}")
                 case[sample] = analyse_sample(results, keys, sample, a, ih + slot, il,
-                                              area_m2=settings.size[0] * settings.size[1])
+                                              area_m2=settings.size[0] * settings.size[1],
+                                              advice=settings.more_surfaces_advice())
             case["summary"] = summary
             out[(ih, il)] = case
     return out

@@ -11,7 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["GROUPED_SAMPLES", "MODEL_SAMPLES", "PRIMARY_SAMPLE", "SEED_SLOTS", "AnalysisSettings",
+__all__ = ["GROUPED_SAMPLES", "MODEL_SAMPLES", "MORE_SURFACES", "PRIMARY_SAMPLE", "SEED_SLOTS",
+           "AnalysisSettings",
            "fit_order", "overlap_sets_maximum", "pool", "predict_sample",
            "sample_rng", "surface_values"]
 
@@ -54,6 +55,11 @@ AREA_CHECKS = (2, 4)
 CHECK_SIGNIFICANCE = 0.05
 CHECK_POWER = 0.8
 CHECK_MAX_MISS = 0.2
+
+
+#: What to do about too few surfaces or values when the caller does not say (simulated
+#: surfaces; :meth:`CampaignSettings.more_surfaces_advice` words it for every mode).
+MORE_SURFACES = "analyse more or larger surfaces (--surfaces, --size)"
 
 
 @dataclass(frozen=True)

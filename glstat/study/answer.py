@@ -195,9 +195,10 @@ def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None
     return pd.concat(frames, ignore_index=True)[list(CALIBRATION_COLUMNS)]
 
 
-def degenerate_scene(analysis: dict) -> str:
+def degenerate_scene(analysis: dict, settings=None) -> str:
     """A plain warning when the scene cannot answer the question ("" otherwise): fewer than
-    3 contact spots per surface on average, or a damage probability of 0 or 1 for every H."""
+    3 contact spots per surface on average, or a damage probability of 0 or 1 for every H.
+    The advice names options of the study's mode (``settings``: measured or simulated)."""
     msgs = []
     few = [r["summary"].get("n_spots", r["summary"]["n_asperities"]) for r in analysis.values()]
     if few and min(few) < 3:
@@ -212,6 +213,10 @@ def degenerate_scene(analysis: dict) -> str:
                     "the hardness does not discriminate between the surfaces at this scene")
     if not msgs:
         return ""
+    if settings is not None and getattr(settings, "measured", False):
+        return ("Degenerate scene: " + "; ".join(msgs) + ". The measured surfaces fix the "
+                "roughness: choose another nominal pressure (--pressure) or check the hardness "
+                "(--hardness).")
     return ("Degenerate scene: " + "; ".join(msgs) + ". Place the scene at the paper's pressure "
             "level with --rq or --target-pressure (docs/method.md §10).")
 

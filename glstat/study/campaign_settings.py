@@ -126,6 +126,16 @@ class CampaignSettings:
     length_y : float or None
         Length along y in metres of a rectangular surface; None: ``length``. Equal to
         ``length``, it is None.
+    tiles : tuple of (int, int) or None
+        Measured files cut into ``nx × ny`` areas (tiles) of equal size, each area one surface
+        (surface i is tile ``i % (nx ny)`` of file ``i // (nx ny)``; :func:`tile_bounds`);
+        None: each file is one surface. ``grid`` and ``length`` are then a tile's.
+    file_spacing : tuple of (float, float) or None
+        Grid spacing ``(dx, dy)`` in metres of measured files that store none (overrides a
+        stored one); None: the files' own.
+    file_unit : str or None
+        Length unit of measured files that state none (``"m"``, ``"mm"``, ``"µm"``, ``"nm"``,
+        ...); None: the files' own.
 
     Notes
     -----
@@ -152,6 +162,9 @@ class CampaignSettings:
     like: bool = False
     grid_y: int | None = None
     length_y: float | None = None
+    tiles: tuple[int, int] | None = None
+    file_spacing: tuple[float, float] | None = None
+    file_unit: str | None = None
 
     def __post_init__(self) -> None:
         if self.grid_y is not None and is_integer(self.grid_y) and self.grid_y == self.grid:
@@ -160,6 +173,7 @@ class CampaignSettings:
             object.__setattr__(self, "length_y", None)
         object.__setattr__(self, "topographies", tuple(str(v) for v in self.topographies))
         object.__setattr__(self, "digests", tuple(str(v) for v in self.digests))
+        _check_reading(self)
         _check_measured_files(self)
         h = tuple(float(v) for v in np.atleast_1d(self.hurst))
         p = tuple(float(v) for v in np.atleast_1d(self.pressures))
@@ -197,7 +211,7 @@ class CampaignSettings:
         """
         d = dataclasses.asdict(self)
         d.pop("n_surfaces")
-        for name in ("grid_y", "length_y"):
+        for name in ("grid_y", "length_y", "tiles", "file_spacing", "file_unit"):
             if d[name] is None:
                 d.pop(name)
         if not self.topographies:  # simulated surfaces: the identity of earlier versions
@@ -232,6 +246,40 @@ class CampaignSettings:
     def measured(self) -> bool:
         """Whether the surfaces are measured files (not simulated)."""
         return bool(self.topographies) and not self.like
+
+    @property
+    def tiles_per_file(self) -> int:
+        """Surfaces cut from each measured file (1 without ``tiles``)."""
+        return 1 if self.tiles is None else self.tiles[0] * self.tiles[1]
+
+    def measured_source(self, i: int) -> tuple[int, int]:
+        """The file number and the tile number (0 without ``tiles``) of measured surface ``i``."""
+        return divmod(i, self.tiles_per_file)
+
+    def surface_name(self, i: int) -> str:
+        """Measured surface ``i`` in words: its file name, and its tile as "area (column, row)
+        of nx × ny" when the files are cut (columns along x, rows along y, from 1)."""
+        import os
+
+        f, t = self.measured_source(i)
+        name = os.path.basename(self.topographies[f])
+        if self.tiles is None:
+            return name
+        a, b = divmod(t, self.tiles[1])
+        return f"{name}, area ({a + 1}, {b + 1}) of {self.tiles[0]} × {self.tiles[1]}"
+
+    def more_surfaces_advice(self) -> str:
+        """What to do when the campaign has too few surfaces or values, in options this mode
+        accepts."""
+        if self.measured and self.tiles is None:
+            return ("give more files to --topographies, or cut each scan into areas with "
+                    "--tile NX NY (e.g. --tile 4 3: 12 areas per scan)")
+        if self.measured:
+            return ("give more files to --topographies, or cut the scans into more areas (a "
+                    "larger --tile)")
+        if self.like:
+            return "simulate more surfaces (--surfaces)"
+        return "analyse more or larger surfaces (--surfaces, --size)"
 
     def max_frequency(self, ih: int) -> float:
         """Highest Weierstrass frequency of Hurst exponent number ``ih``, in 1/m (``gamma^(N-1)
@@ -273,18 +321,44 @@ def terms_of(settings: CampaignSettings, ih: int) -> int:
     return nyquist_limit(settings) if nt is None else nt
 
 
+def _check_reading(s: CampaignSettings) -> None:
+    """How the measured files are read and cut: tiles, spacing and unit (normalised in place)."""
+    from contact._validate import positive_finite
+
+    if s.tiles is not None:
+        tiles = tuple(s.tiles)
+        if len(tiles) != 2 or not all(is_integer(v) and v >= 1 for v in tiles):
+            raise ValueError(f"tiles must be two integers >= 1 (areas along x and y), got {s.tiles!r}")
+        if not s.topographies or s.like:
+            raise ValueError("tiles cut measured files (topographies, without like) into areas")
+        object.__setattr__(s, "tiles", (int(tiles[0]), int(tiles[1])))
+    if s.file_spacing is not None:
+        spacing = tuple(s.file_spacing)
+        if len(spacing) != 2:
+            raise ValueError(f"file_spacing must be (dx, dy) in metres, got {s.file_spacing!r}")
+        object.__setattr__(s, "file_spacing", tuple(
+            positive_finite(v, "file_spacing", "grid spacing in metres") for v in spacing))
+    if s.file_unit is not None:
+        object.__setattr__(s, "file_unit", str(s.file_unit))
+    if (s.file_spacing is not None or s.file_unit is not None) and not s.topographies:
+        raise ValueError("file_spacing and file_unit describe measured files (topographies)")
+
+
 def _check_measured_files(s: CampaignSettings) -> None:
     """The measured files: one digest each, a known form, one template with ``like``, and
-    no more surfaces than files."""
+    no more surfaces than areas of the files."""
     if len(s.digests) != len(s.topographies):
         raise ValueError("digests must hold one SHA-256 per measured file (topographies)")
     if s.form not in FORMS:
         raise ValueError(f"form must be one of {', '.join(map(repr, FORMS))}, got {s.form!r}")
     if s.like and len(s.topographies) != 1:
         raise ValueError("like=True needs exactly one measured file (topographies)")
-    if s.topographies and not s.like and s.n_surfaces > len(s.topographies):
-        raise ValueError(f"n_surfaces = {s.n_surfaces} exceeds the {len(s.topographies)} "
-                         f"measured files (one surface per file)")
+    if s.topographies and not s.like and s.n_surfaces > len(s.topographies) * s.tiles_per_file:
+        per = ("one surface per file" if s.tiles is None else
+               f"{s.tiles_per_file} areas per file")
+        raise ValueError(f"n_surfaces = {s.n_surfaces} exceeds the "
+                         f"{len(s.topographies) * s.tiles_per_file} surfaces of the "
+                         f"{len(s.topographies)} measured files ({per})")
 
 
 def _check_cases(s: CampaignSettings) -> None:

@@ -28,12 +28,13 @@ from typing import Any
 import numpy as np
 
 from .campaign import CampaignSettings
-from .topography import FORMS, file_digest, measured_rq, read_topography
+from .topography import FORMS, cut_tile, file_digest, measured_rq, read_file, remove_form
 
 #: Fewest grid points along each axis of a measured file.
 MIN_POINTS = 16
 
-__all__ = ["FORMS", "find_topographies", "like_settings", "measured_settings", "read_measured"]
+__all__ = ["FORMS", "find_topographies", "like_settings", "like_template", "measured_settings",
+           "read_measured"]
 
 #: Relative tolerance on the grid spacing shared by all files.
 SPACING_RTOL = 1e-6
@@ -103,48 +104,76 @@ def _grid_text(surface: Any) -> str:
     return f"{nx} × {ny} points at {spacing}"
 
 
-def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane") -> list[Any]:
-    """Read every file, remove its form, and check that all share one grid and spacing.
+def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane", *,
+                  tiles: tuple[int, int] | None = None,
+                  spacing: tuple[float, float] | None = None,
+                  unit: str | None = None) -> list[Any]:
+    """Read every file, cut it into areas when asked, remove the form of each, and check that
+    all share one grid and spacing.
 
     The grid may be rectangular (``nx != ny``) and the spacing may differ between the axes
-    (``dx != dy``); the files must agree on both, point count and spacing along x and along y.
+    (``dx != dy``); the surfaces must agree on both, point count and spacing along x and
+    along y.
 
     Parameters
     ----------
     paths : sequence of path
         The topography files (:func:`contact.read`; lengths and heights in metres).
     form : {"plane", "poly2", "poly3", "mean", "none"}
-        Form removed from each file (:func:`glstat.study.topography.remove_form`).
+        Form removed from each surface (:func:`glstat.study.topography.remove_form`).
+    tiles : (int, int), optional
+        Cut each file into ``nx × ny`` areas of equal size
+        (:func:`glstat.study.topography.cut_tile`), each one surface; the form is removed from
+        each area as from a separate scan.
+    spacing : (float, float), optional
+        Grid spacing ``(dx, dy)`` in metres of files that store none.
+    unit : str, optional
+        Length unit of files that state none.
 
     Returns
     -------
     list of contact.Surface
+        One per file, or ``nx ny`` per file (file by file, :meth:`CampaignSettings.surface_name`
+        order).
 
     Raises
     ------
     ValueError
-        Files of different grid or spacing, fewer than 16 points along an axis, or no measured
-        point (the message names the file).
+        Surfaces of different grid or spacing, fewer than 16 points along an axis, or no
+        measured point (the message names the file and the area).
     """
     surfaces: list[Any] = []
+    names: list[str] = []
     for path in paths:
-        s = read_topography(path, form)
+        whole = read_file(path, spacing=spacing, unit=unit)
         name = os.fspath(path)
-        nx, ny = s.shape
+        pieces = ([whole] if tiles is None else
+                  [cut_tile(whole, tiles, t) for t in range(tiles[0] * tiles[1])])
+        nx, ny = pieces[0].shape
         if min(nx, ny) < MIN_POINTS:
-            raise ValueError(f"{name}: {nx} × {ny} points is too small a grid (at least "
-                             f"{MIN_POINTS} along each axis)")
-        if surfaces:
-            f0 = surfaces[0]
-            if s.shape != f0.shape or not (math.isclose(s.dx, f0.dx, rel_tol=SPACING_RTOL)
-                                           and math.isclose(s.dy, f0.dy, rel_tol=SPACING_RTOL)):
-                raise ValueError(
-                    f"{name} has {_grid_text(s)} but {os.fspath(paths[0])} has {_grid_text(f0)}: "
-                    f"every topography of one study must share grid and spacing (one surface "
-                    f"per file); crop or resample the files to one grid")
-        if s.mask is not None and np.all(s.mask):
-            raise ValueError(f"{name}: every point is missing (masked)")
-        surfaces.append(s)
+            cut = ("" if tiles is None else
+                   f" (its {whole.shape[0]} × {whole.shape[1]} points cut into {tiles[0]} × "
+                   f"{tiles[1]} areas)")
+            fix = ("" if tiles is None else f"; cut it into fewer areas (at most "
+                   f"{max(1, whole.shape[0] // MIN_POINTS)} × {max(1, whole.shape[1] // MIN_POINTS)}"
+                   f" with --tile)")
+            raise ValueError(f"{name}: {nx} × {ny} points{cut} is too small a grid (at least "
+                             f"{MIN_POINTS} along each axis){fix}")
+        for t, piece in enumerate(pieces):
+            label = name if tiles is None else f"{name} (area {t + 1} of {len(pieces)})"
+            s = remove_form(piece, form)
+            if surfaces:
+                f0 = surfaces[0]
+                if s.shape != f0.shape or not (math.isclose(s.dx, f0.dx, rel_tol=SPACING_RTOL)
+                                               and math.isclose(s.dy, f0.dy, rel_tol=SPACING_RTOL)):
+                    raise ValueError(
+                        f"{label} has {_grid_text(s)} but {names[0]} has {_grid_text(f0)}: "
+                        f"every surface of one study must share grid and spacing; crop or resample "
+                        f"the files to one grid")
+            if s.mask is not None and np.all(s.mask):
+                raise ValueError(f"{label}: every point is missing (masked)")
+            surfaces.append(s)
+            names.append(label)
     return surfaces
 
 
@@ -154,16 +183,27 @@ def _hurst_estimate(surface: Any) -> float:
 
 
 def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
-                      form: str = "plane", **scene: Any) -> CampaignSettings:
-    """Campaign settings whose surfaces are measured files, one surface per file.
+                      form: str = "plane", tiles: tuple[int, int] | None = None,
+                      spacing: tuple[float, float] | None = None, unit: str | None = None,
+                      **scene: Any) -> CampaignSettings:
+    """Campaign settings whose surfaces are measured files: one surface per file, or per area
+    of a file cut into ``tiles``.
 
     Parameters
     ----------
     specs : path, pattern or folder, or a sequence of them
         The topographies (:func:`find_topographies`).
     form : {"plane", "poly2", "poly3", "mean", "none"}
-        Form removed from each file before the contact solve: the least-squares plane, the
+        Form removed from each surface before the contact solve: the least-squares plane, the
         least-squares polynomial of total degree 2 or 3 in x and y, the mean, or nothing.
+    tiles : (int, int), optional
+        Cut each file into ``nx × ny`` areas of equal size along x and y, each one surface
+        (one scan studied as many areas); the points left over at the far end of an axis are
+        not used.
+    spacing : (float, float), optional
+        Grid spacing ``(dx, dy)`` in metres of files that store none.
+    unit : str, optional
+        Length unit of files that state none (``"m"``, ``"mm"``, ``"µm"``, ``"nm"``).
     **scene
         Other :class:`CampaignSettings` fields: ``pressures`` (Pa), ``E`` (Pa), ``nu``,
         ``cone_factor``, ``seed``.
@@ -171,21 +211,22 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
     Returns
     -------
     CampaignSettings
-        ``grid`` and ``length`` (points and length in metres along x) and, for a rectangular
-        grid or unequal spacings, ``grid_y`` and ``length_y`` from the files; ``rq`` their mean
-        RMS height about the removed form (m), ``hurst`` one value: the median of the files'
-        structure-function estimates in [0, 1] (0.5 when none is physical) — a label of the
-        group, not a simulation input.
+        ``grid`` and ``length`` (points and length in metres along x of one surface: a file or
+        an area) and, for a rectangular grid or unequal spacings, ``grid_y`` and ``length_y``;
+        ``rq`` the surfaces' mean RMS height about the removed form (m), ``hurst`` one value:
+        the median of their structure-function estimates in [0, 1] (0.5 when none is physical)
+        — a label of the group, not a simulation input.
     """
     paths = find_topographies(specs)
-    surfaces = read_measured(paths, form)
+    surfaces = read_measured(paths, form, tiles=tiles, spacing=spacing, unit=unit)
     estimates = [h for h in (_hurst_estimate(s) for s in surfaces) if math.isfinite(h)]
     hurst = float(np.clip(np.median(estimates), 0.0, 1.0)) if estimates else 0.5
     return CampaignSettings(
-        hurst=(hurst,), n_surfaces=len(paths), **_grid_fields(surfaces[0]),
+        hurst=(hurst,), n_surfaces=len(surfaces), **_grid_fields(surfaces[0]),
         rq=float(np.mean([measured_rq(s) for s in surfaces])), n_terms=(None,),
-        n_examples=min(1, len(paths)), topographies=tuple(os.fspath(p) for p in paths),
-        digests=tuple(file_digest(p) for p in paths), form=form, **scene)
+        n_examples=min(1, len(surfaces)), topographies=tuple(os.fspath(p) for p in paths),
+        digests=tuple(file_digest(p) for p in paths), form=form, tiles=tiles,
+        file_spacing=spacing, file_unit=unit, **scene)
 
 
 def _grid_fields(surface: Any) -> dict[str, Any]:
@@ -197,25 +238,73 @@ def _grid_fields(surface: Any) -> dict[str, Any]:
     return {"grid": nx, "length": lx, "grid_y": ny, "length_y": ly}
 
 
-def like_settings(path: str | os.PathLike, n_surfaces: int, *, form: str = "plane",
-                  gamma: float = 1.5, **scene: Any) -> tuple[CampaignSettings, Any]:
-    """Campaign settings for Weierstrass surfaces statistically like one measured file.
-
-    The file's form is removed, its spectrum fitted (:func:`contact.fit_spectrum`) and mapped
-    onto the series (:func:`contact.weierstrass_parameters`): H, Rq about the plane, grid and
-    spacing, truncation at the measured cut-off. The simulated surfaces have the template's
-    grid and side lengths, rectangular if it is.
+def like_template(path: str | os.PathLike, form: str = "plane", *,
+                  spacing: tuple[float, float] | None = None, unit: str | None = None
+                  ) -> tuple[Any, str]:
+    """The measured template of ``--like`` as its spectrum is fitted: read, form removed, and
+    put on one spacing when its spacings along x and y differ.
 
     Parameters
     ----------
     path : path
-        The measured topography (fully measured; square or rectangular).
+        The measured topography.
+    form : {"plane", "poly2", "poly3", "mean", "none"}
+        Form removed from the file before the fit.
+    spacing : (float, float), optional
+        Grid spacing ``(dx, dy)`` in metres of a file that stores none.
+    unit : str, optional
+        Length unit of a file that states none.
+
+    Returns
+    -------
+    surface : contact.Surface
+        The template (metres), on the coarser of its two spacings along both axes when they
+        differ (:func:`contact.resample`: band-limited to the coarser grid, then interpolated).
+    note : str
+        How it was resampled, in words ("" when it was not).
+    """
+    import contact
+
+    (surface,) = read_measured([path], form, spacing=spacing, unit=unit)
+    if math.isclose(surface.dx, surface.dy, rel_tol=SPACING_RTOL):
+        return surface, ""
+    if surface.mask is not None and np.any(surface.mask):
+        surface = contact.fill_missing(surface)
+    coarse = max(surface.dx, surface.dy)
+    resampled = remove_form(contact.resample(surface, coarse), form)
+    note = (f"{os.path.basename(os.fspath(path))} has {_grid_text(surface)}; it was resampled to "
+            f"one spacing, the coarser {coarse * 1e6:.4g} µm, on both axes ({_grid_text(resampled)}"
+            f"; wavelengths shorter than {2 * coarse * 1e6:.4g} µm removed along the finer axis, "
+            f"then linear interpolation)")
+    return resampled, note
+
+
+def like_settings(path: str | os.PathLike, n_surfaces: int, *, form: str = "plane",
+                  gamma: float = 1.5, spacing: tuple[float, float] | None = None,
+                  unit: str | None = None, **scene: Any) -> tuple[CampaignSettings, Any]:
+    """Campaign settings for Weierstrass surfaces statistically like one measured file.
+
+    The file's form is removed, it is put on one spacing when its spacings along x and y differ
+    (:func:`like_template`), its spectrum fitted (:func:`contact.fit_spectrum`, missing points
+    filled as it states) and mapped onto the series (:func:`contact.weierstrass_parameters`):
+    H, Rq about the plane, grid and spacing, truncation at the measured cut-off. The simulated
+    surfaces have the template's grid and side lengths, rectangular if it is.
+
+    Parameters
+    ----------
+    path : path
+        The measured topography (square or rectangular; missing points are filled for the
+        spectrum fit, :func:`contact.fit_spectrum`).
     n_surfaces : int
         Simulated surfaces.
     form : {"plane", "poly2", "poly3", "mean", "none"}
         Form removed from the file before the fit.
     gamma : float
         Frequency ratio of the series.
+    spacing : (float, float), optional
+        Grid spacing ``(dx, dy)`` in metres of a file that stores none.
+    unit : str, optional
+        Length unit of a file that states none.
     **scene
         Other :class:`CampaignSettings` fields.
 
@@ -224,31 +313,17 @@ def like_settings(path: str | os.PathLike, n_surfaces: int, *, form: str = "plan
     settings : CampaignSettings
     parameters : contact.WeierstrassParameters
         The mapping, with the spectrum fit and its quality (``parameters.fit.r2``).
-
-    Raises
-    ------
-    ValueError
-        The template has missing points, or its spacings along x and y map onto different
-        numbers of Weierstrass terms per axis (the campaign's series has one number for both).
     """
     import contact
 
     (p,) = find_topographies(path)
-    (measured,) = read_measured([p], form)
-    if measured.mask is not None and np.any(measured.mask):
-        raise ValueError(f"{os.fspath(path)} has missing points; the spectrum fit of --like needs "
-                         f"a fully measured topography (fill or crop the missing points)")
+    measured, _ = like_template(p, form, spacing=spacing, unit=unit)
     params = contact.weierstrass_parameters(measured, gamma=gamma)
-    if params.n_terms[0] != params.n_terms[1]:
-        raise ValueError(
-            f"{os.fspath(path)} has {_grid_text(measured)}: its spectrum maps onto "
-            f"{params.n_terms[0]} Weierstrass terms along x but {params.n_terms[1]} along y, and "
-            f"the simulated series of --like has one number of terms on both axes; resample the "
-            f"template to one spacing (--topographies takes it as it is)")
     settings = CampaignSettings(
         hurst=(params.hurst,), n_surfaces=n_surfaces, **_grid_fields(measured), rq=params.rq,
         gamma=params.gamma, n_terms=(params.n_terms[0],),
-        topographies=(os.fspath(p),), digests=(file_digest(p),), form=form, like=True, **scene)
+        topographies=(os.fspath(p),), digests=(file_digest(p),), form=form, like=True,
+        file_spacing=spacing, file_unit=unit, **scene)
     return settings, params
 
 
@@ -284,7 +359,8 @@ def like_comparison(settings: CampaignSettings, results: dict) -> dict[str, Any]
 
     from .campaign import campaign_surface
 
-    (measured,) = read_measured(settings.topographies, settings.form)
+    measured, resampled = like_template(settings.topographies[0], settings.form,
+                                        spacing=settings.file_spacing, unit=settings.file_unit)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", contact.ContactWarning)
         params = contact.weierstrass_parameters(measured, gamma=settings.gamma)
@@ -311,4 +387,4 @@ def like_comparison(settings: CampaignSettings, results: dict) -> dict[str, Any]
                          "simulated_q95": float(np.quantile(v, 0.95)) if v.size else math.nan,
                          "n_simulated": int(v.size)})
     return {"parameters": params, "iso": iso, "measured": measured, "simulated": sims,
-            "pressure": pd.DataFrame(rows)}
+            "pressure": pd.DataFrame(rows), "resampled": resampled}

@@ -51,7 +51,7 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     hard, lvl = asettings.hardness, _level(asettings)
     out.heading("The answer")
     bem = info.get("bem")
-    for warn in (degenerate_scene(analysis), overlap_note(settings, analysis)):
+    for warn in (degenerate_scene(analysis, settings), overlap_note(settings, analysis)):
         if warn:
             out.paragraph("⚠ " + warn)
     rows, columns = first_screen_rows(settings, asettings, analysis, bem, info.get("bem_analysis"))

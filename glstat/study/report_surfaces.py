@@ -50,9 +50,8 @@ def scene_sentence(settings) -> str:
     model = (f"pressed by a rigid flat (asperity model, c = {settings.cone_factor:g}, E = "
              f"{settings.E / 1e9:g} GPa, ν = {settings.nu:g})")
     if settings.measured:
-        return (f"{settings.n_surfaces} measured topographies (one surface per file, form removed: "
-                f"{_form(settings)}), {grid_text(settings)} on {area_text(settings)}, mean Rq = "
-                f"{settings.rq * 1e6:.3g} µm, {model}.")
+        return (f"{settings.n_surfaces} {measured_surfaces_text(settings)}, {grid_text(settings)} "
+                f"on {area_text(settings)}, mean Rq = {settings.rq * 1e6:.3g} µm, {model}.")
     like = ""
     if settings.like:
         like = (f", statistically like the measured {os.path.basename(settings.topographies[0])} "
@@ -63,6 +62,17 @@ def scene_sentence(settings) -> str:
             f"{' (one per H)' if isinstance(settings.rq, tuple) else ''}, {model}.")
 
 
+def measured_surfaces_text(settings) -> str:
+    """What the measured surfaces are, in words: "measured topographies (one surface per file,
+    form removed: …)" or "areas of 1 measured scan (each cut into 4 × 3 areas, …)"."""
+    files = len(settings.topographies)
+    if settings.tiles is None:
+        return f"measured topographies (one surface per file, form removed: {_form(settings)})"
+    nx, ny = settings.tiles
+    return (f"areas of {files} measured scan{'s' if files > 1 else ''} (each cut into {nx} × {ny} "
+            f"areas of equal size, form removed from each area: {_form(settings)})")
+
+
 def surface_rows(settings) -> list[list[Any]]:
     """The rows of the settings table that describe the surfaces."""
     rows: list[list[Any]] = []
@@ -70,6 +80,12 @@ def surface_rows(settings) -> list[list[Any]]:
         rows += [["measured topographies", f"{len(settings.topographies)} files in "
                   f"{os.path.commonpath([os.path.dirname(p) for p in settings.topographies])}"],
                  ["form removed", f"{settings.form} ({_form(settings)})"],
+                 *([["areas per file (along x × along y)",
+                     "{} × {}".format(*settings.tiles)]] if settings.tiles else []),
+                 *([["spacing given (--spacing, µm)", "{:.4g} × {:.4g}".format(
+                     *(v * 1e6 for v in settings.file_spacing))]] if settings.file_spacing else []),
+                 *([["length unit given (--unit)", settings.file_unit]] if settings.file_unit
+                   else []),
                  ["Hurst exponent (median structure-function estimate; a label only)",
                   f"{settings.hurst[0]:.3g}"]]
     else:
@@ -102,25 +118,30 @@ def measured_section(settings, results: dict) -> Blocks:
     """"Measured topographies": one row per file with its ISO 25178 parameters and its contact."""
     rep = Blocks()
     rep.heading("Measured topographies")
+    unit = "area" if settings.tiles else "file"
+    cut = ("" if settings.tiles is None else
+           f"Each file is cut into {settings.tiles[0]} × {settings.tiles[1]} areas of equal size "
+           f"(along x × along y; points left over at the far end of an axis are not used). ")
     rep.paragraph(
-        f"Each file is one surface; its form ({_form(settings)}, fitted on the measured points) "
-        f"was removed before the contact solve, lengths and heights come from "
-        f"the file in metres and the analysed area is one file's ({grid_text(settings)} on "
+        cut + f"Each {unit} is one surface; its form ({_form(settings)}, fitted on the measured "
+        f"points{' of the area, as for a separate scan' if settings.tiles else ''}) was removed "
+        f"before the contact solve, lengths and heights come from "
+        f"the file in metres and the analysed area is one {unit}'s ({grid_text(settings)} on "
         f"{area_text(settings)}). Points missing in a file carry no load and are no part of the "
         f"nominal area: the nominal pressure is the load over the measured area (measured points "
         f"× dx × dy, in the table). ISO 25178-2 parameters "
         f"about the mean of the levelled heights; the Hurst exponent from the structure function "
         f"(— when the fit is outside [0, 1]). A file's SHA-256 is checked before it is used, so a "
         f"changed file is never mixed with results of the old one.")
-    cols = ["file", *[_ISO_DISPLAY[k][0] for k in MEASURED_PARAMETERS], "missing points",
+    cols = [unit, *[_ISO_DISPLAY[k][0] for k in MEASURED_PARAMETERS], "missing points",
             "measured area (mm²)",
             *[f"{p / 1e6:g} MPa: mean / max pressure (MPa), asperities" for p in settings.pressures]]
     rows = []
-    for i, path in enumerate(settings.topographies[:settings.n_surfaces]):
+    for i in range(settings.n_surfaces):
         first = next((results[k] for k in results if k[0] == 0 and k[2] == i), None)
         if first is None:
             continue
-        row = [os.path.basename(path)]
+        row = [settings.surface_name(i)]
         row += [fmt_number(float(first.get(f"iso_{k}", math.nan)), ".3g", _ISO_DISPLAY[k][1])
                 for k in MEASURED_PARAMETERS]
         missing = float(first.get("masked_fraction", 0.0))
@@ -132,12 +153,41 @@ def measured_section(settings, results: dict) -> Blocks:
                        f"{fmt_number(float(r['mean_pressure']), '.4g', 1e-6)} / "
                        f"{fmt_number(float(r['max_pressure']), '.4g', 1e-6)}, {int(r['n_asperities'])}")
         rows.append(row)
-    rep.table(cols, rows, "One row per measured file.")
-    if settings.n_surfaces < 10:
-        rep.paragraph(f"⚠ {settings.n_surfaces} files: the checks on held-out surfaces need about "
-                      f"ten or more; with fewer they are weak or not run (the table of checks says "
-                      f"which).")
+    rep.table(cols, rows, f"One row per measured {unit}.")
+    for text in measured_scope_notes(settings):
+        rep.paragraph(text)
     return rep
+
+
+def measured_scope_notes(settings) -> list[str]:
+    """What the measured surfaces can and cannot tell, as report paragraphs: how many surfaces
+    the held-out checks need, and, for areas cut from few scans, what such areas describe."""
+    from ..checks import outcomes_needed
+
+    notes = []
+    n = settings.n_surfaces
+    low, high = outcomes_needed(0.1), outcomes_needed(0.5)
+    what = "areas" if settings.tiles else "files"
+    if n < high:
+        notes.append(
+            f"⚠ {n} {what}: a held-out check can pass only when it would detect a miss of 20 "
+            f"percentage points with 80 % power, which takes about {low} surfaces at a predicted "
+            f"10 % or 90 % and {high} at 50 %; with fewer a check says \"not checkable\" (the "
+            f"table of checks names the smallest miss it could detect). "
+            + settings.more_surfaces_advice()[0].upper() + settings.more_surfaces_advice()[1:]
+            + ".")
+    files = len(settings.topographies)
+    if settings.tiles is not None and files < 5:
+        notes.append(
+            f"The {n} areas come from {files} scan{'s' if files > 1 else ''}: neighbouring areas "
+            f"of one place on one part, measured by one instrument. They tell how the damage "
+            f"probability of one {area_text(settings)} area varies within that place, and how it "
+            f"grows with the area there; they cannot tell how it varies between parts, places "
+            f"or instruments — that needs scans of several places (more files). Neighbouring "
+            f"areas also share their longest wavelengths, so they are not fully independent and "
+            f"the intervals are somewhat too narrow when the scan's spectrum has power at "
+            f"wavelengths near the area's size.")
+    return notes
 
 
 def like_section(settings, like: dict) -> Blocks:
@@ -160,6 +210,8 @@ def like_section(settings, like: dict) -> Blocks:
            if fit.rolloff_detected else "")
         + f". The series has {p.n_terms[0]} terms per axis (γ = {p.gamma:g}) on the measured grid "
           f"and spacing ({grid_text(settings)} on {area_text(settings)}).")
+    if like.get("resampled"):
+        rep.paragraph(f"Spacing: {like['resampled']}. The simulated surfaces have that one spacing.")
     iso = like["iso"]
     n_sim = len(like["simulated"])
     rows = [[name, fmt_number(r["measured"], ".4g", 1e6 if r["unit"] == "m" else 1.0),

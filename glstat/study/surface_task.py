@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from .campaign_settings import CampaignSettings
-from .topography import measured_rq, read_topography
+from .topography import measured_rq, measured_surface
 
 __all__ = [
     "MEASURED_PARAMETERS",
@@ -56,10 +56,11 @@ def weierstrass_surface(settings: CampaignSettings, ih: int, il: int, i: int, *,
 
 
 def campaign_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> Any:
-    """Surface i of (H index ``ih``, load index ``il``): measured file i, or the Weierstrass
+    """Surface i of (H index ``ih``, load index ``il``): measured surface i (a file, or an area
+    of one: :func:`glstat.study.topography.measured_surface`), or the Weierstrass
     surface of seed ``settings.seed_sequence(ih, il, i)`` (a :class:`contact.Surface`, metres)."""
     if settings.measured:
-        return read_topography(settings.topographies[i], settings.form, settings.digests[i])
+        return measured_surface(settings, i)
     return weierstrass_surface(settings, ih, il, i)
 
 

@@ -4,14 +4,15 @@ polynomial, or the mean); and the RMS height of the measured points."""
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 from typing import Any
 
 import numpy as np
 
-__all__ = ["FORMS", "FORM_LABELS", "file_digest", "form_degree", "measured_rq", "read_topography",
-           "remove_form"]
+__all__ = ["FORMS", "FORM_LABELS", "cut_tile", "file_digest", "form_degree", "measured_rq",
+           "measured_surface", "read_file", "read_topography", "remove_form", "tile_bounds"]
 
 #: Form removal applied to each measured file: the least-squares plane, the least-squares
 #: polynomial of total degree 2 or 3 in x and y, the mean, or nothing.
@@ -98,17 +99,99 @@ def remove_form(surface: Any, form: str) -> Any:
                            surface.dy, mask=surface.mask)
 
 
-def read_topography(path: str | os.PathLike, form: str, digest: str | None = None) -> Any:
-    """Read one measured file (:func:`contact.read`) and remove its form; with ``digest``,
-    refuse a file whose content changed since the campaign started."""
-    import contact
+def read_file(path: str | os.PathLike, digest: str | None = None, *,
+              spacing: tuple[float, float] | None = None, unit: str | None = None) -> Any:
+    """Read one measured file (:func:`contact.read`, heights and lengths in metres) as stored;
+    with ``digest``, refuse a file whose content changed since the campaign started.
 
+    Parameters
+    ----------
+    path : path
+        The file.
+    digest : str, optional
+        Its SHA-256 when the campaign started.
+    spacing : (float, float), optional
+        Grid spacing ``(dx, dy)`` in metres, for a file that stores none.
+    unit : str, optional
+        Length unit of a file that states none.
+    """
     if digest is not None and file_digest(path) != digest:
         raise ValueError(
             f"{os.fspath(path)} changed since the campaign in this directory started (its SHA-256 "
             f"differs); results of the old and new file must not be mixed: restore the file, or "
             f"start over with --force or another --out")
-    return remove_form(contact.read(path), form)
+    if digest is None:
+        return _read(os.fspath(path), spacing, unit)
+    # the areas of one file are consecutive surfaces: its content (known by its digest) is
+    # parsed once per process
+    return _read_checked(os.fspath(path), digest, spacing, unit)
+
+
+def _read(path: str, spacing: tuple[float, float] | None, unit: str | None) -> Any:
+    import contact
+
+    options: dict[str, Any] = {}
+    if spacing is not None:
+        options.update(dx=spacing[0], dy=spacing[1])
+    if unit is not None:
+        options["unit"] = unit
+    return contact.read(path, **options)
+
+
+@functools.lru_cache(maxsize=1)
+def _read_checked(path: str, digest: str, spacing: tuple[float, float] | None,
+                  unit: str | None) -> Any:
+    return _read(path, spacing, unit)
+
+
+def read_topography(path: str | os.PathLike, form: str, digest: str | None = None, *,
+                    spacing: tuple[float, float] | None = None, unit: str | None = None) -> Any:
+    """Read one measured file (:func:`read_file`) and remove its form."""
+    return remove_form(read_file(path, digest, spacing=spacing, unit=unit), form)
+
+
+def tile_bounds(shape: tuple[int, int], tiles: tuple[int, int], index: int
+                ) -> tuple[slice, slice]:
+    """The grid slices of tile ``index`` when a grid of ``shape`` points is cut into ``tiles``
+    (along x, along y) areas of equal size.
+
+    Each tile has ``shape[0] // tiles[0]`` × ``shape[1] // tiles[1]`` points; the points left
+    over at the far end of an axis (fewer than one tile's) belong to no tile. Tile
+    ``index = a * tiles[1] + b`` is column ``a`` along x and row ``b`` along y.
+
+    Raises
+    ------
+    ValueError
+        ``index`` is not a tile of the grid.
+    """
+    nx, ny = (shape[0] // tiles[0], shape[1] // tiles[1])
+    if not 0 <= index < tiles[0] * tiles[1]:
+        raise ValueError(f"tile {index} does not exist: {tiles[0]} × {tiles[1]} tiles")
+    a, b = divmod(index, tiles[1])
+    return slice(a * nx, (a + 1) * nx), slice(b * ny, (b + 1) * ny)
+
+
+def cut_tile(surface: Any, tiles: tuple[int, int], index: int) -> Any:
+    """Tile ``index`` of ``surface`` cut into ``tiles`` areas (:func:`tile_bounds`): a
+    :class:`contact.Surface` with the same spacing and its share of the mask (a copy)."""
+    import contact
+
+    sx, sy = tile_bounds(surface.shape, tiles, index)
+    mask = None if surface.mask is None else np.array(surface.mask[sx, sy], dtype=bool)
+    return contact.Surface(np.array(surface.heights[sx, sy]), surface.dx, surface.dy, mask=mask)
+
+
+def measured_surface(settings: Any, i: int, *, check: bool = True) -> Any:
+    """Measured surface ``i`` of a campaign (:class:`CampaignSettings`): its file read with the
+    campaign's spacing and unit (and, with ``check``, its SHA-256 checked), cut to its tile when
+    the files are cut into areas, and its form removed (from each area as from a separate
+    scan)."""
+    f, t = settings.measured_source(i)
+    surface = read_file(settings.topographies[f], settings.digests[f] if check else None,
+                        spacing=settings.file_spacing, unit=settings.file_unit)
+    if settings.tiles is not None:
+        surface = cut_tile(surface, settings.tiles, t)
+    return remove_form(surface, settings.form)
 
 
 def measured_rq(surface: Any) -> float:

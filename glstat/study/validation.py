@@ -17,6 +17,7 @@ from .analysis_settings import (
     CHECK_POWER,
     CHECK_SIGNIFICANCE,
     GROUPED_SAMPLES,
+    MORE_SURFACES,
     SEED_SLOTS,
     AnalysisSettings,
     fit_order,
@@ -188,8 +189,11 @@ def hardness_levels(maxima: np.ndarray, hardness: float, n_levels: int) -> np.nd
 
 
 def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: int, param: str, method: str,
-              levels: np.ndarray) -> Validation:
-    """Two-fold validation: fits on the even surfaces predict the odd ones and vice versa."""
+              levels: np.ndarray, advice: str = MORE_SURFACES) -> Validation:
+    """Two-fold validation: fits on the even surfaces predict the odd ones and vice versa.
+
+    ``advice`` says what to do when the surfaces are too few, in options the study's mode
+    accepts."""
     import pandas as pd
     from scipy import stats
 
@@ -198,13 +202,11 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
     for f in (0, 1):
         train, test = folds[1 - f], folds[f]
         if not train or not test:
-            return Validation(error="needs at least two surfaces (one per fold): analyse more "
-                                    "surfaces (--surfaces; more files with --topographies)")
+            return Validation(error=f"needs at least two surfaces (one per fold): {advice}")
         x, labels, counts = pool([per[i] for i in train])
         if x.size < 5:
             return Validation(error=f"only {x.size} values in a fitting fold (at least 5 needed): "
-                                    f"analyse more or larger surfaces (--surfaces, --size; more "
-                                    f"files with --topographies)")
+                                    f"{advice}")
         p, m, order = param, method, None
         grouped = sample in GROUPED_SAMPLES
         if grouped:
