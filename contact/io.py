@@ -99,11 +99,16 @@ def _import_surfacetopography(fname: str):
     return SurfaceTopography
 
 
-def _read_surfacetopography(path: Path, fname: str, unit: str | None = None) -> Stored:
+Spacing = tuple[float | None, float | None]
+
+
+def _read_surfacetopography(path: Path, fname: str, unit: str | None = None,
+                            spacing: Spacing = (None, None)) -> Stored:
     """Heights and spacing, in metres, of a 2-D map that SurfaceTopography reads.
 
     ``unit`` (canonical) is the unit of a file that states none; a file that states its
-    unit keeps it, and a different ``unit`` is refused.
+    unit keeps it, and a different ``unit`` is refused. ``spacing`` (m) gives the size of a
+    file that stores none.
     """
     st = _import_surfacetopography(fname)
     try:
@@ -122,8 +127,16 @@ def _read_surfacetopography(path: Path, fname: str, unit: str | None = None) -> 
             raise conflicting_unit(fname, name, unit)
     elif unit is None:
         raise missing_unit(fname)
+    sizes = None
+    if channel.physical_sizes is None and channel.nb_grid_pts is not None:
+        dx, dy = spacing
+        if dx is None:
+            raise ValueError(f"{fname} stores no grid spacing; pass dx= (and dy=) in metres")
+        per_unit = _UNITS[unit_name(stated) or unit or "m"]
+        (nx, ny), dy = channel.nb_grid_pts, dx if dy is None else dy
+        sizes = (nx * dx / per_unit, ny * dy / per_unit)
     try:
-        topo = reader.topography(unit=unit if stated is None else None)
+        topo = reader.topography(unit=unit if stated is None else None, physical_sizes=sizes)
     except Exception as exc:  # the reader's own exception types vary by format
         raise TopographyFileError(f"{fname}: SurfaceTopography cannot read it: {exc}") from None
     finally:
@@ -145,7 +158,8 @@ def _short(exc: BaseException) -> str:
     return first if len(first) <= 160 else first[:157] + "..."
 
 
-def _read_text_or_other(path: Path, fname: str, unit: str | None) -> Stored:
+def _read_text_or_other(path: Path, fname: str, unit: str | None,
+                        spacing: Spacing = (None, None)) -> Stored:
     """A text file: the built-in reader, else (for a layout it does not know, in a file of
     at most :data:`TEXT_FALLBACK_MAX_BYTES`) SurfaceTopography's reading of a 2-D map."""
     try:
@@ -161,7 +175,7 @@ def _read_text_or_other(path: Path, fname: str, unit: str | None) -> Stored:
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                return _read_surfacetopography(path, fname, unit)
+                return _read_surfacetopography(path, fname, unit, spacing)
         except TopographyFileError as other:
             if "line profile (1-D)" in str(other):
                 raise other from None
@@ -171,28 +185,30 @@ def _read_text_or_other(path: Path, fname: str, unit: str | None) -> Stored:
             ) from None
 
 
-def _metres_only(reader: Callable[[Path, str], Stored]) -> Callable[[Path, str, str | None],
-                                                                    Stored]:
+Reader = Callable[[Path, str, str | None, Spacing], Stored]
+
+
+def _metres_only(reader: Callable[[Path, str], Stored]) -> Reader:
     """A reader of a format that states metres: a different ``unit`` is refused."""
-    def read_in_metres(path: Path, fname: str, unit: str | None) -> Stored:
+    def read_in_metres(path: Path, fname: str, unit: str | None, spacing: Spacing) -> Stored:
         if unit not in (None, "m"):
             raise conflicting_unit(fname, "m", unit)
         return reader(path, fname)
     return read_in_metres
 
 
-def _npy_in(path: Path, fname: str, unit: str | None) -> Stored:
+def _npy_in(path: Path, fname: str, unit: str | None, spacing: Spacing) -> Stored:
     h, dx, dy, mask = read_npy(path, fname)
     if unit not in (None, "m"):
         h = h * _UNITS[unit]
     return h, dx, dy, mask
 
 
-_READERS: dict[str, Callable[[Path, str, str | None], Stored]] = {
+_READERS: dict[str, Reader] = {
     "npy": _npy_in,
     "npz": _metres_only(read_npz),
     "text": _read_text_or_other,
-    "xyz": read_xyz,
+    "xyz": lambda path, fname, unit, spacing: read_xyz(path, fname, unit),
     "x3p": _metres_only(lambda path, fname: read_x3p(path)),
     "metropro": _metres_only(read_metropro),
     "surfacetopography": _read_surfacetopography,
@@ -257,6 +273,6 @@ def read(
     fmt = file_format(p, format)
     if fmt == "text" and format is None and is_metropro(p):
         fmt = "metropro"
-    h, found_dx, found_dy, mask = _READERS[fmt](p, fname, unit)
+    h, found_dx, found_dy, mask = _READERS[fmt](p, fname, unit, (dx, dy))
     return _surface(h, *_spacing(dx, dy, found_dx, found_dy, fname), mask, fname)
 

@@ -401,3 +401,17 @@ def test_surfacetopography_format_takes_unit(tmp_path):
     gwy.write_text(_gwyddion())
     with pytest.raises(ValueError, match=r"states its heights in m; unit='nm' contradicts"):
         contact.read(gwy, unit="nm", format="surfacetopography")
+
+
+def test_surfacetopography_file_without_size_takes_dx(tmp_path):
+    pytest.importorskip("SurfaceTopography", reason=ST_REASON)
+    h = np.arange(20.0).reshape(4, 5)
+    np.save(tmp_path / "h.npy", h)  # SurfaceTopography reads .npy without size or unit
+    with pytest.raises(ValueError, match=r"stores no grid spacing; pass dx="):
+        contact.read(tmp_path / "h.npy", format="surfacetopography", unit="µm")
+    s = contact.read(tmp_path / "h.npy", format="surfacetopography", unit="µm", dx=2e-6,
+                     dy=3e-6)
+    np.testing.assert_allclose(s.heights, h * 1e-6, rtol=1e-15)
+    assert (s.dx, s.dy) == pytest.approx((2e-6, 3e-6), rel=1e-14)
+    np.testing.assert_allclose(s.heights, contact.read(tmp_path / "h.npy", dx=2e-6,
+                                                       unit="µm").heights, rtol=1e-15)
