@@ -199,8 +199,9 @@ def _study_parser() -> argparse.ArgumentParser:
     src.add_argument("--topographies", nargs="+", metavar="PATH",
                      help="measured topographies instead of simulated surfaces: files, folders or "
                           "glob patterns (X3P, npy/npz, text, XYZ, and SurfaceTopography's formats "
-                          "when installed), each file one surface; they must share one grid and "
-                          "spacing (square or rectangular, dx and dy from the file). --grid, --size, "
+                          "when installed), each file one surface (or NX × NY areas with --tile); they must "
+                          "share one grid and spacing (square or rectangular, dx and dy from the "
+                          "file, or --spacing). --grid, --size, "
                           "--rq, --hurst and the Weierstrass options do not apply")
     src.add_argument("--like", metavar="FILE",
                      help="simulate --surfaces Weierstrass surfaces statistically like this "

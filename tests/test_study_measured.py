@@ -250,6 +250,11 @@ def test_one_scan_without_tiles_says_to_cut_it_and_never_names_refused_options(m
     assert any("one surface: the interval resamples whole surfaces" in n for n in notes)
     text = res.report_md.read_text()
     assert "--surfaces" not in text and "--rq" not in text and "--target-pressure" not in text
+    two = run_study(measured_settings(measured_dir / "scan_01.npz", tiles=(2, 1)), FAST,
+                    tmp_path / "two", workers=1, progress=False, compare_bem=0)
+    spot = two.analysis[(0, 0)]["spot"]
+    assert spot.ok and "needs at least four surfaces" in spot.validation.error
+    assert "a larger --tile" in spot.validation.error
 
 
 def test_cli_reads_files_without_spacing_with_spacing_and_unit(tmp_path, capsys):

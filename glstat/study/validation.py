@@ -203,6 +203,10 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
         train, test = folds[1 - f], folds[f]
         if not train or not test:
             return Validation(error=f"needs at least two surfaces (one per fold): {advice}")
+        if sample in GROUPED_SAMPLES and len(train) < 2:
+            return Validation(error=f"needs at least four surfaces: each half predicts the other, "
+                                    f"and an interval resamples whole surfaces, at least two per "
+                                    f"half; {advice}")
         x, labels, counts = pool([per[i] for i in train])
         if x.size < 5:
             return Validation(error=f"only {x.size} values in a fitting fold (at least 5 needed): "
