@@ -92,15 +92,15 @@ def from_topography(
                 f"UniformLineScan), got {type(topography).__name__}; wrap a height array "
                 "with contact.Surface(heights, dx) instead"
             )
-    if topography.dim != 2:
-        raise ValueError(
-            f"from_topography needs a 2-D topography map; this one is {topography.dim}-D "
-            "(a line scan), which has no areal heights"
-        )
     if not topography.is_uniform:
         raise ValueError(
             "from_topography needs a topography on a uniform grid; this one is nonuniform "
             "(interpolate it onto a uniform grid first)"
+        )
+    if topography.dim != 2:
+        raise ValueError(
+            f"from_topography needs a 2-D topography map; this one is {topography.dim}-D "
+            "(a line scan), which has no areal heights"
         )
     own = topography.unit
     if own is None and unit is None:
