@@ -60,6 +60,21 @@ def _compare(surface: contact.Surface, topo) -> str:
     return "agree"
 
 
+def _ours(path: Path, unit: str | None):
+    """``contact.read``'s surface, or its refusal; with ``unit`` for a file without one."""
+    try:
+        return contact.read(path)
+    except ValueError as exc:
+        if unit is None or "states no length unit" not in str(exc):
+            return exc
+    except Exception as exc:  # report every refusal, whatever its type
+        return exc
+    try:
+        return contact.read(path, unit=unit)
+    except Exception as exc:  # report every refusal, whatever its type
+        return exc
+
+
 def survey(folder: Path, unit: str | None = None) -> Counter:
     """Print one line per file and return the count of each outcome."""
     outcomes: Counter = Counter()
@@ -69,15 +84,7 @@ def survey(folder: Path, unit: str | None = None) -> Counter:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             topo, st_says = _st(path, unit)
-            try:
-                surface = contact.read(path)
-            except ValueError as exc:
-                if unit is not None and "states no length unit" in str(exc):
-                    surface = contact.read(path, unit=unit)
-                else:
-                    surface = exc
-            except Exception as exc:  # report every refusal, whatever its type
-                surface = exc
+            surface = _ours(path, unit)
         kind = "2-D map for SurfaceTopography" if topo is not None else \
             "no 2-D map for SurfaceTopography"
         if isinstance(surface, Exception):
