@@ -236,7 +236,7 @@ def test_one_scan_is_studied_as_many_areas(measured_dir, tmp_path):
     assert "| scan_00.npz, area (4, 2) of 4 × 2 |" in text
     assert "cannot tell how it varies between parts" in text and "takes about 25 surfaces" in text
     with pytest.raises(ValueError, match=r"16 × 8 points \(its 128 × 128 points cut into 8 × 16 "
-                                         r"areas\) is too small .* at most 8 × 8 with --tile"):
+                                         r"areas\) is too small .*at most 8 × 8 with --tile"):
         measured_settings(scan, tiles=(8, 16))
     with pytest.raises(ValueError, match="tiles cut measured files"):
         CampaignSettings(tiles=(2, 2))
