@@ -342,7 +342,8 @@ def roughness_parameters(
     first differences by ``(2π dx/λ)^2 / 24`` and central differences by
     ``(2π dx/λ)^2 / 6``. On a rough surface with power up to the Nyquist wavevector the
     three differ by several per cent (``contact._iso25178.STENCILS``). Sdr is the mean of
-    ``sqrt(1 + z_x² + z_y²) - 1`` over the same points.
+    ``sqrt(1 + z_x² + z_y²) - 1`` over the same points. Both are NaN when no point has its
+    whole stencil measured (fewer than 7 points on a side for the default stencil).
 
     ``Spd`` and ``Spc`` use the 8-neighbour summits of :func:`contact.summits` without the
     Wolf pruning of ISO 25178-2 segmentation, so they depend on the sampling
