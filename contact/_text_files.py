@@ -305,6 +305,11 @@ def read_text(path: os.PathLike, fname: str, unit: str | None = None) -> Stored:
         scale = UNITS[unit]
         dx, dy = sx * scale, sy * scale
     else:
+        if h.shape[1] < 3:
+            raise NotOwnText(
+                f"{fname}: holds {h.shape[1]} column(s): a line profile or x-y list, not a "
+                "height grid (which needs at least 3 x 3 values)"
+            )
         if shape is not None and h.shape != shape:
             raise TopographyFileError(
                 f"{fname}: holds {h.shape[0]} rows of {h.shape[1]} values, but its header "

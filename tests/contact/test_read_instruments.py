@@ -374,6 +374,21 @@ def test_line_profile_in_csv_is_refused_as_a_profile(tmp_path):
         contact.read(path)
 
 
+@pytest.mark.parametrize("columns", [1, 2])
+def test_one_or_two_columns_are_a_profile_not_a_grid(tmp_path, columns):
+    path = tmp_path / "xy.txt"
+    np.savetxt(path, np.column_stack([np.arange(30.0), np.cos(np.arange(30.0))])[:, -columns:])
+    try:
+        import SurfaceTopography  # noqa: F401
+    except ImportError:
+        with pytest.raises(TopographyFileError, match=rf"holds {columns} column\(s\): a line "
+                           "profile or x-y list"):
+            contact.read(path, dx=1e-6)
+        return
+    with pytest.raises(TopographyFileError, match=r"holds a line profile \(1-D\)"):
+        contact.read(path, dx=1e-6)
+
+
 def test_unknown_text_is_refused_with_the_own_message(tmp_path, monkeypatch):
     path = tmp_path / "nonsense.txt"
     path.write_text("This is no topography.\nNeither is this.\n")
@@ -415,3 +430,23 @@ def test_surfacetopography_file_without_size_takes_dx(tmp_path):
     assert (s.dx, s.dy) == pytest.approx((2e-6, 3e-6), rel=1e-14)
     np.testing.assert_allclose(s.heights, contact.read(tmp_path / "h.npy", dx=2e-6,
                                                        unit="µm").heights, rtol=1e-15)
+
+
+def test_without_surfacetopography_text_refusals_are_the_own_ones(tmp_path, monkeypatch):
+    """The fallback is optional: without SurfaceTopography the text reader's errors stand."""
+    def missing(fname):
+        raise ImportError("SurfaceTopography is not installed")
+
+    monkeypatch.setattr(contact_io, "_import_surfacetopography", missing)
+    xy = tmp_path / "xy.txt"
+    np.savetxt(xy, np.column_stack([np.arange(30.0), np.cos(np.arange(30.0))]))
+    with pytest.raises(TopographyFileError, match=r"holds 2 column\(s\): a line profile"):
+        contact.read(xy, dx=1e-6)
+    two = tmp_path / "two.txt"
+    two.write_text(_gwyddion() + _gwyddion(channel="Amplitude"))
+    with pytest.raises(TopographyFileError, match=r"second header after data rows"):
+        contact.read(two)
+    # the own formats need no SurfaceTopography
+    gwy = tmp_path / "gwy.txt"
+    gwy.write_text(_gwyddion())
+    np.testing.assert_array_equal(contact.read(gwy).heights, ROWS.T)
