@@ -41,7 +41,7 @@ def is_metropro(path: str | os.PathLike) -> bool:
         return False
 
 
-def _fields(header: bytes) -> dict[str, float]:
+def _fields(header: bytes) -> dict[str, int | float]:
     """The header fields that locate and scale the phase data."""
     names_offsets = {
         "header_format": (">H", 4), "header_size": (">i", 6),
@@ -93,12 +93,13 @@ def read_metropro(path: str | os.PathLike, fname: str
         raise TopographyFileError(f"{fname}: not a MetroPro file (no MetroPro header)")
     f = _fields(header)
     fmt = MAGIC[header[:4]]
+    phase_res = int(f["phase_res"])
     if f["header_size"] != _HEADER_SIZE[fmt]:
         raise TopographyFileError(
             f"{fname}: MetroPro header format {fmt} declares a header of {f['header_size']} "
             f"bytes; the format defines {_HEADER_SIZE[fmt]}"
         )
-    if f["phase_res"] not in _PHASE_RES:
+    if phase_res not in _PHASE_RES:
         raise TopographyFileError(
             f"{fname}: unknown MetroPro phase resolution {f['phase_res']} (expected 0, 1 or 2)"
         )
@@ -117,14 +118,14 @@ def read_metropro(path: str | os.PathLike, fname: str
             f"{f['ac_buckets']} x {f['ac_width']} x {f['ac_height']} counts, which need "
             f"{ac_bytes} (corrupt header)"
         )
-    start = f["header_size"] + ac_bytes
+    start = int(f["header_size"]) + ac_bytes
     if size < start + 4 * nx * ny:
         raise TopographyFileError(
             f"{fname}: holds {size} bytes, but its header declares {start + 4 * nx * ny} "
             "(truncated file)"
         )
     scale = (f["intf_scale_factor"] * f["obliquity_factor"] * f["wavelength_in"]
-             / _PHASE_RES[f["phase_res"]])
+             / _PHASE_RES[phase_res])
     if not (math.isfinite(scale) and f["wavelength_in"] > 0):
         raise TopographyFileError(
             f"{fname}: wavelength {f['wavelength_in']!r} m, scale factor "
