@@ -294,3 +294,11 @@ def test_like_puts_a_scan_with_unequal_spacings_on_the_coarser_one(tmp_path):
     # the spectrum of the resampled template is the scan's at the wavelengths both grids hold
     rq = float(np.sqrt(np.mean(template.heights ** 2)))
     assert rq == pytest.approx(float(np.std(scan.detrend("plane").heights)), rel=0.05)
+
+
+def test_a_file_without_summits_is_refused_before_the_campaign_by_name(measured_dir, tmp_path):
+    flat = tmp_path / "terraced.npz"
+    steps = np.repeat(np.arange(8, dtype=float), 16)[:, None] * np.ones((1, 128)) * 1e-7
+    contact.write(contact.Surface(steps, 0.25e-3 / 128), flat)
+    with pytest.raises(ValueError, match=r"terraced\.npz: no summit .* leave the file out"):
+        measured_settings([measured_dir / "scan_00.npz", flat], form="none")

@@ -107,9 +107,9 @@ def _grid_text(surface: Any) -> str:
 def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane", *,
                   tiles: tuple[int, int] | None = None,
                   spacing: tuple[float, float] | None = None,
-                  unit: str | None = None) -> list[Any]:
+                  unit: str | None = None, need_summits: bool = False) -> list[Any]:
     """Read every file, cut it into areas when asked, remove the form of each, and check that
-    all share one grid and spacing.
+    all share one grid and spacing (and, with ``need_summits``, that each has a summit).
 
     The grid may be rectangular (``nx != ny``) and the spacing may differ between the axes
     (``dx != dy``); the surfaces must agree on both, point count and spacing along x and
@@ -129,6 +129,10 @@ def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane", *,
         Grid spacing ``(dx, dy)`` in metres of files that store none.
     unit : str, optional
         Length unit of files that state none.
+    need_summits : bool, default False
+        Refuse a surface without a summit (a point strictly higher than its 8 neighbours away
+        from the border), which the contact models cannot load: checked here, before a
+        campaign starts, so that it never stops one midway.
 
     Returns
     -------
@@ -139,9 +143,12 @@ def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane", *,
     Raises
     ------
     ValueError
-        Surfaces of different grid or spacing, fewer than 16 points along an axis, or no
-        measured point (the message names the file and the area).
+        Surfaces of different grid or spacing, fewer than 16 points along an axis, no
+        measured point, or (with ``need_summits``) no summit; the message names the file and
+        the area.
     """
+    import contact
+
     surfaces: list[Any] = []
     names: list[str] = []
     for path in paths:
@@ -172,6 +179,12 @@ def read_measured(paths: Sequence[str | os.PathLike], form: str = "plane", *,
                         f"the files to one grid")
             if s.mask is not None and np.all(s.mask):
                 raise ValueError(f"{label}: every point is missing (masked)")
+            if need_summits and not len(contact.summits(s).heights):
+                raise ValueError(
+                    f"{label}: no summit (no point strictly higher than its 8 neighbours away from "
+                    f"the border) once its form ({form}) is removed — a flat, terraced or too "
+                    f"narrow scan, which no asperity of the contact models can load; leave the "
+                    f"file out, or remove another form (--form)")
             surfaces.append(s)
             names.append(label)
     return surfaces
@@ -218,7 +231,8 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
         — a label of the group, not a simulation input.
     """
     paths = find_topographies(specs)
-    surfaces = read_measured(paths, form, tiles=tiles, spacing=spacing, unit=unit)
+    surfaces = read_measured(paths, form, tiles=tiles, spacing=spacing, unit=unit,
+                             need_summits=True)
     estimates = [h for h in (_hurst_estimate(s) for s in surfaces) if math.isfinite(h)]
     hurst = float(np.clip(np.median(estimates), 0.0, 1.0)) if estimates else 0.5
     return CampaignSettings(
@@ -368,12 +382,17 @@ def like_comparison(settings: CampaignSettings, results: dict) -> dict[str, Any]
                                                                        settings.n_surfaces))]
         iso = contact.compare_surfaces(measured, sims)
     rows = []
+    # a template without a summit (flat or terraced) has no asperity contact of its own
+    loadable = bool(len(contact.summits(measured).heights))
     for il, load in enumerate(settings.pressures):
-        res = contact.solve(measured, load, settings.E, settings.nu, settings.cone_factor,
-                            warn=False)
-        mine = {"mean contact pressure": res.mean_pressure, "max pressure": res.max_pressure,
-                "asperities in contact": float(len(res.asperities)),
-                "contact fraction": float(np.mean(res.pressure > 0))}
+        mine = dict.fromkeys(("mean contact pressure", "max pressure", "asperities in contact",
+                              "contact fraction"), math.nan)
+        if loadable:
+            res = contact.solve(measured, load, settings.E, settings.nu, settings.cone_factor,
+                                warn=False)
+            mine = {"mean contact pressure": res.mean_pressure, "max pressure": res.max_pressure,
+                    "asperities in contact": float(len(res.asperities)),
+                    "contact fraction": float(np.mean(res.pressure > 0))}
         keys = [k for k in results if k[0] == 0 and k[1] == il]
         sim = {"mean contact pressure": [results[k]["mean_pressure"] for k in keys],
                "max pressure": [results[k]["max_pressure"] for k in keys],

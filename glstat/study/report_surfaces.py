@@ -237,7 +237,12 @@ def like_section(settings, like: dict) -> Blocks:
               "(pressures in MPa). A template value outside the simulated range means the "
               "simulated surfaces do not reproduce its contact.")
     outside = [r["quantity"] for _, r in like["pressure"].iterrows()
-               if not (r["simulated_q05"] <= r["measured"] <= r["simulated_q95"])]
+               if r["measured"] == r["measured"]
+               and not (r["simulated_q05"] <= r["measured"] <= r["simulated_q95"])]
+    if like["pressure"]["measured"].isna().all():
+        rep.paragraph("The template has no summit (no point strictly higher than its 8 "
+                      "neighbours away from the border) once its form is removed, so the asperity "
+                      "model cannot load it: its column is empty.")
     if outside:
         rep.paragraph("⚠ Outside the simulated 5–95 % range: " + ", ".join(sorted(set(outside)))
                       + ". The damage probability above describes the simulated surfaces; compare "
