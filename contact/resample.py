@@ -97,7 +97,7 @@ def resample(surface: Surface, dx: float, dy: float | None = None) -> Surface:
     if surface.mask is not None and np.any(surface.mask):
         raise ValueError(
             f"the surface has {int(np.count_nonzero(surface.mask))} missing points; fill them "
-            "before resampling (contact.fill_missing) or crop them away")
+            "before resampling (Surface.filled()) or crop them away")
     z = np.asarray(surface.heights, dtype=float)
     for axis, (d_old, d_new) in enumerate(((surface.dx, dx), (surface.dy, dy))):
         if math.isclose(d_old, d_new, rel_tol=1e-12):

@@ -234,7 +234,9 @@ def write_figures(res: FitResults, out: Path) -> None:
         fig = new_figure()
         ax = fig.add_subplot()
         func(x, res.fit, ax=ax)
-        ax.set_title(f"{res.sample.path.name}, column {res.sample.column!r}", fontsize=9)
+        # names from the user's files are shown literally (a "$" is no TeX)
+        ax.set_title(f"{res.sample.path.name}, column {res.sample.column!r}", fontsize=9,
+                     parse_math=False)
         save_figure(fig, out, name, res)
     if res.boot is not None:
         fig = new_figure((8.0, 6.0))

@@ -670,3 +670,13 @@ def test_pareto_tail_on_data_whose_gld_fit_misses_the_tail(tmp_path, capsys):
                                    "--no-cross-validate", "--pareto-tail", "--out", tmp_path / "p"])
     assert code == 0, err
     assert "generalized Pareto tail: skipped: it takes a fixed number of points" in out
+
+
+def test_names_with_dollars_are_shown_literally_in_the_figures(tmp_path, capsys):
+    # two "$" in a file or column name would be parsed as TeX by matplotlib's titles
+    csv = tmp_path / "price_$US_$2026.csv"
+    csv.write_text("cost_$_per_$_unit\n" + "\n".join(f"{v:.6g}" for v in _pressures(120, seed=2)))
+    out_dir = tmp_path / "o"
+    code, out, err = _run(capsys, [csv, "--bootstrap", 0, "--gof-resamples", 0, "--out", out_dir])
+    assert code == 0, err
+    assert (out_dir / "histogram.png").stat().st_size > 0 and (out_dir / "qq.png").is_file()

@@ -302,3 +302,25 @@ def test_a_file_without_summits_is_refused_before_the_campaign_by_name(measured_
     contact.write(contact.Surface(steps, 0.25e-3 / 128), flat)
     with pytest.raises(ValueError, match=r"terraced\.npz: no summit .* leave the file out"):
         measured_settings([measured_dir / "scan_00.npz", flat], form="none")
+
+
+def test_like_runs_on_a_scan_with_missing_points(tmp_path):
+    s = contact.self_affine((128, 128), 0.128e-3, hurst=0.7, rq=0.5e-6, rng=8)
+    mask = np.zeros(s.shape, dtype=bool)
+    mask.flat[np.random.default_rng(1).choice(mask.size, 116, replace=False)] = True
+    contact.write(contact.Surface(s.heights, s.dx, mask=mask), tmp_path / "holes.npz")
+    settings, params = like_settings(tmp_path / "holes.npz", 4)
+    full, _ = like_settings(_write_copy(s, tmp_path / "full.npz"), 4)
+    assert params.fit.filled_fraction == pytest.approx(116 / 128**2)
+    assert params.hurst == pytest.approx(full.hurst[0], abs=0.01)
+    assert settings.rq == pytest.approx(full.rq, rel=0.01)
+    # unequal spacings and missing points together: filled, then resampled
+    aniso = contact.Surface(s.heights[:, ::2], s.dx, 2 * s.dy, mask=mask[:, ::2])
+    contact.write(aniso, tmp_path / "aniso_holes.npz")
+    settings, _ = like_settings(tmp_path / "aniso_holes.npz", 4)
+    assert settings.spacing == pytest.approx((2e-6, 2e-6))
+
+
+def _write_copy(surface, path):
+    contact.write(surface, path)
+    return path

@@ -283,7 +283,7 @@ def like_template(path: str | os.PathLike, form: str = "plane", *,
     if math.isclose(surface.dx, surface.dy, rel_tol=SPACING_RTOL):
         return surface, ""
     if surface.mask is not None and np.any(surface.mask):
-        surface = contact.fill_missing(surface)
+        surface = surface.filled(max_fraction=0.05)
     coarse = max(surface.dx, surface.dy)
     resampled = remove_form(contact.resample(surface, coarse), form)
     note = (f"{os.path.basename(os.fspath(path))} has {_grid_text(surface)}; it was resampled to "

@@ -276,20 +276,27 @@ def test_non_surface_input(bad):
             call(bad)
 
 
-def test_masked_surface_is_refused_with_the_fix():
+def test_masked_surface_is_filled_up_to_the_limit_and_refused_beyond():
     s = contact.self_affine((64, 64), L, 0.5, rq=1e-6, rng=0)
     mask = np.zeros(s.shape, bool)
     mask[10, 10] = True
     masked = contact.Surface(s.heights, s.dx, mask=mask)
+    # one missing point of 4096 is filled by harmonic interpolation
+    assert contact.fit_spectrum(masked).filled_fraction == 1 / 4096
+    assert len(contact.self_affine_like(masked, 1)) == 1
+    assert len(contact.psd_comparison(masked, [s])) > 0
+    # more than 5 % is refused with the fraction and the fix
+    mask[:, :4] = True
+    holed = contact.Surface(s.heights, s.dx, mask=mask)
     for call in (contact.fit_spectrum, lambda x: contact.self_affine_like(x, 1),
                  lambda x: contact.psd_comparison(x, [s])):
-        with pytest.raises(ValueError, match=r"1 of 4096 points are missing.*crop.*fill"):
-            call(masked)
+        with pytest.raises(ValueError, match=r"257 of 4096 points .*missing.*crop.*fill"):
+            call(holed)
     # an all-False mask is a fully measured surface
     ok = contact.Surface(s.heights, s.dx, mask=np.zeros(s.shape, bool))
     assert contact.fit_spectrum(ok).hurst == contact.fit_spectrum(s).hurst
-    # the table still compares a masked measurement (its psd_hurst is NaN)
-    table = contact.compare_surfaces(masked, [s])
+    # the table compares a measurement with too many missing points (its psd_hurst is NaN)
+    table = contact.compare_surfaces(holed, [s])
     assert np.isnan(table.loc["psd_hurst", "measured"])
 
 
