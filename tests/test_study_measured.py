@@ -324,3 +324,16 @@ def test_like_runs_on_a_scan_with_missing_points(tmp_path):
 def _write_copy(surface, path):
     contact.write(surface, path)
     return path
+
+
+def test_report_markdown_quotes_names_from_files_literally():
+    from glstat.study.report_document import Report
+
+    rep = Report("study")
+    name = "scan\n# injected <script>alert(1)</script> a|b.x3p"
+    rep.paragraph(f"The file {name} was read.")
+    rep.table(["file"], [[name]])
+    md, _ = rep.to_markdown("figs")
+    assert "\n# injected" not in md and "<script>" not in md
+    assert "&lt;script&gt;" in md and "a\\|b.x3p |" in md
+    assert "<script>" not in rep.to_html()

@@ -93,27 +93,38 @@ class Report(Blocks):
         t = re.sub(r"\*\*([^*]+)\*\*", r"<b>\1</b>", t)
         return t
 
+    @staticmethod
+    def _inline_markdown(text: str) -> str:
+        """``text`` on one line, with HTML markup shown as text: what the report quotes from
+        the user's files (names, columns) can neither start a block nor inject HTML."""
+        return html.escape(re.sub(r"[\r\n]+", " ", text), quote=False)
+
+    @classmethod
+    def _cell_markdown(cls, text: str) -> str:
+        return cls._inline_markdown(text).replace("|", "\\|")
+
     def to_markdown(self, figdir: str) -> tuple[str, dict[str, bytes]]:
         """Markdown text and the PNG files it references (``figdir/<name>.png``)."""
-        lines = [f"# {self.title}", ""]
+        md, cell = self._inline_markdown, self._cell_markdown
+        lines = [f"# {md(self.title)}", ""]
         files = {}
         for b in self.blocks:
             if b[0] == "h":
-                lines += ["#" * b[1] + " " + b[2], ""]
+                lines += ["#" * b[1] + " " + md(b[2]), ""]
             elif b[0] == "p":
-                lines += [b[1], ""]
+                lines += [md(b[1]), ""]
             elif b[0] == "t":
                 _, cols, rows, cap = b
                 if cap:
-                    lines += [f"*{cap}*", ""]
-                lines.append("| " + " | ".join(cols) + " |")
+                    lines += [f"*{md(cap)}*", ""]
+                lines.append("| " + " | ".join(map(cell, cols)) + " |")
                 lines.append("|" + "---|" * len(cols))
-                lines += ["| " + " | ".join(r) + " |" for r in rows]
+                lines += ["| " + " | ".join(map(cell, r)) + " |" for r in rows]
                 lines.append("")
             else:
                 _, name, png, cap = b
                 files[f"{name}.png"] = png
-                lines += [f"![{cap}]({figdir}/{name}.png)", "", f"*{cap}*", ""]
+                lines += [f"![{md(cap)}]({figdir}/{name}.png)", "", f"*{md(cap)}*", ""]
         return "\n".join(lines), files
 
     def to_html(self) -> str:
