@@ -554,7 +554,22 @@ SIMULATION_OPTIONS = ("--grid", "--size", "--rq", "--hurst", "--n-terms", "--max
 
 def _measured_scene(args, argv: list[str], settings, surfaces: int):
     """The campaign settings of ``--topographies`` or ``--like`` (the scene's material and loads
-    from ``settings``) and the number of surfaces per group."""
+    from ``settings``) and the number of surfaces per group; a file without spacing or unit is
+    refused with the command line's option to give it."""
+    try:
+        return _measured_settings(args, argv, settings, surfaces)
+    except ValueError as exc:
+        text = str(exc)
+        if "stores no grid spacing" in text:
+            raise ValueError(text.split("; pass dx=")[0] + "; give its grid spacing with --spacing "
+                             "DX [DY] (µm)") from None
+        if "states no length unit" in text:
+            raise ValueError(text.split("; pass unit=")[0] + "; give its length unit with --unit "
+                             "(e.g. --unit um)") from None
+        raise
+
+
+def _measured_settings(args, argv: list[str], settings, surfaces: int):
     import dataclasses
 
     from .study.measured import like_settings, measured_settings

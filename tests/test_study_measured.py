@@ -264,10 +264,16 @@ def test_cli_reads_files_without_spacing_with_spacing_and_unit(tmp_path, capsys)
     np.save(tmp_path / "scan.npy", s.heights * 1e6)  # heights in µm, no spacing stored
     assert main(["study", "--topographies", str(tmp_path / "scan.npy"), "--out",
                  str(tmp_path / "a")]) == 2
-    assert "pass dx=" in capsys.readouterr().err
-    from glstat.study.measured import measured_settings as settings_of
-
-    scene = settings_of(tmp_path / "scan.npy", tiles=(2, 1), spacing=(s.dx, 2 * s.dy))
+    err = capsys.readouterr().err
+    assert "stores no grid spacing; give its grid spacing with --spacing DX [DY] (µm)" in err
+    xyz = tmp_path / "points.txt"  # x y z columns of a regular grid, no unit stated
+    xi, yi = np.meshgrid(np.arange(32), np.arange(32), indexing="ij")
+    np.savetxt(xyz, np.column_stack([xi.ravel(), yi.ravel(), s.heights[:32, :32].ravel() * 1e6]))
+    assert main(["study", "--topographies", str(xyz), "--out", str(tmp_path / "c")]) == 2
+    assert "states no length unit; give its length unit with --unit" in capsys.readouterr().err
+    with_unit = measured_settings(xyz, unit="µm")
+    assert with_unit.spacing == pytest.approx((1e-6, 1e-6)) and with_unit.file_unit == "µm"
+    scene = measured_settings(tmp_path / "scan.npy", tiles=(2, 1), spacing=(s.dx, 2 * s.dy))
     assert scene.spacing == pytest.approx((s.dx, 2 * s.dy)) and scene.shape == (32, 48)
     assert scene.identity()["file_spacing"] == pytest.approx([s.dx, 2 * s.dy])
     for argv, message in ((["--tile", "2"], "options of measured files"),
