@@ -212,6 +212,11 @@ def like_section(settings, like: dict) -> Blocks:
           f"and spacing ({grid_text(settings)} on {area_text(settings)}).")
     if like.get("resampled"):
         rep.paragraph(f"Spacing: {like['resampled']}. The simulated surfaces have that one spacing.")
+    filled = getattr(fit, "filled_fraction", 0.0)
+    if filled > 0:
+        rep.paragraph(f"Missing points: {100 * filled:.2g} % of the template's points were not "
+                      f"measured; they were filled by harmonic interpolation (each the mean of its "
+                      f"neighbours) for the spectrum fit only.")
     iso = like["iso"]
     n_sim = len(like["simulated"])
     rows = [[name, fmt_number(r["measured"], ".4g", 1e6 if r["unit"] == "m" else 1.0),
