@@ -67,87 +67,125 @@ _POWELL = 0.2
 
 
 @nb.njit(cache=True, nogil=True)
-def _gap(u, h, p, valid, g, shift):  # pragma: no cover - compiled
-    """g = u - h + shift everywhere; return (sum of g on the contact set, its size)."""
+def _gap(u, h, p, valid, g, shift, pmax):  # pragma: no cover - compiled
+    """g = u - h + shift everywhere.
+
+    Returns (sum of g on the free contact set ``0 < p < pmax``, its size, sum of g on the
+    saturated points ``p >= pmax``, their number).
+    """
     s = 0.0
     c = 0
+    s_sat = 0.0
+    c_sat = 0
     for i in range(g.size):
         gi = u[i] - h[i] + shift
         g[i] = gi
-        if p[i] > 0.0:
-            s += gi
-            c += 1
-    return s, c
+        pi = p[i]
+        if pi > 0.0:
+            if pi < pmax:
+                s += gi
+                c += 1
+            else:
+                s_sat += gi
+                c_sat += 1
+    return s, c, s_sat, c_sat
 
 
 @nb.njit(cache=True, nogil=True)
-def _shift_and_norm(g, shift, p):  # pragma: no cover - compiled
-    """g -= shift everywhere; return the sum of g² on the contact set."""
+def _shift_and_norm(g, shift, p, pmax):  # pragma: no cover - compiled
+    """g -= shift everywhere; return the sum of g² on the free contact set."""
     s = 0.0
     for i in range(g.size):
         gi = g[i] - shift
         g[i] = gi
-        if p[i] > 0.0:
+        if p[i] > 0.0 and p[i] < pmax:
             s += gi * gi
     return s
 
 
 @nb.njit(cache=True, nogil=True)
-def _direction(t, g, p, beta):  # pragma: no cover - compiled
-    """Conjugate direction: t = g + beta t on the contact set, 0 elsewhere."""
+def _direction(t, g, p, beta, pmax):  # pragma: no cover - compiled
+    """Conjugate direction: t = g + beta t on the free contact set, 0 elsewhere."""
     for i in range(t.size):
-        if p[i] > 0.0:
+        if p[i] > 0.0 and p[i] < pmax:
             t[i] = g[i] + beta * t[i]
         else:
             t[i] = 0.0
 
 
 @nb.njit(cache=True, nogil=True)
-def _contact_sum(r, p):  # pragma: no cover - compiled
+def _contact_sum(r, p, pmax):  # pragma: no cover - compiled
     s = 0.0
     c = 0
     for i in range(r.size):
-        if p[i] > 0.0:
+        if p[i] > 0.0 and p[i] < pmax:
             s += r[i]
             c += 1
     return s, c
 
 
 @nb.njit(cache=True, nogil=True)
-def _step_terms(g, t, r, rshift, p):  # pragma: no cover - compiled
-    """Return sum(g t) and sum((r - rshift) t) over the contact set."""
+def _step_terms(g, t, r, rshift, p, pmax):  # pragma: no cover - compiled
+    """Return sum(g t) and sum((r - rshift) t) over the free contact set."""
     num = 0.0
     den = 0.0
     for i in range(g.size):
-        if p[i] > 0.0:
+        if p[i] > 0.0 and p[i] < pmax:
             num += g[i] * t[i]
             den += (r[i] - rshift) * t[i]
     return num, den
 
 
 @nb.njit(cache=True, nogil=True)
-def _update(p, t, g, tau, tau_enter, valid, p_new):  # pragma: no cover - compiled
-    """Projected step; points out of contact that interpenetrate enter the contact set.
+def _update(p, t, g, tau, tau_enter, valid, p_new, pmax):  # pragma: no cover - compiled
+    """Projected step; points that violate their complementarity condition join the free set.
 
-    On the contact set ``p - tau t`` clipped at 0; an interpenetrating point out of
-    contact (``g < 0``) gets ``-tau_enter g``. Returns (sum of the new pressure, number
-    of points that entered).
+    On the free contact set ``0 < p < pmax``: ``p - tau t`` projected onto ``[0, pmax]``.
+    A point out of contact that interpenetrates (``g < 0``) enters with ``-tau_enter g``
+    (at most ``pmax``); a saturated point (``p = pmax``) with an open gap (``g > 0``) is
+    released to ``pmax - tau_enter g`` (at least 0). ``pmax`` is ``inf`` for elastic
+    contact, where the saturated branches never run.
+
+    Returns (sum of the new pressure, points that entered or were released, points
+    projected onto a bound, sum of the new pressure below ``pmax``, points at ``pmax``).
     """
     total = 0.0
+    free_total = 0.0
     entered = 0
+    clipped = 0
+    n_sat = 0
     for i in range(p.size):
-        if p[i] > 0.0:
-            v = p[i] - tau * t[i]
-            if v < 0.0:
+        pi = p[i]
+        if pi > 0.0 and pi < pmax:
+            v = pi - tau * t[i]
+            if v <= 0.0:
                 v = 0.0
+                clipped += 1
+            elif v >= pmax:
+                v = pmax
+                clipped += 1
+        elif pi >= pmax:
+            if g[i] > 0.0:
+                v = pmax - tau_enter * g[i]
+                if v < 0.0:
+                    v = 0.0
+                entered += 1
+            else:
+                v = pmax
         elif valid[i] and g[i] < 0.0:
             v = -tau_enter * g[i]
+            if v > pmax:
+                v = pmax
             entered += 1
         else:
             v = 0.0
         p_new[i] = v
         total += v
-    return total, entered
+        if v >= pmax:
+            n_sat += 1
+        else:
+            free_total += v
+    return total, entered, clipped, free_total, n_sat
 
 
 @nb.njit(cache=True, nogil=True)
@@ -162,11 +200,65 @@ def _rescale_and_change(p_new, p, scale):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True)
-def _precondition(stencil, g, gbar, p, t, nx, ny, periodic, z):  # pragma: no cover - compiled
-    """z = S (g - gbar) on the contact set, both ends restricted to it; 0 elsewhere.
+def _capped_load(p, pmax, scale, scale_saturated):  # pragma: no cover - compiled
+    """Load ``sum min(scale p, pmax)`` and its derivative in ``scale``.
+
+    With ``scale_saturated`` False the points at ``pmax`` keep it and only the free
+    contact points are scaled. Returns (load, derivative).
+    """
+    f = 0.0
+    df = 0.0
+    for i in range(p.size):
+        v = p[i]
+        if v > 0.0:
+            if v >= pmax and not scale_saturated:
+                f += pmax
+                continue
+            sv = scale * v
+            if sv >= pmax:
+                f += pmax
+            else:
+                f += sv
+                df += v
+    return f, df
+
+
+@nb.njit(cache=True, nogil=True)
+def _rescale_capped(p_new, p, scale, pmax, scale_saturated, u, r, w, tau, w_coef, carry
+                    ):  # pragma: no cover - compiled
+    """p_new = min(scale p_new, pmax) on the points being scaled; return (sum |p_new - p|,
+    points newly capped).
+
+    The points being scaled are the free contact points, and also the saturated ones when
+    ``scale_saturated``. If ``carry``, the displacement is carried along:
+    ``u = scale (u - tau r) + w_coef w`` (``w`` the displacement of a unit pressure on the
+    saturated points, ``w_coef = (1 - scale) pmax``); it is exact only if no point is
+    newly capped, which the caller checks.
+    """
+    s = 0.0
+    capped = 0
+    for i in range(p.size):
+        v = p_new[i]
+        if v > 0.0 and (scale_saturated or v < pmax):
+            sv = v * scale
+            if sv >= pmax:
+                sv = pmax
+                if v < pmax:
+                    capped += 1
+            v = sv
+            p_new[i] = v
+        s += abs(v - p[i])
+        if carry:
+            u[i] = scale * (u[i] - tau * r[i]) + w_coef * w[i]
+    return s, capped
+
+
+@nb.njit(cache=True, nogil=True)
+def _precondition(stencil, g, gbar, p, t, nx, ny, periodic, z, pmax):  # pragma: no cover - compiled
+    """z = S (g - gbar) on the free contact set, both ends restricted to it; 0 elsewhere.
 
     ``S`` is the local stencil of the inverse compliance (``(2R+1)`` square, centred).
-    Returns (sum of z, sum of (g - gbar) z) over the contact set.
+    Returns (sum of z, sum of (g - gbar) z, sum of (g - gbar) t) over the free set.
     """
     rad = stencil.shape[0] // 2
     zs = 0.0
@@ -175,7 +267,7 @@ def _precondition(stencil, g, gbar, p, t, nx, ny, periodic, z):  # pragma: no co
     for i in range(nx):
         for j in range(ny):
             k = i * ny + j
-            if p[k] > 0.0:
+            if p[k] > 0.0 and p[k] < pmax:
                 acc = 0.0
                 for a in range(-rad, rad + 1):
                     ii = i + a
@@ -190,7 +282,7 @@ def _precondition(stencil, g, gbar, p, t, nx, ny, periodic, z):  # pragma: no co
                                 continue
                             jj %= ny
                         kk = ii * ny + jj
-                        if p[kk] > 0.0:
+                        if p[kk] > 0.0 and p[kk] < pmax:
                             acc += stencil[a + rad, b + rad] * (g[kk] - gbar)
                 z[k] = acc
                 zs += acc
@@ -202,16 +294,16 @@ def _precondition(stencil, g, gbar, p, t, nx, ny, periodic, z):  # pragma: no co
 
 
 @nb.njit(cache=True, nogil=True)
-def _direction_preconditioned(t, z, zbar, g, gbar, p, beta):  # pragma: no cover - compiled
-    """t = (z - zbar) + beta t on the contact set, 0 elsewhere; g -= gbar everywhere.
+def _direction_preconditioned(t, z, zbar, g, gbar, p, beta, pmax):  # pragma: no cover - compiled
+    """t = (z - zbar) + beta t on the free contact set, 0 elsewhere; g -= gbar everywhere.
 
-    Returns sum((g - gbar) t) over the contact set.
+    Returns sum((g - gbar) t) over the free contact set.
     """
     s = 0.0
     for i in range(t.size):
         gi = g[i] - gbar
         g[i] = gi
-        if p[i] > 0.0:
+        if p[i] > 0.0 and p[i] < pmax:
             v = z[i] - zbar + beta * t[i]
             t[i] = v
             s += gi * v
@@ -227,44 +319,19 @@ def _unshift(g, gbar):  # pragma: no cover - compiled
 
 
 @nb.njit(cache=True, nogil=True)
-def _curvature(r, t, p):  # pragma: no cover - compiled
-    """Return sum(r t), sum(r) and sum(t) over the contact set and its size."""
+def _curvature(r, t, p, pmax):  # pragma: no cover - compiled
+    """Return sum(r t), sum(r) and sum(t) over the free contact set and its size."""
     rt = 0.0
     rs = 0.0
     ts = 0.0
     c = 0
     for i in range(r.size):
-        if p[i] > 0.0:
+        if p[i] > 0.0 and p[i] < pmax:
             rt += r[i] * t[i]
             rs += r[i]
             ts += t[i]
             c += 1
     return rt, rs, ts, c
-
-
-@nb.njit(cache=True, nogil=True)
-def _update_counting(p, t, g, tau, tau_enter, valid, p_new):  # pragma: no cover - compiled
-    """As :func:`_update`, also counting the contact points clipped to zero pressure.
-
-    Returns (sum of the new pressure, points that entered, points clipped).
-    """
-    total = 0.0
-    entered = 0
-    clipped = 0
-    for i in range(p.size):
-        if p[i] > 0.0:
-            v = p[i] - tau * t[i]
-            if v <= 0.0:
-                v = 0.0
-                clipped += 1
-        elif valid[i] and g[i] < 0.0:
-            v = -tau_enter * g[i]
-            entered += 1
-        else:
-            v = 0.0
-        p_new[i] = v
-        total += v
-    return total, entered, clipped
 
 
 @nb.njit(cache=True, nogil=True)
@@ -281,24 +348,31 @@ def _rescale_and_change_carry(p_new, p, scale, u, r, tau, carry):  # pragma: no 
 
 
 @nb.njit(cache=True, nogil=True)
-def _residuals(p, g, valid):  # pragma: no cover - compiled
-    """Return (max |g| on contact, max interpenetration -g off contact, sum p |g|)."""
+def _residuals(p, g, valid, pmax):  # pragma: no cover - compiled
+    """Return (max |g| on the free contact set, max interpenetration -g out of contact,
+    sum p |g| on the free set, max open gap g at the saturated points)."""
     on = 0.0
     off = 0.0
     comp = 0.0
+    sat = 0.0
     for i in range(p.size):
-        if p[i] > 0.0:
+        pi = p[i]
+        if pi > 0.0 and pi < pmax:
             a = abs(g[i])
             if a > on:
                 on = a
-            comp += p[i] * a
+            comp += pi * a
+        elif pi >= pmax:
+            if g[i] > sat:
+                sat = g[i]
         elif valid[i] and -g[i] > off:
             off = -g[i]
-    return on, off, comp
+    return on, off, comp, sat
 
 
 def initial_pressure(
-    h: np.ndarray, valid: np.ndarray, mean_pressure: float, e_star: float, dx: float, dy: float
+    h: np.ndarray, valid: np.ndarray, mean_pressure: float, e_star: float, dx: float, dy: float,
+    hardness: float | None = None,
 ) -> np.ndarray:
     """Starting pressure for load control, concentrated on the highest points.
 
@@ -320,6 +394,10 @@ def initial_pressure(
         Contact modulus in pascals.
     dx, dy : float
         Grid spacing in metres.
+    hardness : float, optional
+        Pressure cap in pascals (elastic-perfectly-plastic surface): the start then covers
+        at least twice the fraction ``mean_pressure / hardness`` that the load needs at the
+        cap.
 
     Returns
     -------
@@ -338,6 +416,8 @@ def initial_pressure(
         ms2 += float(np.mean(sy[my] ** 2))
     slope = np.sqrt(ms2)
     fraction = 1.0 if slope == 0 else min(1.0, 4.0 * mean_pressure / (e_star * slope))
+    if hardness is not None:
+        fraction = max(fraction, min(1.0, 2.0 * mean_pressure / hardness))
     known = h[valid]
     if fraction >= 1.0 or known.size < 2:
         return np.where(valid, 1.0, 0.0)
@@ -363,6 +443,7 @@ class PKOutcome:
     gap_residual: float  # max |g| on the contact set, m
     penetration: float  # max interpenetration off the contact set, m
     n_convolutions: int = 0  # applications of the compliance operator
+    plastic_residual: float = 0.0  # max open gap at a saturated point (p = pmax), m
 
 
 def polonsky_keer(
@@ -377,6 +458,7 @@ def polonsky_keer(
     p0: np.ndarray | None = None,
     accelerate: bool = True,
     overwrite_p0: bool = False,
+    pmax: float | None = None,
 ) -> PKOutcome:
     """Solve the contact problem by the Polonsky–Keer constrained conjugate gradient.
 
@@ -410,6 +492,12 @@ def polonsky_keer(
     overwrite_p0 : bool, default False
         Let the iteration use ``p0`` (C-contiguous float64) as its pressure array instead of
         a copy: one grid array less; ``p0`` is then overwritten.
+    pmax : float, optional
+        Pressure cap in pascals (the hardness of an elastic-perfectly-plastic surface):
+        the pressure is bounded to ``[0, pmax]``, the conjugate gradient runs on the free
+        points ``0 < p < pmax``, and saturated points (``p = pmax``) may interpenetrate.
+        Under load control ``total_pressure`` must be below ``pmax`` times the number of
+        valid points. None: elastic contact (no cap), the unchanged iteration.
 
     Returns
     -------
@@ -422,6 +510,12 @@ def polonsky_keer(
     vf = np.ascontiguousarray(valid, dtype=np.bool_).ravel()
     load_control = total_pressure is not None
     shift = 0.0 if separation is None else float(separation)
+    cap = np.inf if pmax is None else float(pmax)
+    if pmax is not None:
+        if not (np.isfinite(cap) and cap > 0):
+            raise ValueError(f"pmax must be finite and > 0, got {pmax!r}")
+        if load_control and not total_pressure < cap * int(vf.sum()):
+            raise ValueError("total_pressure must be below pmax times the number of valid points")
 
     if p0 is not None:
         if overwrite_p0:
@@ -434,25 +528,38 @@ def polonsky_keer(
         p = np.where(vf, 1.0, 0.0)
     else:
         p = np.where(vf, np.maximum(hf - shift, 0.0), 0.0) / op.self_compliance
+    if pmax is not None:
+        np.minimum(p, cap, out=p)
     if load_control:
         s = p.sum()
         if not s > 0:
             p = np.where(vf, 1.0, 0.0)
             s = p.sum()
-        p *= total_pressure / s
+        if pmax is None:
+            p *= total_pressure / s
+        else:
+            p /= s / total_pressure  # a first guess of the scale; the cap is enforced below
+            np.minimum(p, cap, out=p)
+            scale, every, _ = _load_scale(p, total_pressure, cap, -hf, vf)
+            _rescale_capped(p, p.copy(), scale, cap, every, p, p, p, 0.0, 0.0, False)
 
     iterate = _iterate_accelerated if accelerate else _iterate_reference
-    p, g, state = iterate(op, shape, hf, vf, p, total_pressure, shift, float(tol), int(max_iter))
+    p, g, state = iterate(op, shape, hf, vf, p, total_pressure, shift, float(tol), int(max_iter),
+                          cap)
 
     # final state: displacement and gap of the returned pressure, computed afresh
     u = op.apply(p.reshape(shape)).ravel()
-    s, c = _gap(u, hf, p, vf, g, shift)
+    s, c, s_sat, c_sat = _gap(u, hf, p, vf, g, shift, cap)
     d = state["d"]
     if load_control and c > 0:
         gbar = s / c
         d = -gbar
-        _shift_and_norm(g, gbar, p)
-    on, off, _ = _residuals(p, g, vf)
+        _shift_and_norm(g, gbar, p, cap)
+    elif load_control and c_sat > 0:
+        gbar = s_sat / c_sat
+        d = -gbar
+        _shift_and_norm(g, gbar, p, cap)
+    on, off, _, sat = _residuals(p, g, vf, cap)
     logger.debug("%s iteration stopped after %d iterations and %d convolutions: %s",
                  "accelerated" if accelerate else "reference", state["n_iter"], state["n_conv"] + 1,
                  state["reason"])
@@ -468,7 +575,55 @@ def polonsky_keer(
         gap_residual=float(on),
         penetration=float(off),
         n_convolutions=state["n_conv"] + 1,
+        plastic_residual=float(sat),
     )
+
+
+def _load_scale(p: np.ndarray, total_pressure: float, pmax: float, g: np.ndarray,
+                vf: np.ndarray, sums: tuple[float, float, int] | None = None
+                ) -> tuple[float, bool, bool]:
+    """The scale that brings a capped pressure to the load, ``sum min(s p, pmax) = total``.
+
+    The free points are scaled and the saturated ones kept at ``pmax``; if these alone
+    carry the load or more, every point in contact is scaled (and the saturated ones come
+    off the cap). The load is concave and piecewise linear in ``s``: Newton's iteration from
+    ``s0`` (the scale without capping, below the root) climbs to it monotonically and ends
+    in a few steps. If the points in contact cannot carry the load at the cap, they are all
+    set to ``pmax`` and the rest of the load is spread over the valid points out of contact
+    with the smallest gap ``g`` (which then join the contact set; ``p`` is changed in place).
+
+    ``sums`` is (sum of ``p``, sum of ``p`` below ``pmax``, points at ``pmax``) when known.
+
+    Returns (scale, whether the saturated points are scaled too, whether points were added).
+    """
+    if sums is None:
+        saturated = p >= pmax
+        sums = (float(p.sum()), float(p[~saturated].sum()), int(np.count_nonzero(saturated)))
+    total, free_total, n_sat = sums
+    every = not total_pressure > n_sat * pmax
+    base = 0.0 if every else n_sat * pmax
+    varying = total if every else free_total
+    if varying > 0:
+        scale = (total_pressure - base) / varying
+        for _ in range(100):
+            f, df = _capped_load(p, pmax, scale, every)
+            if f >= total_pressure or not df > 0:
+                break
+            step = (total_pressure - f) / df
+            if not step > 1e-16 * scale:
+                break
+            scale += step
+        if f >= total_pressure * (1.0 - 1e-12):
+            return scale, every, False
+    # not reachable with the present contact set: more points must carry the load
+    np.copyto(p, pmax, where=p > 0)
+    deficit = total_pressure - pmax * float(np.count_nonzero(p))
+    candidates = np.flatnonzero(vf & (p <= 0))
+    k = min(candidates.size, max(1, int(np.ceil(2.0 * deficit / pmax))))
+    chosen = candidates[np.argpartition(g[candidates], k - 1)[:k]] if k < candidates.size \
+        else candidates
+    p[chosen] = deficit / chosen.size
+    return 1.0, False, True
 
 
 def _empty_contact(vf: np.ndarray, g: np.ndarray, load_control: bool, state: dict) -> bool:
@@ -497,9 +652,24 @@ def _new_state(shift: float) -> dict:
     }
 
 
-def _iterate_reference(op, shape, hf, vf, p, total_pressure, shift, tol, max_iter):
-    """The iteration of Polonsky & Keer (1999): two convolutions per iteration."""
+def _load_multiplier(s: float, c: int, s_sat: float, c_sat: int, load_control: bool) -> float:
+    """Mean gap removed under load control: over the free contact set, or over the
+    saturated points when no point is free (displacement control: 0)."""
+    if not load_control:
+        return 0.0
+    if c > 0:
+        return s / c
+    return s_sat / c_sat if c_sat > 0 else 0.0
+
+
+def _iterate_reference(op, shape, hf, vf, p, total_pressure, shift, tol, max_iter, pmax):
+    """The iteration of Polonsky & Keer (1999): two convolutions per iteration.
+
+    With a finite ``pmax`` the bound-constrained form (Almqvist et al. 2007): the
+    conjugate gradient on the free points ``0 < p < pmax``, projection onto ``[0, pmax]``.
+    """
     load_control = total_pressure is not None
+    capped = np.isfinite(pmax)
     state = _new_state(shift)
     g = np.empty_like(p)
     t = np.zeros_like(p)
@@ -510,39 +680,45 @@ def _iterate_reference(op, shape, hf, vf, p, total_pressure, shift, tol, max_ite
     for it in range(1, max_iter + 1):
         state["n_iter"] = it
         u = op.apply(p.reshape(shape)).ravel()
-        s, c = _gap(u, hf, p, vf, g, shift)
-        if c == 0 and _empty_contact(vf, g, load_control, state):
+        s, c, s_sat, c_sat = _gap(u, hf, p, vf, g, shift, pmax)
+        if c == 0 and c_sat == 0 and _empty_contact(vf, g, load_control, state):
             break
-        gbar = s / c if (load_control and c > 0) else 0.0
+        gbar = _load_multiplier(s, c, s_sat, c_sat, load_control)
         if load_control:
             state["d"] = -gbar
-        gnorm = _shift_and_norm(g, gbar, p)
+        gnorm = _shift_and_norm(g, gbar, p, pmax)
         beta = gnorm / g_old if conj else 0.0
         g_old = gnorm if gnorm > 0 else 1.0
-        _direction(t, g, p, beta)
+        _direction(t, g, p, beta, pmax)
         r = op.apply(t.reshape(shape)).ravel()
         state["n_conv"] += 2
         if load_control:
-            rs, rc = _contact_sum(r, p)
+            rs, rc = _contact_sum(r, p, pmax)
             rbar = rs / rc if rc else 0.0
         else:
             rbar = 0.0
-        num, den = _step_terms(g, t, r, rbar, p)
+        num, den = _step_terms(g, t, r, rbar, p, pmax)
         tau = num / den if den > 0 else 0.0
         # Polonsky & Keer let interpenetrating points enter with the step length tau;
         # when the contact set admits no descent step (a single point, or g already 0
         # there) the local self-compliance gives the step instead.
         tau_enter = tau if tau > 0 else 1.0 / op.self_compliance
-        total, entered = _update(p, t, g, tau, tau_enter, vf, p_new)
+        total, entered, _, free_total, n_sat = _update(p, t, g, tau, tau_enter, vf, p_new, pmax)
         conj = entered == 0
-        if load_control:
-            if not total > 0:
-                state["reason"] = "pressure vanished everywhere (step failure)"
-                break
-            scale = total_pressure / total
+        if load_control and capped:
+            scale, every, added = _load_scale(p_new, total_pressure, pmax, g, vf,
+                                              (total, free_total, n_sat))
+            conj = conj and not added
+            change, _ = _rescale_capped(p_new, p, scale, pmax, every, p, p, p, 0.0, 0.0, False)
         else:
-            scale = 1.0
-        change = _rescale_and_change(p_new, p, scale)
+            if load_control:
+                if not total > 0:
+                    state["reason"] = "pressure vanished everywhere (step failure)"
+                    break
+                scale = total_pressure / total
+            else:
+                scale = 1.0
+            change = _rescale_and_change(p_new, p, scale)
         p, p_new = p_new, p
         if _stop(p, change, entered, tol, state):
             break
@@ -566,15 +742,24 @@ def _stop(p: np.ndarray, change: float, entered: int, tol: float, state: dict) -
     return False
 
 
-def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_iter):
-    """Preconditioned directions kept across contact-set growth; displacement carried along."""
+def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_iter, pmax):
+    """Preconditioned directions kept across contact-set growth; displacement carried along.
+
+    With a finite ``pmax`` the same on the free points ``0 < p < pmax``; the load is then
+    restored by scaling the free points only, so a carried-along displacement also needs
+    that of the saturated points, ``w = K 1_sat``, computed once for each saturated set
+    that lasts more than one iteration.
+    """
     load_control = total_pressure is not None
+    capped = np.isfinite(pmax)
     state = _new_state(shift)
     g = np.empty_like(p)
     t = np.zeros_like(p)
     p_new = np.empty_like(p)
     u = np.empty_like(p)  # K p, carried along or recomputed
     r = np.empty_like(p)  # K t
+    w = np.zeros_like(p) if capped and load_control else None  # K 1_sat
+    w_fresh = False  # w belongs to the present saturated set
     op.apply(p.reshape(shape), out=u.reshape(shape))
     state["n_conv"] += 1
     stencil = op.inverse_stencil()
@@ -587,44 +772,66 @@ def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_i
 
     for it in range(1, max_iter + 1):
         state["n_iter"] = it
-        s, c = _gap(u, hf, p, vf, g, shift)
-        if c == 0 and _empty_contact(vf, g, load_control, state):
+        s, c, s_sat, c_sat = _gap(u, hf, p, vf, g, shift, pmax)
+        if c == 0 and c_sat == 0 and _empty_contact(vf, g, load_control, state):
             break
-        gbar = s / c if (load_control and c > 0) else 0.0
+        gbar = _load_multiplier(s, c, s_sat, c_sat, load_control)
         if load_control:
             state["d"] = -gbar
-        zs, gz, gt = _precondition(stencil, g, gbar, p, t, nx, ny, op.periodic, z)
+        zs, gz, gt = _precondition(stencil, g, gbar, p, t, nx, ny, op.periodic, z, pmax)
         # the load constraint: directions of zero sum on the contact set
         zbar = zs / c if (load_control and c > 0) else 0.0
         if conj and abs(gt) > _POWELL * gz:
             conj = False
+        if conj and capped and gz * _POWELL > gz_old:
+            # the free set changed so much that the residual grew (the old one may have
+            # been almost solved): the kept direction would swamp the new gradient
+            conj = False
         beta = gz / gz_old if conj else 0.0
         gz_old = gz if gz > 0 else 1.0
-        num = _direction_preconditioned(t, z, zbar, g, gbar, p, beta)
+        num = _direction_preconditioned(t, z, zbar, g, gbar, p, beta, pmax)
         if beta != 0.0 and not num > 0.0:
             # the kept direction is no longer a descent direction: restart
             _unshift(g, gbar)
-            num = _direction_preconditioned(t, z, zbar, g, gbar, p, 0.0)
+            num = _direction_preconditioned(t, z, zbar, g, gbar, p, 0.0, pmax)
         op.apply(t.reshape(shape), out=r.reshape(shape))
         state["n_conv"] += 1
-        rt, rs, ts, rc = _curvature(r, t, p)
+        rt, rs, ts, rc = _curvature(r, t, p, pmax)
         # sum over the contact set of (r - rbar) t, rbar the mean of r there (load control)
         den = rt - (rs / rc) * ts if (load_control and rc) else rt
         tau = num / den if den > 0 else 0.0
         # an interpenetrating point enters with the pressure the preconditioned step would
         # give it alone, tau S0 |g| (S0 the local stiffness, the stencil's centre)
         tau_enter = tau * stencil_centre if tau > 0 else 1.0 / op.self_compliance
-        total, entered, clipped = _update_counting(p, t, g, tau, tau_enter, vf, p_new)
+        total, entered, clipped, free_total, n_sat = _update(p, t, g, tau, tau_enter, vf, p_new,
+                                                             pmax)
         conj = tau > 0
-        if load_control:
-            if not total > 0:
-                state["reason"] = "pressure vanished everywhere (step failure)"
-                break
-            scale = total_pressure / total
-        else:
-            scale = 1.0
         carry = entered == 0 and clipped == 0 and carried < _REFRESH
-        change = _rescale_and_change_carry(p_new, p, scale, u, r, tau, carry)
+        if load_control and capped:
+            scale, every, added = _load_scale(p_new, total_pressure, pmax, g, vf,
+                                              (total, free_total, n_sat))
+            carry = carry and not (every or added)
+            if added:
+                conj = False
+            w_coef = 0.0
+            if carry and n_sat > 0:
+                if not w_fresh:
+                    op.apply(np.where(p_new >= pmax, 1.0, 0.0).reshape(shape), out=w.reshape(shape))
+                    state["n_conv"] += 1
+                    w_fresh = True
+                w_coef = (1.0 - scale) * pmax
+            change, newly = _rescale_capped(p_new, p, scale, pmax, every, u, r, w, tau, w_coef,
+                                            carry)
+            carry = carry and newly == 0
+        else:
+            if load_control:
+                if not total > 0:
+                    state["reason"] = "pressure vanished everywhere (step failure)"
+                    break
+                scale = total_pressure / total
+            else:
+                scale = 1.0
+            change = _rescale_and_change_carry(p_new, p, scale, u, r, tau, carry)
         p, p_new = p_new, p
         if carry:
             carried += 1
@@ -632,6 +839,7 @@ def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_i
             op.apply(p.reshape(shape), out=u.reshape(shape))
             state["n_conv"] += 1
             carried = 0
+            w_fresh = False
         if _stop(p, change, entered, tol, state):
             break
     return p, g, state

@@ -20,7 +20,14 @@ import numpy as np
 
 from ._constrained_cg import PKOutcome, initial_pressure, polonsky_keer
 from ._influence import NonPeriodicOperator, PeriodicOperator
-from ._validate import finite_separation, flag, positive_integer, positive_pressure, tolerance
+from ._validate import (
+    finite_separation,
+    flag,
+    positive_finite,
+    positive_integer,
+    positive_pressure,
+    tolerance,
+)
 from .material import effective_modulus
 from .result import ContactResult
 from .surface import Surface, surface_arrays
@@ -57,6 +64,20 @@ def _check_options(tol, max_iter, workers: int | None) -> tuple[float, int]:
     return tol, max_iter
 
 
+def _check_hardness(hardness, nominal_pressure: float | None) -> float | None:
+    """``hardness`` (Pa) checked: None, or finite, positive and above the nominal pressure."""
+    if hardness is None:
+        return None
+    hardness = positive_finite(hardness, "hardness", "pressure in pascals (or None for elastic contact)")
+    if nominal_pressure is not None and not nominal_pressure < hardness:
+        raise ValueError(
+            f"nominal_pressure={nominal_pressure:g} Pa is not below hardness={hardness:g} Pa: "
+            "a surface that yields at the hardness H carries at most H times the nominal area "
+            "(every point plastic), so the nominal pressure must be below H; lower the "
+            "nominal pressure or raise the hardness")
+    return hardness
+
+
 def _operator(surface: Surface, e_star: float, periodic: bool, workers: int | None):
     """The compliance operator of the surface's grid: periodic or an isolated patch."""
     cls = PeriodicOperator if flag(periodic, "periodic") else NonPeriodicOperator
@@ -73,6 +94,7 @@ def _result(
     max_iter: int,
     tol: float,
     warn: bool = True,
+    hardness: float | None = None,
 ) -> ContactResult:
     if not np.isfinite(out.pressure).all() or out.reason.startswith(("non-finite", "pressure")):
         raise FloatingPointError(
@@ -116,6 +138,10 @@ def _result(
         displacement=out.displacement,
         gap=out.gap,
     )
+    plastic = None
+    if hardness is not None:
+        plastic = out.pressure >= hardness
+        info["plastic_residual"] = out.plastic_residual
     return ContactResult(
         pressure=out.pressure,
         separation=out.separation,
@@ -131,6 +157,8 @@ def _result(
         method=method,
         info=info,
         mask=None if surface.mask is None else ~valid,
+        hardness=hardness,
+        plastic=plastic,
     )
 
 
@@ -147,6 +175,7 @@ def solve_bem(
     workers: int | None = None,
     accelerate: bool = True,
     warn: bool = True,
+    hardness: float | None = None,
 ) -> ContactResult:
     """Elastic contact of a flat with a rough surface under a given nominal pressure.
 
@@ -193,6 +222,11 @@ def solve_bem(
         Issue a :class:`BEMConvergenceWarning` when the tolerance is not reached; False keeps
         its message in ``info["warning"]`` only (for worker threads, where changing the
         warning filters is not safe).
+    hardness : float, optional
+        Hardness ``H`` in pascals of an elastic-perfectly-plastic surface: the pressure is
+        capped at ``H``, and a point at ``H`` flows plastically (the flat may
+        interpenetrate the undeformed surface there), see Notes. Must be above
+        ``nominal_pressure``. None (default): elastic contact, unchanged.
 
     Returns
     -------
@@ -207,7 +241,12 @@ def solve_bem(
         ``n_convolutions`` (applications of the compliance operator, the cost),
         ``accelerate``, ``warning`` (the text of a :class:`BEMConvergenceWarning`, empty
         when converged), and the ``displacement`` (elastic normal displacement, m) and
-        ``gap`` (m) maps.
+        ``gap`` (m) maps. With a ``hardness``: ``hardness`` (Pa), the boolean map
+        ``plastic`` (points at ``p = H``), ``plastic_area_fraction``, ``plastic_force``
+        (N) and ``plastic_load_fraction``; ``info["gap"]`` is negative at the plastic
+        points (minus the plastic interpenetration, m), ``info["plastic_residual"]`` is the
+        largest open gap left at a plastic point (m), and ``gap_residual`` refers to the
+        elastic contact points (``0 < p < H``).
 
     Raises
     ------
@@ -215,7 +254,8 @@ def solve_bem(
         ``surface`` is not a :class:`~contact.surface.Surface`.
     ValueError
         Non-positive or non-finite load, invalid elastic constants, NaN heights outside
-        the mask, a tolerance outside (0, 1), a non-positive ``max_iter``.
+        the mask, a tolerance outside (0, 1), a non-positive ``max_iter``, a hardness that
+        is not a positive finite number or not above ``nominal_pressure``.
 
     Warns
     -----
@@ -234,18 +274,29 @@ def solve_bem(
     onto ``p >= 0``, interpenetrating points added to the contact set (and a restart to
     steepest descent when that happens), and rescaling to the load. See ``docs/bem.md``.
 
+    With a hardness ``H`` (elastic-perfectly-plastic surface, Almqvist et al. 2007) the
+    pressure is bounded, ``0 <= p <= H``, and the conditions become ``g = 0`` where
+    ``0 < p < H``, ``g >= 0`` where ``p = 0`` and ``g <= 0`` where ``p = H`` (plastic
+    interpenetration). The same iteration runs on the free points ``0 < p < H``, projects
+    onto ``[0, H]``, lets saturated points with an open gap come off the cap, and restores
+    the load by scaling the free points. Only the surface yields: there is no hardening and
+    no subsurface plasticity (see ``docs/bem.md``, "Elasto-plastic contact").
+
     References
     ----------
     I. A. Polonsky, L. M. Keer, Wear 231 (1999) 206-219. A. E. H. Love, Phil. Trans. R.
     Soc. A 228 (1929) 377-420. H. M. Stanley, T. Kato, J. Tribol. 119 (1997) 481-485.
+    A. Almqvist, F. Sahlin, R. Larsson, S. Glavatskih, Tribol. Int. 40 (2007) 574-579.
     """
     nominal_pressure = positive_pressure(nominal_pressure)
     h, valid = _check_surface(surface)
     e_star = effective_modulus(E, nu, counter_face)
     tol, max_iter = _check_options(tol, max_iter, workers)
     accelerate = flag(accelerate, "accelerate")
+    hardness = _check_hardness(hardness, nominal_pressure)
     op = _operator(surface, e_star, periodic, workers)
-    p0 = initial_pressure(h, valid, float(nominal_pressure), e_star, surface.dx, surface.dy)
+    p0 = initial_pressure(h, valid, float(nominal_pressure), e_star, surface.dx, surface.dy,
+                          hardness=hardness)
     out = polonsky_keer(
         op,
         h,
@@ -256,11 +307,12 @@ def solve_bem(
         p0=p0,
         accelerate=accelerate,
         overwrite_p0=True,
+        pmax=hardness,
     )
     return _result(
         out, surface, valid, nominal_pressure, "bem",
         {"e_star": e_star, "periodic": bool(periodic), "accelerate": accelerate},
-        max_iter, tol, warn,
+        max_iter, tol, warn, hardness,
     )
 
 
@@ -276,6 +328,7 @@ def solve_bem_displacement(
     workers: int | None = None,
     accelerate: bool = True,
     warn: bool = True,
+    hardness: float | None = None,
 ) -> ContactResult:
     """Elastic contact with the flat held at a given height (displacement control).
 
@@ -288,13 +341,17 @@ def solve_bem_displacement(
         undeformed surface above it interpenetrate and are pressed down.
     E, nu, tol, max_iter, counter_face, workers, accelerate, warn
         As in :func:`solve_bem`.
+    hardness : float, optional
+        Hardness in pascals of an elastic-perfectly-plastic surface, as in
+        :func:`solve_bem` (any positive finite value: there is no load to compare it with).
 
     Returns
     -------
     ContactResult
         As in :func:`solve_bem`, with ``target_force`` and ``nominal_pressure`` None,
         ``force_error`` 0 and ``method="bem-displacement"``. A flat above the highest
-        point gives zero pressure.
+        point gives zero pressure. With a ``hardness``, the plastic fields of
+        :func:`solve_bem`.
 
     Raises
     ------
@@ -318,13 +375,14 @@ def solve_bem_displacement(
     e_star = effective_modulus(E, nu, counter_face)
     tol, max_iter = _check_options(tol, max_iter, workers)
     accelerate = flag(accelerate, "accelerate")
+    hardness = _check_hardness(hardness, None)
     op = _operator(surface, e_star, False, workers)
     out = polonsky_keer(
         op, h, valid, separation=float(separation), tol=tol, max_iter=max_iter,
-        accelerate=accelerate,
+        accelerate=accelerate, pmax=hardness,
     )
     return _result(
         out, surface, valid, None, "bem-displacement",
         {"e_star": e_star, "periodic": False, "accelerate": accelerate},
-        max_iter, tol, warn,
+        max_iter, tol, warn, hardness,
     )

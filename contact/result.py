@@ -50,6 +50,13 @@ class ContactResult:
         Solver-specific extras.
     mask : ndarray of bool or None
         True at missing (unmeasured) points, which count neither in nor out of contact.
+    hardness : float or None
+        Pressure cap in pascals of an elastic-perfectly-plastic surface (the ``hardness``
+        of :func:`contact.bem.solve_bem`); None for elastic contact.
+    plastic : ndarray of bool or None
+        True at the points that carry the hardness (``pressure == hardness``: flowing
+        plastically, the flat may interpenetrate the undeformed surface there); None for
+        elastic contact.
     """
 
     pressure: np.ndarray
@@ -66,6 +73,8 @@ class ContactResult:
     method: str = ""
     info: dict = field(default_factory=dict)
     mask: np.ndarray | None = None
+    hardness: float | None = None
+    plastic: np.ndarray | None = None
 
     @property
     def in_contact(self) -> np.ndarray:
@@ -101,29 +110,62 @@ class ContactResult:
         """Largest pressure on the grid (Pa)."""
         return float(self.pressure.max())
 
+    @property
+    def plastic_area_fraction(self) -> float | None:
+        """Fraction of the (measured) grid points that are plastic (at the hardness); None
+        for elastic contact."""
+        if self.plastic is None:
+            return None
+        if self.mask is not None:
+            return float(np.mean(self.plastic[~self.mask]))
+        return float(np.mean(self.plastic))
+
+    @property
+    def plastic_force(self) -> float | None:
+        """Normal force carried by the plastic points in newtons (hardness times their
+        area); None for elastic contact."""
+        if self.plastic is None or self.hardness is None:
+            return None
+        return float(self.hardness) * int(np.count_nonzero(self.plastic)) * self.cell_area
+
+    @property
+    def plastic_load_fraction(self) -> float | None:
+        """Share of the total force carried by the plastic points, ``plastic_force /
+        force``; None for elastic contact."""
+        pf = self.plastic_force
+        if pf is None:
+            return None
+        return pf / self.force if self.force > 0 else 0.0
+
     def summary(self) -> pd.Series:
         """Key figures: separation (m), force and target (N), force error, alpha, contact
-        fraction, mean and maximal contact pressure (Pa), number of asperities in contact."""
+        fraction, mean and maximal contact pressure (Pa), number of asperities in contact;
+        for an elastic-perfectly-plastic surface also the hardness (Pa), the plastic area
+        fraction and the plastic force (N)."""
         import pandas as pd
 
         n = None if self.asperities is None else len(self.asperities)
-        return pd.Series(
-            {
-                "method": self.method,
-                "nominal_pressure": self.nominal_pressure,
-                "separation": self.separation,
-                "force": self.force,
-                "target_force": self.target_force,
-                "force_error": self.force_error,
-                "alpha": self.alpha,
-                "contact_fraction": self.contact_fraction,
-                "mean_pressure": self.mean_pressure,
-                "max_pressure": self.max_pressure,
-                "n_asperities": n,
-                "converged": self.converged,
-            },
-            name="contact",
-        )
+        figures = {
+            "method": self.method,
+            "nominal_pressure": self.nominal_pressure,
+            "separation": self.separation,
+            "force": self.force,
+            "target_force": self.target_force,
+            "force_error": self.force_error,
+            "alpha": self.alpha,
+            "contact_fraction": self.contact_fraction,
+            "mean_pressure": self.mean_pressure,
+            "max_pressure": self.max_pressure,
+            "n_asperities": n,
+            "converged": self.converged,
+        }
+        if self.plastic is not None:
+            figures.update(
+                hardness=self.hardness,
+                plastic_area_fraction=self.plastic_area_fraction,
+                plastic_force=self.plastic_force,
+            )
+        return pd.Series(figures, name="contact")
 
     def to_frame(self) -> pd.DataFrame:
         """Tidy table of the grid points in contact: ``i``, ``j`` and ``pressure`` (Pa)."""
