@@ -143,7 +143,7 @@ def _update(p, t, g, tau, tau_enter, valid, p_new, pmax):  # pragma: no cover - 
     On the free contact set ``0 < p < pmax``: ``p - tau t`` projected onto ``[0, pmax]``.
     A point out of contact that interpenetrates (``g < 0``) enters with ``-tau_enter g``
     (at most ``pmax``); a saturated point (``p = pmax``) with an open gap (``g > 0``) is
-    released to ``pmax - tau_enter g`` (at least 0). ``pmax`` is ``inf`` for elastic
+    released to ``pmax - tau_enter g`` (at least ``pmax / 2``). ``pmax`` is ``inf`` for elastic
     contact, where the saturated branches never run.
 
     Returns (sum of the new pressure, points that entered or were released, points
@@ -166,9 +166,12 @@ def _update(p, t, g, tau, tau_enter, valid, p_new, pmax):  # pragma: no cover - 
                 clipped += 1
         elif pi >= pmax:
             if g[i] > 0.0:
+                # released, at most half-way down: the point stays in the free set, where
+                # the conjugate gradient adjusts it (released at once, a whole plastic
+                # zone would overshoot to zero and re-enter at the cap)
                 v = pmax - tau_enter * g[i]
-                if v < 0.0:
-                    v = 0.0
+                if v < 0.5 * pmax:
+                    v = 0.5 * pmax
                 entered += 1
             else:
                 v = pmax
