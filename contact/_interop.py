@@ -6,27 +6,16 @@ when a conversion is asked for.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from .surface import Surface
+from ._units import UNITS
 
 __all__ = ["LENGTH_UNITS", "from_topography", "to_topography"]
 
-#: Length units understood in both directions, in metres.
-LENGTH_UNITS = {
-    "m": 1.0,
-    "mm": 1e-3,
-    "µm": 1e-6,  # MICRO SIGN
-    "μm": 1e-6,  # GREEK SMALL LETTER MU
-    "um": 1e-6,
-    "nm": 1e-9,
-    "pm": 1e-12,
-    "Å": 1e-10,
-    "A": 1e-10,
-}
+#: Length units understood in both directions, in metres (the units of topography files).
+LENGTH_UNITS = UNITS
 
 
 def _surfacetopography(what: str):
@@ -123,7 +112,7 @@ def from_topography(
     return heights, sx / nx * scale, sy / ny * scale, (mask.copy() if mask.any() else None)
 
 
-def to_topography(surface: Surface, unit: str = "m"):
+def to_topography(surface: Any, unit: str = "m"):
     """A SurfaceTopography ``Topography`` holding the surface's heights in ``unit``.
 
     Parameters
