@@ -172,7 +172,10 @@ def _update(p, t, g, tau, tau_enter, valid, p_new, pmax):  # pragma: no cover - 
                 v = pmax - tau_enter * g[i]
                 if v < 0.5 * pmax:
                     v = 0.5 * pmax
-                entered += 1
+                if v < pmax:
+                    entered += 1
+                else:
+                    v = pmax  # an open gap at rounding level
             else:
                 v = pmax
         elif valid[i] and g[i] < 0.0:
@@ -629,6 +632,28 @@ def _load_scale(p: np.ndarray, total_pressure: float, pmax: float, g: np.ndarray
     return 1.0, False, True
 
 
+def _projected_step(p, t, g, tau, tau_enter, vf, p_new, pmax, total_pressure):
+    """:func:`_update`, with the step halved (up to 20 times) while the projected pressure
+    of a capped load-controlled problem either cannot carry the load (too many points
+    clipped to zero) or carries it on its saturated points alone (too many capped).
+
+    A step that clips a large part of the free set is what makes the bound-constrained
+    iteration cycle; shortening it costs a pass over the grid, no convolution.
+    Returns the outputs of :func:`_update`.
+    """
+    out = _update(p, t, g, tau, tau_enter, vf, p_new, pmax)
+    if total_pressure is None or not np.isfinite(pmax):
+        return out
+    for _ in range(20):
+        n_sat = out[4]
+        if n_sat * pmax < total_pressure <= pmax * np.count_nonzero(p_new):
+            break
+        tau *= 0.5
+        tau_enter *= 0.5
+        out = _update(p, t, g, tau, tau_enter, vf, p_new, pmax)
+    return out
+
+
 def _empty_contact(vf: np.ndarray, g: np.ndarray, load_control: bool, state: dict) -> bool:
     """Handle an empty contact set; return True if the iteration must stop."""
     if load_control:
@@ -706,7 +731,8 @@ def _iterate_reference(op, shape, hf, vf, p, total_pressure, shift, tol, max_ite
         # when the contact set admits no descent step (a single point, or g already 0
         # there) the local self-compliance gives the step instead.
         tau_enter = tau if tau > 0 else 1.0 / op.self_compliance
-        total, entered, _, free_total, n_sat = _update(p, t, g, tau, tau_enter, vf, p_new, pmax)
+        total, entered, _, free_total, n_sat = _projected_step(p, t, g, tau, tau_enter, vf, p_new,
+                                                               pmax, total_pressure)
         conj = entered == 0
         if load_control and capped:
             scale, every, added = _load_scale(p_new, total_pressure, pmax, g, vf,
@@ -806,8 +832,8 @@ def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_i
         # an interpenetrating point enters with the pressure the preconditioned step would
         # give it alone, tau S0 |g| (S0 the local stiffness, the stencil's centre)
         tau_enter = tau * stencil_centre if tau > 0 else 1.0 / op.self_compliance
-        total, entered, clipped, free_total, n_sat = _update(p, t, g, tau, tau_enter, vf, p_new,
-                                                             pmax)
+        total, entered, clipped, free_total, n_sat = _projected_step(
+            p, t, g, tau, tau_enter, vf, p_new, pmax, total_pressure)
         conj = tau > 0
         carry = entered == 0 and clipped == 0 and carried < _REFRESH
         if load_control and capped:
