@@ -163,11 +163,12 @@ def test_like_simulates_the_rectangular_template(rect_dir, tmp_path):
     text = res.report_md.read_text()
     assert "## Measured template and simulated surfaces" in text
     assert "96 × 64 points (spacing" not in text and "96 × 64 points on 0.192 × 0.128 mm²" in text
-    # unequal spacings that give the two axes different numbers of terms are refused
-    with pytest.raises(ValueError, match=r"scan_00\.npz has 96 × 56 points at 2 × 3 µm .* terms "
-                                         r"along x but .* along y"), warnings.catch_warnings():
+    # unequal spacings are put on the coarser one (3 µm) on both axes
+    with warnings.catch_warnings():
         warnings.simplefilter("ignore", contact.ContactWarning)
-        like_settings(rect_dir / "scan_00.npz", 10)
+        aniso, params = like_settings(rect_dir / "scan_00.npz", 10)
+    assert aniso.spacing == pytest.approx((3e-6, 3e-6)) and aniso.shape == (64, 56)
+    assert params.n_terms[0] == params.n_terms[1]
 
 
 def test_cli_offers_the_polynomial_forms():
