@@ -514,10 +514,12 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
         check = ("" if r["check"] == "not checked" else
                  "  no GLD could be fitted (report: Moments and fitted GLD)" if r["damage"] != r["damage"]
                  else f"  check on {r['held_out_surfaces']} held-out surfaces: {r['check']}")
+        plastic = ("" if r["plastic_area_fraction"] != r["plastic_area_fraction"] else
+                   f"; plastic area {fmt_probability(r['plastic_area_fraction'])}")
         print(f"  {label + ':':<{width + 1}} {fmt_probability(r['damage'])} "
               f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}]; observed "
               f"{fmt_probability(r['observed_damage'])} of {r['n_surfaces']} surfaces; mean contact "
-              f"pressure {fmt_mpa(r['mean_pressure_mpa'])}{check}")
+              f"pressure {fmt_mpa(r['mean_pressure_mpa'])}{plastic}{check}")
     for model, an in (("elastic BEM", res.bem_analysis or {}), ("asperity model", res.analysis)):
         for (ih, _), r in an.items():
             sa = r[PRIMARY_SAMPLE]

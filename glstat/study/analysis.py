@@ -58,6 +58,7 @@ from .analysis_settings import (
 )
 from .campaign import CampaignSettings
 from .fit_choice import FitChoice, choose_fit
+from .plasticity import plastic_summary
 from .validation import Validation, hardness_levels, validate_sample, wilson_interval
 
 __all__ = [
@@ -328,6 +329,11 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                 "n_surfaces": len(rs),
                 "n_left_out": settings.n_surfaces - len(rs),
             }
+            plastic = [r["plastic_area_fraction"] for r in rs if "plastic_area_fraction" in r]
+            if plastic:  # the capped BEM: how much of the area yields
+                summary.update(plastic_summary(plastic, a.confidence_level))
+                summary["plastic_load_fraction"] = float(np.mean(
+                    [r["plastic_load_fraction"] for r in rs if "plastic_load_fraction" in r]))
             slot = MODEL_SLOTS[model]
             case: dict[str, SampleAnalysis | dict[str, float]] = {}
             for sample in MODEL_SAMPLES[model]:

@@ -33,7 +33,11 @@ SUMMARY_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "mean_pressure_mp
                    "observed_damage", "held_out_damage", "held_out_surfaces", "damage_p_value",
                    "coverage", "coverage_low", "coverage_high", "coverage_p_value",
                    "detectable_miss", "bias_p_value", "theta", "damage_levels_inside", "check",
-                   "passes_check", "upper_end_mpa", "n_surfaces")
+                   "passes_check", "upper_end_mpa", "n_surfaces", "plastic_area_fraction",
+                   "plastic_area_fraction_low", "plastic_area_fraction_high", "plastic_check")
+#: The plastic area fraction's columns of ``summary.csv`` (the capped BEM; NaN otherwise).
+PLASTIC_COLUMNS = ("plastic_area_fraction", "plastic_area_fraction_low",
+                   "plastic_area_fraction_high")
 #: Columns of ``damage_calibration.csv``.
 CALIBRATION_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "hardness_mpa", "area_factor",
                        "predicted", "observed", "observed_low", "observed_high", "n_surfaces",
@@ -103,7 +107,9 @@ def _analysis_rows(settings, analysis: dict, model: str) -> list[dict]:
                 "theta": v.theta, "damage_levels_inside": f"{hits} of {m}" if m else "",
                 **_check_numbers(v),
                 "passes_check": v.passes() if sa.ok else False,
-                "upper_end_mpa": sa.upper_end, "n_surfaces": s["n_surfaces"]})
+                "upper_end_mpa": sa.upper_end, "n_surfaces": s["n_surfaces"],
+                **{k: s.get(k, math.nan) for k in PLASTIC_COLUMNS},
+                "plastic_check": s.get("plastic_check", "")})
     return rows
 
 
@@ -127,7 +133,11 @@ def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysi
     ``bias_p_value`` (centring t-test), ``theta`` (extremal index), ``damage_levels_inside``
     (hardness levels at which the predicted damage lies inside the observed interval, "k of
     m"), ``check`` ("passed", "failed", "not checkable" or "not checked"), ``passes_check``,
-    ``upper_end_mpa`` (upper end of the fitted GLD), ``n_surfaces``. NaN where a quantity does
+    ``upper_end_mpa`` (upper end of the fitted GLD), ``n_surfaces``; for the elastic BEM with
+    a hardness, ``plastic_area_fraction`` (mean over the surfaces of the fraction of the
+    analysed area at the hardness in the capped solution), ``plastic_area_fraction_low`` and
+    ``_high`` (the interval of one area's fraction from a GLD over the surfaces) and
+    ``plastic_check`` (its check on held-out surfaces). NaN where a quantity does
     not apply (the elastic model compared on a few surfaces has no held-out check unless the
     whole study ran on it too: ``bem_analysis``, with the same columns as the asperity model).
     """
@@ -248,6 +258,7 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
     lvl = round(100 * asettings.confidence_level)
     simulated = not getattr(settings, "topographies", ())
     rows = []
+    plastic = any("plastic_area_fraction" in r["summary"] for r in (bem_analysis or {}).values())
     cases = _model_cases(analysis, bem_analysis, ", elastic BEM (reference)",
                          f", asperity model (c = {settings.cone_factor:g}, the paper's)")
     for (ih, il), r, label in cases:
@@ -272,6 +283,7 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
                                        if len(settings.pressures) > 1 else "") + label,
             answer, check, fmt_probability(r["summary"].get("observed_damage", math.nan)),
             *([] if bem_analysis else [elastic]), fmt_mpa(r["summary"]["mean_pressure"]),
+            *([plastic_text(r["summary"])] if plastic else []),
         ]
         if simulated:
             row += [PAPER_VERDICTS.get(h, "—") if abs(asettings.hardness - 2050) < 1e-9 else "—",
@@ -280,8 +292,21 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
     columns = ["case", f"damage probability at {asettings.hardness:g} MPa, one area "
                        f"[{lvl} % interval]", "check on held-out surfaces",
                "observed fraction of surfaces damaged",
-               *([] if bem_analysis else ["elastic BEM (first surfaces)"]), "mean contact pressure"]
+               *([] if bem_analysis else ["elastic BEM (first surfaces)"]), "mean contact pressure",
+               *([f"plastic area at {asettings.hardness:g} MPa, one area [{lvl} % interval]; "
+                  f"share of the load"] if plastic else [])]
     return rows, columns + (["paper: damage", "paper: mean pressure"] if simulated else [])
+
+
+def plastic_text(summary: dict) -> str:
+    """The plastic area fraction of a case as the first screen shows it: "0.85 % [0.76 %,
+    0.91 %]; 87 % of the load" ("—" without a capped solution)."""
+    if "plastic_area_fraction" not in summary:
+        return "—"
+    return (f"{fmt_probability(summary['plastic_area_fraction'])} "
+            f"[{fmt_probability(summary['plastic_area_fraction_low'])}, "
+            f"{fmt_probability(summary['plastic_area_fraction_high'])}]; "
+            f"{fmt_probability(summary.get('plastic_load_fraction', math.nan))} of the load")
 
 
 #: The rms height printed in the paper, m.

@@ -75,6 +75,7 @@ __all__ = [
     "interior",
     "load_bem",
     "load_bem_maps",
+    "plastic_record",
     "run_bem",
     "simulate_bem",
 ]
@@ -120,6 +121,13 @@ class BEMSettings:
         area as part of a larger surface: its load depends on the band, and so do its peaks
         (docs/benchmarks.md "spots"). 0: no guard band, the isolated patch (spots touching its
         border are left out). Measured surfaces are solved without one.
+    hardness : float, optional
+        Hardness H in pascals: every surface is also solved as an elastic-perfectly-plastic
+        surface (:func:`contact.solve_bem` with ``hardness=H``, pressure capped at H), and its
+        plastic area fraction (points at H, over the analysed area) and the share of the load
+        they carry are stored. None: elastic solves only. The elastic solve stays the one the
+        damage probability is predicted from: a surface is damaged when any point reaches H,
+        the same event in the elastic and the capped solution.
     """
 
     n_compare: int = 5
@@ -128,10 +136,14 @@ class BEMSettings:
     max_iter: int = 1000
     grid: int | None = None
     guard: int = 0
+    hardness: float | None = None
 
     def __post_init__(self) -> None:
-        from contact._validate import flag, positive_integer, tolerance
+        from contact._validate import flag, positive_finite, positive_integer, tolerance
 
+        if self.hardness is not None:
+            object.__setattr__(self, "hardness", positive_finite(self.hardness, "hardness",
+                                                                 "hardness in pascals"))
         positive_integer(self.n_compare, "compare_bem", "K, surfaces compared per H")
         flag(self.periodic, "periodic")
         tolerance(self.tol, "tol", 1.0)
@@ -152,6 +164,8 @@ class BEMSettings:
             out["grid"] = int(self.grid)
         if self.guard:
             out["guard"] = int(self.guard)
+        if self.hardness is not None:  # absent: elastic solves only, as before
+            out["hardness"] = float(self.hardness)
         return out
 
     def guard_points(self, settings: CampaignSettings) -> int:
@@ -205,7 +219,43 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
     out["seconds_asperity"] = np.float64(ta)
     out["seconds_bem"] = np.float64(tb)
     out["rq"] = np.float64(measured_rq(surf))
+    if bsettings.hardness is not None:
+        import contact
+
+        t0 = time.perf_counter()
+        capped = contact.solve_bem(surf, settings.pressures[il], settings.E, settings.nu,
+                                   periodic=bool(bsettings.periodic), tol=bsettings.tol,
+                                   max_iter=bsettings.max_iter, workers=1, warn=False,
+                                   hardness=bsettings.hardness)
+        out.update({f"plastic_{k}": v for k, v in plastic_record(capped, guard).items()})
+        out["seconds_plastic"] = np.float64(time.perf_counter() - t0)
     return out
+
+
+def plastic_record(res: Any, guard: int = 0) -> dict[str, np.generic]:
+    """The figures of an elastic-perfectly-plastic solution (:func:`contact.solve_bem` with a
+    hardness) over the analysed area: the solved grid less ``guard`` points on every side.
+
+    Returns
+    -------
+    dict
+        ``area_fraction`` (plastic points, ``p = H``, over the measured points of the area),
+        ``load_fraction`` (share of the area's force they carry), ``max_pressure`` (Pa, at
+        most H), ``converged``.
+    """
+    g = int(guard)
+    n0, n1 = res.pressure.shape
+    inner = (slice(g, n0 - g), slice(g, n1 - g))
+    plastic = np.asarray(res.plastic, dtype=bool)[inner]
+    pressure = np.asarray(res.pressure, dtype=float)[inner]
+    valid = (np.ones(plastic.shape, dtype=bool) if res.mask is None
+             else ~np.asarray(res.mask, dtype=bool)[inner])
+    force = float(pressure[valid].sum())
+    return {"area_fraction": np.float64(np.count_nonzero(plastic & valid) / max(valid.sum(), 1)),
+            "load_fraction": np.float64(float(pressure[plastic & valid].sum()) / force
+                                        if force > 0 else 0.0),
+            "max_pressure": np.float64(pressure.max()),
+            "converged": np.bool_(bool(getattr(res, "converged", True)))}
 
 
 def _bem_task(settings: CampaignSettings, bsettings: BEMSettings, key: tuple[int, int, int]):
@@ -411,8 +461,10 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
     (the peak pressure of every such spot, Pa), ``n_spots`` (their number), ``asperity_peak``
     and ``n_asperities`` (the same, under the per-asperity names), ``n_contact`` (their grid
     points), ``max_pressure`` (their largest pressure); and for the whole solution
-    ``mean_pressure``, ``alpha``, ``force_error`` and ``n_border_spots``. A solve that did not
-    converge within its iteration limit is left out (never silently used) and listed.
+    ``mean_pressure``, ``alpha``, ``force_error`` and ``n_border_spots``; with a hardness
+    (:attr:`BEMSettings.hardness`) ``plastic_area_fraction`` and ``plastic_load_fraction`` of
+    the capped solution when it converged. A solve that did not converge within its iteration
+    limit is left out (never silently used) and listed.
 
     Returns
     -------
@@ -427,7 +479,10 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
             dropped.append(key)
             continue
         inner = interior(r)
-        res[key] = {"samples": inner["samples"], "spot_peak": inner["peaks"],
+        plastic = ({"plastic_area_fraction": float(z["plastic_area_fraction"]),
+                    "plastic_load_fraction": float(z["plastic_load_fraction"])}
+                   if "plastic_area_fraction" in z and bool(z["plastic_converged"]) else {})
+        res[key] = {**plastic, "samples": inner["samples"], "spot_peak": inner["peaks"],
                     "n_spots": inner["n_spots"], "asperity_peak": inner["peaks"],
                     "n_asperities": inner["n_spots"], "n_contact": int(inner["samples"].size),
                     "max_pressure": inner["max_pressure"],
