@@ -138,6 +138,14 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--pressure", type=_positive(float), nargs="+", default=[20.0],
                    help="nominal pressure(s) in MPa")
     p.add_argument("--hardness", type=_positive(float), default=2050.0, help="hardness Pd in MPa")
+    p.add_argument("--area", type=_positive(float), nargs="+", metavar="MM2",
+                   help="areas in mm² on which the damage probability (and, with several "
+                        "--pressure values, the allowable load) is given besides 1 mm², 1 cm² and "
+                        "10 cm²")
+    p.add_argument("--target-damage", type=_number_in(0, 100, low_open=True, high_open=True),
+                   default=1.0, metavar="PERCENT",
+                   help="damage probability in %% the allowable load must not exceed (with "
+                        "several --pressure values; default 1)")
     p.add_argument("--bootstrap", type=_positive(int),
                    help=f"bootstrap resamples B (default {DEFAULTS['bootstrap']})")
     p.add_argument("--rq", type=_positive(float), nargs="+", default=[1.6], metavar="UM",
@@ -288,7 +296,10 @@ def _study_settings(args, argv: list[str]):
         print(f"glstat study: Rq = {settings.rq_text} µm" + (" (per H)" if per_h else ""),
               file=sys.stderr, flush=True)
     asettings = AnalysisSettings(hardness=args.hardness,
-                                 n_resamples=args.bootstrap or base["bootstrap"], seed=args.seed)
+                                 n_resamples=args.bootstrap or base["bootstrap"], seed=args.seed,
+                                 damage_areas=(*AnalysisSettings().damage_areas,
+                                               *(a * 1e-6 for a in args.area or ())),
+                                 target_damage=args.target_damage / 100)
     if args.paper_table is not None:
         from .study.paper_table import read_table1
 
@@ -527,6 +538,8 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
             if why:
                 what = "no prediction" if not sa.ok else "not checked"
                 print(f"  {case_name(settings, ih)}, {model}: {what}: {why}")
+    if len(settings.pressures) > 1:
+        _print_allowable(res, settings, asettings)
     for warn in (degenerate_scene(res.analysis, settings), overlap_note(settings, res.analysis)):
         if warn:
             print(f"warning: {warn}")
@@ -547,6 +560,36 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
                       f"{_damage(fits['asperity'])} (asperity) vs {_damage(fits['bem'])} (BEM, "
                       f"first {len(c.surfaces) // 2} surfaces)")
     print(f"report: {res.report_html}  (and {res.report_md})")
+
+
+def _print_allowable(res, settings, asettings) -> None:
+    """The allowable nominal pressure per case and area (the elastic BEM's when it ran on every
+    surface), one line per case."""
+    from .formatting import fmt_probability
+
+    table = res.allowable_load()
+    model = "bem" if res.bem_analysis else "asperity"
+    table = table[table["model"] == model]
+    name = "elastic BEM" if model == "bem" else "asperity model"
+    print(f"Allowable nominal pressure for a damage probability ≤ "
+          f"{fmt_probability(asettings.target_damage)} ({name}; allowable_load.csv):")
+    for h, rows in table.groupby("hurst", sort=False):
+        parts = []
+        for _, r in rows.iterrows():
+            mm2 = r["area_mm2"]
+            area = f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²"
+            if r["status"] == "interpolated":
+                parts.append(f"{r['allowable_pressure_mpa']:.3g} MPa on {area}")
+            elif "below" in r["status"]:
+                parts.append(f"< {min(settings.pressures) / 1e6:g} MPa on {area} (below the lowest "
+                             f"load)")
+            elif "above" in r["status"]:
+                parts.append(f"> {max(settings.pressures) / 1e6:g} MPa on {area} (above the highest "
+                             f"load)")
+            else:
+                parts.append(f"— on {area} ({r['status']})")
+        case = "measured" if settings.measured else f"H = {h:g}"
+        print(f"  {case}: " + "; ".join(parts))
 
 
 #: Options that describe simulated surfaces, refused with --topographies.

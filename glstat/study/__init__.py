@@ -190,7 +190,7 @@ class StudyResult:
     """
 
     def __init__(self, out, report_html, report_md, analysis, timings, campaign, bem=None,
-                 bem_run=None, bem_analysis=None):
+                 bem_run=None, bem_analysis=None, analysis_settings=None):
         self.out = Path(out)
         self.report_html = report_html
         self.report_md = report_md
@@ -200,6 +200,7 @@ class StudyResult:
         self.bem = bem
         self.bem_run = bem_run
         self.bem_analysis = bem_analysis
+        self.analysis_settings = analysis_settings
 
     def bem_summary(self):
         """One row per (H, load, quantity) of the BEM comparison: both models' means and the
@@ -215,6 +216,21 @@ class StudyResult:
             f.insert(0, "hurst", self.campaign.settings.hurst[ih])
             frames.append(f)
         return pd.concat(frames, ignore_index=True)
+
+    def allowable_load(self):
+        """``allowable_load.csv`` as a pandas DataFrame: the nominal pressure that keeps the
+        damage probability below the target on each area, per model and H
+        (:func:`glstat.study.allowable.allowable_frame`; empty with one load)."""
+        from .allowable import ALLOWABLE_COLUMNS, allowable_frame
+
+        settings = self.campaign.settings
+        if len(settings.pressures) < 2:
+            import pandas as pd
+
+            return pd.DataFrame(columns=list(ALLOWABLE_COLUMNS))
+        a = self.analysis_settings or AnalysisSettings()
+        return allowable_frame(settings, a, {"bem": self.bem_analysis or {},
+                                             "asperity": self.analysis})
 
     def summary(self):
         """``summary.csv`` as a pandas DataFrame: one row per H × load × model × sample (the
@@ -405,8 +421,11 @@ def run_study(
 
     try:
         html, md = rep.write(out)
-        result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an)
+        result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an, analysis)
         atomic_write(Path(out) / "summary.csv", result.summary().to_csv(index=False).encode())
+        if len(settings.pressures) > 1:
+            atomic_write(Path(out) / "allowable_load.csv",
+                         result.allowable_load().to_csv(index=False).encode())
         atomic_write(Path(out) / "damage_calibration.csv",
                      result.damage_calibration().to_csv(index=False).encode())
     except OSError as exc:  # disk full or read-only at the end: the computed results are kept

@@ -119,7 +119,7 @@ class SampleAnalysis:
     guaranteed : dict
         Area factor -> pressure (MPa) that the area stays below with ``integrity_level``.
     area_damage : pandas.DataFrame or None
-        Damage probability at the hardness on the areas of :data:`DAMAGE_AREAS_MM2` (the
+        Damage probability at the hardness on the areas of ``AnalysisSettings.damage_areas`` (the
         primary sample only):
         ``area_mm2``, ``area_factor`` (over the analysed area), ``estimate``, ``low``,
         ``high``.
@@ -203,7 +203,6 @@ def _end_note(sa: SampleAnalysis, hardness: float) -> str:
 
 
 #: Areas (mm²) on which the damage probability is reported: 1 mm², 1 cm², 10 cm².
-DAMAGE_AREAS_MM2 = (1.0, 100.0, 1000.0)
 
 
 def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
@@ -222,7 +221,7 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
     ih, il : int
         Indices of the Hurst exponent and load (seeds).
     area_m2 : float, optional
-        The analysed area in m², for the damage on :data:`DAMAGE_AREAS_MM2`.
+        The analysed area in m², for the damage on ``a.damage_areas``.
     advice : str
         What to do when the surfaces are too few, in options the study's mode accepts
         (:meth:`CampaignSettings.more_surfaces_advice`).
@@ -268,9 +267,10 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
         sa.guaranteed[k] = float(glstat.guaranteed_threshold(
             dist, probability=a.integrity_level, area_factor=k, **full_kw))
     if area_m2 and sample == PRIMARY_SAMPLE:  # the answer's growth with the area
-        factors = np.array(DAMAGE_AREAS_MM2) * 1e-6 / area_m2
+        factors = np.array(a.damage_areas) / area_m2
         d = bf.damage_probability(a.hardness, area_factor=factors, **count_kw)
-        sa.area_damage = pd.DataFrame({"area_mm2": DAMAGE_AREAS_MM2, "area_factor": factors,
+        sa.area_damage = pd.DataFrame({"area_mm2": np.array(a.damage_areas) * 1e6,
+                                       "area_factor": factors,
                                        "estimate": np.ravel(d.estimate), "low": np.ravel(d.low),
                                        "high": np.ravel(d.high)})
     sa.upper_end = float(dist.support()[1])

@@ -89,6 +89,12 @@ class AnalysisSettings:
         Root of the bootstrap seeds.
     n_levels : int
         Hardness levels of the damage check (spanning the observed per-surface maxima).
+    damage_areas : tuple of float
+        Areas in m² on which the damage probability at the hardness is given (the growth with
+        the area, and the allowable load): 1 mm², 1 cm² and 10 cm² by default.
+    target_damage : float
+        Damage probability the allowable nominal pressure must not exceed on each of
+        ``damage_areas`` (campaigns of several loads; :mod:`glstat.study.allowable`).
     """
 
     hardness: float = 2050.0
@@ -102,6 +108,8 @@ class AnalysisSettings:
     integrity_level: float = 0.99
     seed: int = 2019
     n_levels: int = 7
+    damage_areas: tuple[float, ...] = (1e-6, 1e-4, 1e-3)
+    target_damage: float = 0.01
 
     def __post_init__(self) -> None:
         from contact._validate import positive_finite
@@ -121,6 +129,14 @@ class AnalysisSettings:
             raise ValueError(f"area_factors must be positive finite numbers, got {self.area_factors!r}")
         if int(self.n_levels) != self.n_levels or self.n_levels < 5:
             raise ValueError(f"n_levels must be an integer >= 5, got {self.n_levels!r}")
+        areas = tuple(positive_finite(v, "damage_areas", "area in square metres")
+                      for v in np.atleast_1d(self.damage_areas))
+        if not areas:
+            raise ValueError("damage_areas must hold one or more areas in m²")
+        object.__setattr__(self, "damage_areas", tuple(sorted(set(areas))))
+        if not (0.0 < self.target_damage < 1.0):
+            raise ValueError(f"target_damage must be a probability in (0, 1), got "
+                             f"{self.target_damage!r}")
 
 
 

@@ -360,8 +360,6 @@ def area_damage_rows(settings, asettings, analysis: dict, bem_analysis: dict | N
     """Growth with the area for the first screen: per case (and model, the elastic BEM first
     when it ran on every surface), the damage probability at the hardness on 1 mm², 1 cm² and
     10 cm² (contact-spot predictor, with its interval); no rows when no case has one."""
-    from .analysis import DAMAGE_AREAS_MM2
-
     rows = []
     for (ih, il), r, label in _model_cases(analysis, bem_analysis, ", elastic BEM",
                                            ", asperity model"):
@@ -374,7 +372,8 @@ def area_damage_rows(settings, asettings, analysis: dict, bem_analysis: dict | N
             row.append(f"{_readable(t['estimate'])} [{_readable(t['low'])}, {_readable(t['high'])}]")
         rows.append(row)
     lvl = round(100 * asettings.confidence_level)
-    columns = ["case", *(f"damage on {_area_text(a)} [{lvl} % interval]" for a in DAMAGE_AREAS_MM2)]
+    columns = ["case", *(f"damage on {_area_text(a * 1e6)} [{lvl} % interval]"
+                         for a in asettings.damage_areas)]
     return rows, columns
 
 

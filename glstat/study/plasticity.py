@@ -29,7 +29,7 @@ FITS = (("fkml", "lmoments"), ("rs", "moments"), ("fkml", "mle"))
 def plastic_interval(fractions: np.ndarray, level: float) -> tuple[float, float, str]:
     """The central ``level`` interval of a GLD fitted to plastic area fractions, clipped to
     [0, 1], and the fit's name ("" when every value is equal: the interval is that value;
-    "none" when no GLD could be fitted: NaN)."""
+    "empirical quantiles" when no GLD could be fitted; "none" without values: NaN)."""
     import warnings
 
     import glstat
@@ -48,6 +48,9 @@ def plastic_interval(fractions: np.ndarray, level: float) -> tuple[float, float,
         if math.isfinite(low) and math.isfinite(high):
             return float(np.clip(low, 0.0, 1.0)), float(np.clip(high, 0.0, 1.0)), \
                 f"{param.upper()} {method}"
+    if x.size:  # no GLD fits (e.g. mostly zeros): the sample's own quantiles
+        low, high = np.quantile(x, [alpha, 1.0 - alpha])
+        return float(low), float(high), "empirical quantiles"
     return math.nan, math.nan, "none"
 
 

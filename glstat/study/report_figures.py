@@ -397,3 +397,37 @@ def psd_like_figure(like: dict):
     fig, ax = pyplot().subplots(figsize=(6.4, 4.2), layout="constrained")
     contact.plot_psd_comparison(like["measured"], like["simulated"], ax=ax)
     return fig
+
+
+def allowable_figure(settings, asettings, analysis: dict, model: str):
+    """Damage probability at the hardness against the nominal pressure, one panel per area of
+    ``asettings.damage_areas``, one line per case with its interval band, and the target
+    (campaigns of several loads)."""
+    plt = pyplot()
+    areas = asettings.damage_areas
+    fig, axes = plt.subplots(1, len(areas), figsize=(3.4 * len(areas), 3.2), squeeze=False)
+    order = np.argsort(settings.pressures)
+    loads = np.asarray(settings.pressures, dtype=float)[order] / 1e6
+    for ia, (ax, area) in enumerate(zip(axes[0], areas, strict=True)):
+        for ih in sorted({ih for ih, _ in analysis}):
+            cases = [analysis.get((ih, int(il))) for il in order]
+            if any(c is None or c[PRIMARY_SAMPLE].area_damage is None for c in cases):
+                continue
+            rows = [c[PRIMARY_SAMPLE].area_damage.iloc[ia] for c in cases]
+            est = np.array([r["estimate"] for r in rows])
+            low = np.array([r["low"] for r in rows])
+            high = np.array([r["high"] for r in rows])
+            name = "measured" if settings.measured else f"H = {settings.hurst[ih]:g}"
+            (line,) = ax.plot(loads, est, marker="o", label=name)
+            ax.fill_between(loads, low, high, color=line.get_color(), alpha=0.2, lw=0)
+        ax.axhline(asettings.target_damage, color="C3", ls="--", lw=1,
+                   label=f"target {100 * asettings.target_damage:g} %")
+        mm2 = area * 1e6
+        ax.set_title(f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²", fontsize=9)
+        ax.set_xlabel("nominal pressure (MPa)")
+        ax.set_ylim(-0.02, 1.02)
+        if ia == 0:
+            ax.set_ylabel(f"P(max > {asettings.hardness:g} MPa) ({model})")
+            ax.legend(fontsize=7)
+    fig.tight_layout()
+    return fig

@@ -4,7 +4,7 @@ surfaces. Each function returns its section as :class:`~glstat.study.report_docu
 
 from __future__ import annotations
 
-from ..formatting import fmt_number
+from ..formatting import fmt_number, fmt_probability
 from .analysis import SAMPLE_LABELS
 from .analysis_settings import PRIMARY_SAMPLE
 from .answer import (
@@ -20,6 +20,7 @@ from .answer import (
 )
 from .report_document import Blocks, fmt_cell
 from .report_figures import (
+    allowable_figure,
     damage_curve_figure,
     damage_reliability_figure,
     pressure_maps_figure,
@@ -74,10 +75,13 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     if rows:
         out.table(columns, rows,
                   f"Growth with the area: the probability that the pressure exceeds {hard:g} MPa "
-                  f"somewhere on an area of 1 mm², 1 cm² or 10 cm² (contact-spot predictor; an area "
+                  f"somewhere on an area of {_areas_text(asettings.damage_areas)} (contact-spot "
+                  f"predictor; an area "
                   f"k times the analysed one holds k independent analysed areas, docs/method.md §7; "
                   f"the figure \"Integrity against area\" below draws the integrity, 1 − damage, "
                   f"against k).")
+    if len(settings.pressures) > 1:
+        _allowable_block(out, settings, asettings, analysis, info.get("bem_analysis"))
     if bem:
         ratios = [f"{case_name(settings, ih)}: mean pressure ×{mean:.2g}, maximal pressure ×{peak:.2g}"
                   for ih, _, mean, peak in model_error_factors(bem)]
@@ -95,6 +99,50 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
         out.paragraph("Fit of the peak pressures, chosen on an inner split of the surfaces (never on "
                       "the surfaces it is checked against): " + "; ".join(choices) + ".")
     return out
+
+
+def _allowable_block(out: Blocks, settings, asettings, analysis: dict, bem_analysis) -> None:
+    """The allowable nominal pressure (table) and the damage against the nominal pressure
+    (figure) of a campaign of several loads, the elastic BEM's when it ran on every surface."""
+    from .allowable import allowable_frame
+
+    model, an = (("elastic BEM", bem_analysis) if bem_analysis else ("asperity model", analysis))
+    frame = allowable_frame(settings, asettings, {model: an})
+    target = fmt_probability(asettings.target_damage)
+    rows = []
+    for _, r in frame.iterrows():
+        mm2 = r["area_mm2"]
+        where = (f"{r['allowable_pressure_mpa']:.3g} MPa [{_mpa(r['allowable_low_mpa'])}, "
+                 f"{_mpa(r['allowable_high_mpa'])}]" if r["status"] == "interpolated"
+                 else f"{r['status']} ({'<' if 'below' in r['status'] else '>'} "
+                      f"{(min if 'below' in r['status'] else max)(settings.pressures) / 1e6:g} MPa)"
+                 if "load" in r["status"] else r["status"])
+        rows.append([("measured" if settings.measured else f"H = {r['hurst']:g}"),
+                     f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²", where,
+                     r["bracket_mpa"] or "—", r["checks"] or "—"])
+    lvl = round(100 * asettings.confidence_level)
+    out.table(["case", "area", f"allowable nominal pressure for damage ≤ {target} [{lvl} % interval]",
+               "between the loads (MPa)", "held-out checks at those loads"], rows,
+              f"The allowable load ({model}): the nominal pressure at which the probability that "
+              f"the pressure exceeds {asettings.hardness:g} MPa somewhere on the area reaches "
+              f"{target}, interpolated between the two loads run that bracket it (linear in the "
+              f"logit of the probability); its interval where the ends of the probability's "
+              f"interval cross the target (— when they do not between the loads). Nothing is "
+              f"extrapolated: a target below the lowest or above the highest load says so; run "
+              f"more loads (--pressure) to bracket it. allowable_load.csv holds the table.")
+    out.figure("allowable_load", allowable_figure(settings, asettings, an, model),
+               f"Damage probability on each area against the nominal pressure ({model}), with its "
+               f"{lvl} % interval, and the target {target}.")
+
+
+def _areas_text(areas) -> str:
+    """Areas in m² in words: "1 mm², 1 cm² or 10 cm²"."""
+    words = [f"{a * 1e6:g} mm²" if a < 1e-4 else f"{a * 1e4:g} cm²" for a in areas]
+    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
+
+
+def _mpa(v: float) -> str:
+    return "—" if v != v else f"{v:.3g}"
 
 
 def _answer_figures(out: Blocks, settings, asettings, analysis: dict, model: str = "") -> None:
