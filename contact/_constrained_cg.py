@@ -520,7 +520,7 @@ def polonsky_keer(
     if pmax is not None:
         if not (np.isfinite(cap) and cap > 0):
             raise ValueError(f"pmax must be finite and > 0, got {pmax!r}")
-        if load_control and not total_pressure < cap * int(vf.sum()):
+        if total_pressure is not None and not total_pressure < cap * int(vf.sum()):
             raise ValueError("total_pressure must be below pmax times the number of valid points")
 
     if p0 is not None:
@@ -536,7 +536,7 @@ def polonsky_keer(
         p = np.where(vf, np.maximum(hf - shift, 0.0), 0.0) / op.self_compliance
     if pmax is not None:
         np.minimum(p, cap, out=p)
-    if load_control:
+    if total_pressure is not None:
         s = p.sum()
         if not s > 0:
             p = np.where(vf, 1.0, 0.0)
