@@ -54,6 +54,44 @@ def real_scalar(value) -> float | None:
     return None
 
 
+def implausible(message: str) -> None:
+    """Warn (:class:`contact.ContactWarning`) that a value is implausible for its unit: valid,
+    but more likely a unit mix-up (MPa given as Pa, µm as m) than meant. The warning points at
+    the caller's line: the first frame outside the ``contact`` and ``glstat`` packages."""
+    import os
+    import sys
+    import warnings
+
+    from .errors import ContactWarning
+
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    inside = tuple(os.path.join(here, pkg) + os.sep for pkg in ("contact", "glstat"))
+    level, frame = 2, sys._getframe(1)  # stacklevel 2: the caller of this function
+    while frame is not None and (
+            os.path.abspath(frame.f_code.co_filename).startswith(inside)
+            # the generated __init__ of the packages' dataclasses
+            or type(frame.f_locals.get("self")).__module__.split(".")[0] in ("contact", "glstat")):
+        level, frame = level + 1, frame.f_back
+    warnings.warn(message, ContactWarning, stacklevel=level)
+
+
+#: Below these values (SI) a nominal pressure or a Young's modulus is more likely given in MPa
+#: or GPa than meant; above it an RMS roughness is more likely given in µm.
+PLAUSIBLE_PRESSURE = 1e3
+PLAUSIBLE_MODULUS = 1e6
+PLAUSIBLE_ROUGHNESS = 1e-3
+
+
+def plausible_roughness(rq: float, length: float | None = None, name: str = "rq") -> float:
+    """``rq`` (m), with a warning when it is more likely in µm than in metres: above a
+    millimetre, or above a tenth of the surface's side ``length`` (m)."""
+    if rq > PLAUSIBLE_ROUGHNESS or (length is not None and rq > 0.1 * length):
+        where = "" if length is None else f" on a {length:g} m long surface"
+        implausible(f"{name} = {rq:g} m{where} is implausible for an RMS roughness in metres; "
+                    f"did you mean {rq:g}e-6 ({rq:g} µm)?")
+    return rq
+
+
 def positive_pressure(value) -> float:
     """``value`` as a nominal pressure: one real, finite, positive number.
 
@@ -73,9 +111,13 @@ def positive_pressure(value) -> float:
         Not one real number (see :func:`real_scalar`), or not finite and positive.
     """
     try:
-        return positive_finite(value, "nominal_pressure", "pressure in pascals")
+        p = positive_finite(value, "nominal_pressure", "pressure in pascals")
     except ValueError as exc:
         raise ValueError(f"{exc}; a compressive load is positive") from None
+    if p < PLAUSIBLE_PRESSURE:
+        implausible(f"nominal_pressure = {p:g} Pa is implausibly small for a contact pressure in "
+                    f"pascals; did you mean {p:g}e6 ({p:g} MPa)?")
+    return p
 
 
 def positive_finite(value, name: str, what: str) -> float:
@@ -130,6 +172,9 @@ def elastic_constants(E, nu, which: str = "") -> tuple[float, float]:
         Not one real number each (see :func:`real_scalar`), or outside the ranges.
     """
     e = positive_finite(E, f"E{which}", "Young's modulus in pascals")
+    if e < PLAUSIBLE_MODULUS:
+        implausible(f"E{which} = {e:g} Pa is implausibly small for a Young's modulus in pascals; "
+                    f"did you mean {e:g}e9 ({e:g} GPa)?")
     n = real_scalar(nu)
     if n is None or not (-1.0 < n <= 0.5):
         raise ValueError(

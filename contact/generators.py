@@ -8,7 +8,7 @@ from typing import cast
 
 import numpy as np
 
-from ._validate import frequency_ratio, grid_shape, positive_finite, real_scalar
+from ._validate import frequency_ratio, grid_shape, plausible_roughness, positive_finite, real_scalar
 from .surface import Surface
 
 __all__ = ["self_affine", "weierstrass"]
@@ -33,12 +33,13 @@ def _check_hurst(hurst: float) -> float:
     return h
 
 
-def _scale(w: np.ndarray, rq: float | None, pad: int = 0) -> np.ndarray:
+def _scale(w: np.ndarray, rq: float | None, pad: int = 0, side: float | None = None) -> np.ndarray:
     """``w`` centred and scaled to the RMS height ``rq`` (m); ``w`` itself when ``rq`` is None.
-    The mean and the scale are those of the central part, without ``pad`` points each side."""
+    The mean and the scale are those of the central part, without ``pad`` points each side;
+    ``side`` (m), the shorter side of the surface, for the warning on an implausible ``rq``."""
     if rq is None:
         return w
-    rq = positive_finite(rq, "rq", "RMS height in metres")
+    rq = plausible_roughness(positive_finite(rq, "rq", "RMS height in metres"), side)
     core = w[pad:w.shape[0] - pad, pad:w.shape[1] - pad] if pad else w
     w = w - core.mean()
     core = w[pad:w.shape[0] - pad, pad:w.shape[1] - pad] if pad else w
@@ -165,7 +166,7 @@ def weierstrass(
                     np.cos((2 * np.pi * k1[p] / big) * gx + phi[p, q])
                     * np.cos((2 * np.pi * k2[q] / big) * gy + psi[p, q])
                 )
-    return Surface(_scale(w, rq, pad), dx, dy)
+    return Surface(_scale(w, rq, pad, min(w.shape[0] * dx, w.shape[1] * dy)), dx, dy)
 
 
 def self_affine(
@@ -226,4 +227,4 @@ def self_affine(
     noise = np.fft.rfft2(rng.standard_normal((nx, ny)))
     w = np.fft.irfft2(noise * filt, s=(nx, ny))
     w -= w.mean()
-    return Surface(_scale(w, rq), lx / nx, ly / ny)
+    return Surface(_scale(w, rq, side=min(lx, ly)), lx / nx, ly / ny)

@@ -343,3 +343,29 @@ def test_report_markdown_quotes_names_from_files_literally():
     assert "\n# injected" not in md and "<script>" not in md
     assert "&lt;script&gt;" in md and "a\\|b.x3p |" in md
     assert "<script>" not in rep.to_html()
+
+
+def test_a_scan_in_another_length_unit_is_refused_by_name(measured_dir, tmp_path):
+    for i in range(3):
+        (tmp_path / f"scan_{i:02d}.npz").write_bytes((measured_dir / f"scan_{i:02d}.npz").read_bytes())
+    s = contact.read(measured_dir / "scan_03.npz")
+    contact.write(contact.Surface(s.heights * 1e6, s.dx), tmp_path / "in_um.npz")  # µm as m
+    with pytest.raises(ValueError, match=r"in_um\.npz has an RMS height of .* another length unit"):
+        measured_settings(tmp_path)
+
+
+def test_implausible_si_values_warn_and_a_huge_grid_is_refused():
+    with pytest.warns(contact.ContactWarning, match=r"20 Pa is implausibly small .* 20e6"):
+        CampaignSettings(pressures=(20.0,))
+    with pytest.warns(contact.ContactWarning, match=r"rq = 1.6 m .* 1.6e-6"):
+        CampaignSettings(rq=1.6)
+    with pytest.warns(contact.ContactWarning):
+        odd = CampaignSettings(E=210.0, rq=1.6, length=1.0, pressures=(20.0,))
+    assert len(odd.implausible_values()) == 4
+    with pytest.raises(ValueError, match="GiB per height or pressure map"):
+        CampaignSettings(grid=10**6)
+    with pytest.warns(contact.ContactWarning, match=r"E = 210 Pa .* 210e9"):
+        contact.effective_modulus(210.0, 0.3)
+    s = contact.weierstrass((64, 64), 1e-3, 0.5, rq=1.6e-6, rng=1, n_terms=5)
+    with pytest.warns(contact.ContactWarning, match=r"nominal_pressure = 20 Pa"):
+        contact.solve(s, 20.0, 210e9, 0.3, jump="blend")

@@ -28,6 +28,9 @@ __all__ = [
 #: Version of the on-disk layout; part of the manifest.
 FORMAT_VERSION = 1
 
+#: Most grid points of one surface (a 16384² grid: 2 GiB per float64 map).
+MAX_GRID_POINTS = 16384**2
+
 
 def is_integer(value: Any) -> bool:
     """Whether ``value`` is an integer (a Python or NumPy integer, or a float with an integral
@@ -199,6 +202,31 @@ class CampaignSettings:
         if self.length_y is not None:
             object.__setattr__(self, "length_y", float(self.length_y))
         _check_material(self)
+        from contact._validate import implausible
+
+        for note in self.implausible_values():
+            implausible(note)
+
+    def implausible_values(self) -> list[str]:
+        """Values that are valid but implausible for their SI unit, in words (a unit mix-up is
+        more likely than meant: MPa given as Pa, GPa as Pa, µm or mm as m); the report lists
+        them on its first screen."""
+        from contact._validate import PLAUSIBLE_MODULUS, PLAUSIBLE_PRESSURE, PLAUSIBLE_ROUGHNESS
+
+        notes = [f"nominal pressure {v:g} Pa is implausibly small for pascals; did you mean "
+                 f"{v:g}e6 ({v:g} MPa)?" for v in self.pressures if v < PLAUSIBLE_PRESSURE]
+        if self.E < PLAUSIBLE_MODULUS:
+            notes.append(f"E = {self.E:g} Pa is implausibly small for a Young's modulus in "
+                         f"pascals; did you mean {self.E:g}e9 ({self.E:g} GPa)?")
+        side = min(self.size)
+        for rq in (self.rq if isinstance(self.rq, tuple) else (self.rq,)):
+            if rq > PLAUSIBLE_ROUGHNESS or (not self.measured and rq > 0.1 * side):
+                notes.append(f"rq = {rq:g} m on a {side:g} m long surface is implausible for an "
+                             f"RMS roughness in metres; did you mean {rq:g}e-6 ({rq:g} µm)?")
+        if side > 0.1:
+            notes.append(f"a surface of {side:g} m per side is implausible for a length in "
+                         f"metres; did you mean {side:g}e-3 ({side:g} mm)?")
+        return notes
 
     def identity(self) -> dict[str, Any]:
         """The settings that define the stored results (everything but ``n_surfaces``).
@@ -390,6 +418,13 @@ def _check_sampling(s: CampaignSettings) -> None:
         raise ValueError(f"grid must be an integer >= 16 points per side, got {s.grid!r}")
     if s.grid_y is not None and (not is_integer(s.grid_y) or s.grid_y < 16):
         raise ValueError(f"grid_y must be None or an integer >= 16 points, got {s.grid_y!r}")
+    points = int(s.grid) * int(s.grid if s.grid_y is None else s.grid_y)
+    if points > MAX_GRID_POINTS:
+        raise ValueError(
+            f"a {s.grid} × {s.grid if s.grid_y is None else s.grid_y} grid needs "
+            f"{points * 8 / 2**30:.3g} GiB per height or pressure map (a solve holds several); "
+            f"at most {MAX_GRID_POINTS:.3g} points ({MAX_GRID_POINTS * 8 / 2**30:g} GiB per map) "
+            f"are allowed: choose a smaller grid")
 
 
 def _check_geometry(s: CampaignSettings) -> None:

@@ -233,6 +233,7 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
     paths = find_topographies(specs)
     surfaces = read_measured(paths, form, tiles=tiles, spacing=spacing, unit=unit,
                              need_summits=True)
+    _check_units_agree(paths, surfaces, tiles)
     estimates = [h for h in (_hurst_estimate(s) for s in surfaces) if math.isfinite(h)]
     hurst = float(np.clip(np.median(estimates), 0.0, 1.0)) if estimates else 0.5
     return CampaignSettings(
@@ -241,6 +242,30 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
         n_examples=min(1, len(surfaces)), topographies=tuple(os.fspath(p) for p in paths),
         digests=tuple(file_digest(p) for p in paths), form=form, tiles=tiles,
         file_spacing=spacing, file_unit=unit, **scene)
+
+
+#: Largest ratio of one measured surface's RMS height to the median of all of them before the
+#: file is refused as a probable unit mix-up (heights in µm stored as metres: 1e6).
+UNIT_MIXUP_RATIO = 100.0
+
+
+def _check_units_agree(paths: Sequence[Any], surfaces: list[Any],
+                       tiles: tuple[int, int] | None) -> None:
+    """Refuse a file whose RMS height is more than :data:`UNIT_MIXUP_RATIO` times off the
+    median of the campaign's surfaces: one scan of a campaign in another length unit."""
+    if len(surfaces) < 3:
+        return
+    rq = np.array([measured_rq(s) for s in surfaces])
+    median = float(np.median(rq))
+    per_file = 1 if tiles is None else tiles[0] * tiles[1]
+    for k, value in enumerate(rq):
+        ratio = value / median if median > 0 else math.inf
+        if ratio > UNIT_MIXUP_RATIO or ratio < 1 / UNIT_MIXUP_RATIO:
+            name = os.fspath(paths[k // per_file])
+            raise ValueError(
+                f"{name} has an RMS height of {value:.3g} m, {ratio:.3g} times the median of the "
+                f"campaign's surfaces ({median:.3g} m): its heights are probably in another length "
+                f"unit (µm written as m is a factor 1e6); fix the file's unit, or leave it out")
 
 
 def _grid_fields(surface: Any) -> dict[str, Any]:

@@ -52,6 +52,10 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     hard, lvl = asettings.hardness, _level(asettings)
     out.heading("The answer")
     bem = info.get("bem")
+    odd = getattr(settings, "implausible_values", list)()
+    if odd:
+        out.paragraph("⚠ Implausible values for their SI unit (a unit mix-up?): " + "; ".join(odd)
+                      + ".")
     for warn in (degenerate_scene(analysis, settings), overlap_note(settings, analysis)):
         if warn:
             out.paragraph("⚠ " + warn)
