@@ -92,13 +92,15 @@ def plausible_roughness(rq: float, length: float | None = None, name: str = "rq"
     return rq
 
 
-def positive_pressure(value) -> float:
+def positive_pressure(value, warn: bool = True) -> float:
     """``value`` as a nominal pressure: one real, finite, positive number.
 
     Parameters
     ----------
     value : object
         The imposed nominal pressure in pascals (compressive positive).
+    warn : bool, default True
+        Warn when it is implausibly small for pascals (below 1 kPa: MPa given as Pa?).
 
     Returns
     -------
@@ -114,7 +116,7 @@ def positive_pressure(value) -> float:
         p = positive_finite(value, "nominal_pressure", "pressure in pascals")
     except ValueError as exc:
         raise ValueError(f"{exc}; a compressive load is positive") from None
-    if p < PLAUSIBLE_PRESSURE:
+    if warn and p < PLAUSIBLE_PRESSURE:
         implausible(f"nominal_pressure = {p:g} Pa is implausibly small for a contact pressure in "
                     f"pascals; did you mean {p:g}e6 ({p:g} MPa)?")
     return p

@@ -331,7 +331,7 @@ def solve(
     """
     if jump not in ("nearest", "deeper", "blend"):
         raise ValueError(f"jump must be 'nearest', 'deeper' or 'blend', got {jump!r}")
-    nominal_pressure = positive_pressure(nominal_pressure)
+    nominal_pressure = positive_pressure(nominal_pressure, warn=warn)
     tol = tolerance(tol, "tol", 1e-3)
     max_iter = positive_integer(max_iter, "max_iter", "iteration limit")
     model = _Model(surface, E, nu, cone_factor, counter_face)

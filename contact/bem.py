@@ -288,7 +288,7 @@ def solve_bem(
     Soc. A 228 (1929) 377-420. H. M. Stanley, T. Kato, J. Tribol. 119 (1997) 481-485.
     A. Almqvist, F. Sahlin, R. Larsson, S. Glavatskih, Tribol. Int. 40 (2007) 574-579.
     """
-    nominal_pressure = positive_pressure(nominal_pressure)
+    nominal_pressure = positive_pressure(nominal_pressure, warn=warn)
     h, valid = _check_surface(surface)
     e_star = effective_modulus(E, nu, counter_face)
     tol, max_iter = _check_options(tol, max_iter, workers)
