@@ -677,6 +677,6 @@ def test_names_with_dollars_are_shown_literally_in_the_figures(tmp_path, capsys)
     csv = tmp_path / "price_$US_$2026.csv"
     csv.write_text("cost_$_per_$_unit\n" + "\n".join(f"{v:.6g}" for v in _pressures(120, seed=2)))
     out_dir = tmp_path / "o"
-    code, out, err = _run(capsys, [csv, "--bootstrap", 0, "--gof-resamples", 0, "--out", out_dir])
+    code, _out, err = _run(capsys, [csv, "--bootstrap", 0, "--gof-resamples", 0, "--out", out_dir])
     assert code == 0, err
     assert (out_dir / "histogram.png").stat().st_size > 0 and (out_dir / "qq.png").is_file()

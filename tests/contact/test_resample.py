@@ -50,5 +50,5 @@ def test_bad_input_is_refused_with_the_fix():
         contact.resample(contact.Surface(np.zeros((16, 16)), 1e-6), -1.0)
     with pytest.raises(ValueError, match="leaves 1 point along x"):
         contact.resample(contact.Surface(np.zeros((16, 16)), 1e-6), 1e-3)
-    with pytest.raises(TypeError, match="contact.Surface"):
+    with pytest.raises(TypeError, match=r"contact\.Surface"):
         contact.resample(np.zeros((16, 16)), 1e-6)
