@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from typing import Any
 
 import numpy as np
 
@@ -66,7 +67,8 @@ def implausible(message: str) -> None:
 
     here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     inside = tuple(os.path.join(here, pkg) + os.sep for pkg in ("contact", "glstat"))
-    level, frame = 2, sys._getframe(1)  # stacklevel 2: the caller of this function
+    level = 2  # stacklevel 2: the caller of this function
+    frame: Any = sys._getframe(1)
     while frame is not None and (
             os.path.abspath(frame.f_code.co_filename).startswith(inside)
             # the generated __init__ of the packages' dataclasses

@@ -322,10 +322,11 @@ def run_study(
                                         guard=bsettings.guard_points(settings))
         if bsettings.hardness is None:  # the capped solve at the analysis' hardness
             bsettings = dataclasses.replace(bsettings, hardness=analysis.hardness * 1e6)
-        if max(settings.pressures) >= bsettings.hardness:
+        cap = float(bsettings.hardness or analysis.hardness * 1e6)
+        if max(settings.pressures) >= cap:
             raise ValueError(
                 f"nominal pressure {max(settings.pressures) / 1e6:g} MPa is not below the hardness "
-                f"{bsettings.hardness / 1e6:g} MPa: a surface that yields at the hardness carries "
+                f"{cap / 1e6:g} MPa: a surface that yields at the hardness carries "
                 f"at most the hardness times its area; lower the pressure or check the hardness")
         if bsettings.n_compare > settings.n_surfaces:
             raise ValueError(

@@ -114,8 +114,9 @@ def allowable_frame(settings, asettings, analyses: dict[str, dict]) -> Any:
         if not analysis:
             continue
         for ih in sorted({ih for ih, _ in analysis}):
-            cases = [analysis.get((ih, int(il))) for il in order]
-            if any(c is None or c[PRIMARY_SAMPLE].area_damage is None for c in cases):
+            found = [analysis.get((ih, int(il))) for il in order]
+            cases = [c for c in found if c is not None and c[PRIMARY_SAMPLE].area_damage is not None]
+            if len(cases) < len(found):
                 continue
             tables = [c[PRIMARY_SAMPLE].area_damage for c in cases]
             verdicts = [c[PRIMARY_SAMPLE].validation.verdict() if c[PRIMARY_SAMPLE].ok

@@ -41,8 +41,10 @@ def plastic_interval(fractions: np.ndarray, level: float) -> tuple[float, float,
     for param, method in FITS:
         try:
             with warnings.catch_warnings(record=True):  # a fit's warnings are not the caller's
-                fit = glstat.fit(x, param, method)
-                low, high = fit.dist.ppf([alpha, 1.0 - alpha])
+                dist = glstat.fit(x, param, method).dist
+                if dist is None:
+                    continue
+                low, high = dist.ppf([alpha, 1.0 - alpha])
         except (ValueError, RuntimeError, ArithmeticError):
             continue
         if math.isfinite(low) and math.isfinite(high):

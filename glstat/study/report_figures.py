@@ -410,8 +410,9 @@ def allowable_figure(settings, asettings, analysis: dict, model: str):
     loads = np.asarray(settings.pressures, dtype=float)[order] / 1e6
     for ia, (ax, area) in enumerate(zip(axes[0], areas, strict=True)):
         for ih in sorted({ih for ih, _ in analysis}):
-            cases = [analysis.get((ih, int(il))) for il in order]
-            if any(c is None or c[PRIMARY_SAMPLE].area_damage is None for c in cases):
+            found = [analysis.get((ih, int(il))) for il in order]
+            cases = [c for c in found if c is not None and c[PRIMARY_SAMPLE].area_damage is not None]
+            if len(cases) < len(found):
                 continue
             rows = [c[PRIMARY_SAMPLE].area_damage.iloc[ia] for c in cases]
             est = np.array([r["estimate"] for r in rows])

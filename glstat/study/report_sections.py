@@ -52,7 +52,7 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     hard, lvl = asettings.hardness, _level(asettings)
     out.heading("The answer")
     bem = info.get("bem")
-    odd = getattr(settings, "implausible_values", list)()
+    odd: list[str] = getattr(settings, "implausible_values", list)()
     if odd:
         out.paragraph("⚠ Implausible values for their SI unit (a unit mix-up?): " + "; ".join(odd)
                       + ".")
