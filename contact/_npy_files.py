@@ -15,7 +15,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ._zip import DEFLATE_MAX_RATIO, READ_ERRORS, check_zip_member
+from ._zip import DEFLATE_MAX_RATIO, READ_ERRORS, check_declared_heights, check_zip_member
 from .errors import TopographyFileError
 
 __all__ = ["read_npy", "read_npz"]
@@ -197,9 +197,15 @@ def read_npz(path: os.PathLike, fname: str) -> Stored:
                     "Surface.write or numpy.savez(path, heights=..., dx=..., dy=...)"
                 )
             # a member may not declare more than Deflate can expand the whole file to
-            limit = max(os.path.getsize(path), 1) * DEFLATE_MAX_RATIO + 2**20
-            h = _npz_member(archive, infos["heights"], "heights", fname, limit,
-                            lambda d, s: _check_heights_header(d, s, "'heights'", fname))
+            size = os.path.getsize(path)
+            limit = max(size, 1) * DEFLATE_MAX_RATIO + 2**20
+
+            def check(dtype: np.dtype, shape: tuple) -> None:
+                _check_heights_header(dtype, shape, "'heights'", fname)
+                check_declared_heights(math.prod(shape), size, fname,
+                                       f"'heights' (shape {shape})")
+
+            h = _npz_member(archive, infos["heights"], "heights", fname, limit, check)
             content["heights"] = h
             for name in ("dx", "dy"):
                 if name in infos:

@@ -47,6 +47,9 @@ from ._units import UNITS as _UNITS
 from ._units import checked_unit, conflicting_unit, missing_unit, unit_name
 from ._validate import positive_finite
 from ._writers import write
+from ._zip import MAX_DECLARED_BYTES as MAX_DECLARED_BYTES
+from ._zip import MAX_EXPANSION as MAX_EXPANSION
+from ._zip import check_declared_heights
 from .errors import TopographyFileError
 from .surface import Surface
 from .x3p import read_x3p
@@ -118,6 +121,9 @@ def _read_surfacetopography(path: Path, fname: str, unit: str | None = None,
         raise TopographyFileError(f"{fname}: SurfaceTopography cannot read it: {exc}") from None
     if channel.dim != 2:
         raise TopographyFileError(f"{fname}: holds a line profile (1-D); need an areal map")
+    if channel.nb_grid_pts is not None:  # what the file declares, before any height is read
+        nx, ny = (int(n) for n in channel.nb_grid_pts)
+        check_declared_heights(nx * ny, path.stat().st_size, fname, f"the file ({nx} x {ny} points)")
     stated = channel.unit
     if stated is not None:
         name = unit_name(stated)

@@ -22,6 +22,7 @@ import numpy as np
 
 from ._zip import DEFLATE_MAX_RATIO as DEFLATE_MAX_RATIO
 from ._zip import READ_ERRORS as READ_ERRORS
+from ._zip import check_declared_heights
 from ._zip import check_zip_member as check_zip_member
 from ._zip import read_zip_member as read_zip_member
 from .errors import TopographyFileError
@@ -83,7 +84,7 @@ def _info(archive: zipfile.ZipFile, name: str, fname: str) -> zipfile.ZipInfo:
 
 
 def _member(archive: zipfile.ZipFile, name: str, fname: str, limit: int,
-            exact: int | None = None, size_error: str | None = None) -> bytes:
+            exact: int | None = None, size_error: str | None = None) -> bytearray:
     """Member ``name`` (case-insensitive), checked by :func:`check_zip_member` and read with
     a cap of ``limit`` bytes (``exact``: the size it must have; ``size_error``: the message
     when it has another)."""
@@ -134,6 +135,8 @@ def read_x3p(path: str | os.PathLike) -> tuple[np.ndarray, float, float, np.ndar
         ) from None
     with archive:
         layout = _layout(_parse(archive, fname), fname)
+        check_declared_heights(layout.nx * layout.ny, os.path.getsize(fname), fname,
+                               f"main.xml ({layout.nx} x {layout.ny} points)")
         heights, mask = _decode(archive, layout, fname)
     return heights, layout.dx, layout.dy, mask
 
@@ -332,11 +335,15 @@ def _decode(archive: zipfile.ZipFile, layout: _Layout, fname: str
         values, valid = _binary_values(archive, layout, fname)
     else:
         values, valid = _listed_values(layout, fname)
-    heights = values * layout.z_increment + layout.z_offset
+    # X3P stores x fastest: the flat array is (ny, nx) in C order; converted and scaled in
+    # place, so that reading holds the stored bytes and one array of heights
+    heights = np.empty((layout.nx, layout.ny))
+    heights.T[...] = values.reshape(layout.ny, layout.nx)
+    del values
+    heights *= layout.z_increment
+    heights += layout.z_offset
     if valid is not None:
-        heights[~valid] = np.nan
-    # X3P stores x fastest: the flat array is (ny, nx) in C order.
-    heights = heights.reshape(layout.ny, layout.nx).T.copy()
+        heights.T[~valid.reshape(layout.ny, layout.nx)] = np.nan
     n_inf = int(np.isinf(heights).sum())
     if n_inf:
         raise TopographyFileError(
@@ -349,7 +356,8 @@ def _decode(archive: zipfile.ZipFile, layout: _Layout, fname: str
 
 def _binary_values(archive: zipfile.ZipFile, layout: _Layout, fname: str
                    ) -> tuple[np.ndarray, np.ndarray | None]:
-    """Stored values (float64, unscaled) of the linked point data and the validity bits."""
+    """Stored values (unscaled, of the stored type) of the linked point data and the validity
+    bits."""
     npts = layout.nx * layout.ny
     dtype = np.dtype(_DTYPES[layout.z_type])
     need = npts * dtype.itemsize
@@ -358,7 +366,7 @@ def _binary_values(archive: zipfile.ZipFile, layout: _Layout, fname: str
         f"type {layout.z_type} need {need} (truncated or corrupt file)"))
     if layout.data_md5 and layout.data_md5.lower() != hashlib.md5(raw).hexdigest():
         raise TopographyFileError(f"{fname}: point data fail their MD5 checksum (corrupt file)")
-    values = np.frombuffer(raw, dtype=dtype).astype(np.float64)
+    values = np.frombuffer(raw, dtype=dtype)
     if not layout.valid_link:
         return values, None
     bits = _member(archive, layout.valid_link, fname, (npts + 7) // 8 + 64)

@@ -214,3 +214,211 @@ def gzip_bomb(folder: Path) -> Path:
     path.write_bytes(b"\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\xff" + data
                      + struct.pack("<LL", crc, BOMB_BYTES & 0xFFFFFFFF))
     return path
+
+
+# ---------------------------------------------------------------------------------------------
+# files that declare more than they hold: a tiny member behind a huge declared size
+# ---------------------------------------------------------------------------------------------
+_COMPRESSORS = {
+    "deflate": (zipfile.ZIP_DEFLATED, lambda: zlib.compressobj(9, zlib.DEFLATED, -15)),
+    "bzip2": (zipfile.ZIP_BZIP2, lambda: __import__("bz2").BZ2Compressor(9)),
+    "lzma": (zipfile.ZIP_LZMA, None),
+}
+
+
+def _zeros_stream(method: str, n: int, stored: int) -> tuple[bytes, int]:
+    """A zip member's data compressed with ``method``, of the first ``stored`` of ``n`` zero
+    bytes (all of them when ``stored >= n``; the rest is never produced), and the CRC-32 of
+    the ``n`` zeros (computed a MiB at a time)."""
+    chunk = bytes(2**20)
+    crc = 0
+    for k in range(0, n, len(chunk)):
+        crc = zlib.crc32(chunk[:min(len(chunk), n - k)], crc)
+    todo = min(n, stored)
+    if method == "lzma":
+        import lzma
+
+        # zipfile's LZMA members: a 4-byte header (version, properties size) and raw LZMA1
+        comp = lzma.LZMACompressor(lzma.FORMAT_RAW, filters=[{"id": lzma.FILTER_LZMA1,
+                                                               "preset": 0}])
+        props = lzma._encode_filter_properties({"id": lzma.FILTER_LZMA1, "preset": 0})
+        head = struct.pack("<BBH", 9, 4, len(props)) + props
+    else:
+        comp = _COMPRESSORS[method][1]()
+        head = b""
+    parts = [head]
+    for k in range(0, todo, len(chunk)):
+        parts.append(comp.compress(chunk[:min(len(chunk), todo - k)]))
+    parts.append(comp.flush())
+    return b"".join(parts), crc
+
+
+def x3p_declared_grid(folder: Path, n: int = 8192, method: str = "deflate",
+                      full: bool = False) -> Path:
+    """main.xml declares ``n`` x ``n`` float64 points (512 MiB for 8192); the data member,
+    compressed with ``method`` (deflate, bzip2, lzma), holds all of these zeros when ``full``
+    (about 0.5 MB with Deflate, a few hundred bytes with bzip2), else only the first MiB."""
+    size = n * n * 8
+    data, crc = _zeros_stream(method, size, size if full else 2**20)
+    if method == "deflate" and not full:  # as long as a real stream, within Deflate's ratio
+        data += bytes(size // 1032 - len(data))
+    code = _COMPRESSORS[method][0]
+    return _x3p_with_data(folder / f"declared_{n}_{method}{'_full' if full else ''}.x3p", n, n,
+                          data, code, crc, size)
+
+
+def mat_declared(folder: Path, nx: int = 8192, ny: int = 8192, full: bool = False) -> Path:
+    """A MATLAB 5 file of one ``nx`` x ``ny`` double matrix of zeros in a compressed element
+    (about 0.5 MB for 8192 x 8192 when ``full``; else the stream stops after a MiB)."""
+    nbytes = nx * ny * 8
+    body = (struct.pack("<II", 6, 8) + struct.pack("<II", 6, 0)       # array flags: double
+            + struct.pack("<II", 5, 8) + struct.pack("<ii", nx, ny)   # dimensions
+            + struct.pack("<HH", 1, 1) + b"h\0\0\0"                    # name 'h' (small element)
+            + struct.pack("<II", 9, nbytes))                           # real part: miDOUBLE
+    comp = zlib.compressobj(9)
+    parts = [comp.compress(struct.pack("<II", 14, len(body) + nbytes) + body)]
+    chunk = bytes(2**20)
+    todo = nbytes if full else 2**20
+    for k in range(0, todo, len(chunk)):
+        parts.append(comp.compress(chunk[:min(len(chunk), todo - k)]))
+    parts.append(comp.flush())
+    data = b"".join(parts)
+    header = b"MATLAB 5.0 MAT-file, hostile test file".ljust(116) + bytes(8) + struct.pack(
+        "<H", 0x0100) + b"IM"
+    path = folder / f"declared_{nx}x{ny}{'_full' if full else ''}.mat"
+    path.write_bytes(header + struct.pack("<II", 15, len(data)) + data)
+    return path
+
+
+# ---------------------------------------------------------------------------------------------
+# Excel workbooks written member by member (no spreadsheet library needed)
+# ---------------------------------------------------------------------------------------------
+_XLSX_NS = "http://schemas.openxmlformats.org/spreadsheetml/2006/main"
+_REL_NS = "http://schemas.openxmlformats.org/officeDocument/2006/relationships"
+
+
+def _xlsx_parts(sheet: bytes, workbook: bytes | None = None) -> dict[str, bytes]:
+    types = (
+        '<?xml version="1.0" encoding="UTF-8"?><Types xmlns="http://schemas.openxmlformats.org/'
+        'package/2006/content-types"><Default Extension="rels" ContentType="application/vnd.'
+        'openxmlformats-package.relationships+xml"/><Default Extension="xml" ContentType='
+        '"application/xml"/><Override PartName="/xl/workbook.xml" ContentType="application/vnd.'
+        'openxmlformats-officedocument.spreadsheetml.sheet.main+xml"/><Override PartName="/xl/'
+        'worksheets/sheet1.xml" ContentType="application/vnd.openxmlformats-officedocument.'
+        'spreadsheetml.worksheet+xml"/></Types>')
+    rels = (
+        '<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.'
+        'openxmlformats.org/package/2006/relationships"><Relationship Id="rId1" Type="http://'
+        'schemas.openxmlformats.org/officeDocument/2006/relationships/officeDocument" Target='
+        '"xl/workbook.xml"/></Relationships>')
+    wb_rels = (
+        '<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.'
+        'openxmlformats.org/package/2006/relationships"><Relationship Id="rId1" Type="http://'
+        'schemas.openxmlformats.org/officeDocument/2006/relationships/worksheet" Target='
+        '"worksheets/sheet1.xml"/></Relationships>')
+    wb = (f'<?xml version="1.0" encoding="UTF-8"?><workbook xmlns="{_XLSX_NS}" xmlns:r='
+          f'"{_REL_NS}"><sheets><sheet name="Sheet1" sheetId="1" r:id="rId1"/></sheets>'
+          '</workbook>').encode()
+    return {"[Content_Types].xml": types.encode(), "_rels/.rels": rels.encode(),
+            "xl/workbook.xml": workbook or wb, "xl/_rels/workbook.xml.rels": wb_rels.encode(),
+            "xl/worksheets/sheet1.xml": sheet}
+
+
+def sheet_xml(values, extra: str = "", dimension: str | None = None) -> bytes:
+    """A worksheet with the header ``p`` in A1 and ``values`` below it, then ``extra`` cells
+    (XML of whole rows)."""
+    rows = ['<row r="1"><c r="A1" t="inlineStr"><is><t>p</t></is></c></row>']
+    rows += [f'<row r="{i + 2}"><c r="A{i + 2}"><v>{v!r}</v></c></row>'
+             for i, v in enumerate(values)]
+    dim = f'<dimension ref="{dimension}"/>' if dimension else ""
+    return (f'<?xml version="1.0" encoding="UTF-8"?><worksheet xmlns="{_XLSX_NS}">{dim}'
+            f'<sheetData>{"".join(rows)}{extra}</sheetData></worksheet>').encode()
+
+
+def write_xlsx(path: Path, sheet: bytes, workbook: bytes | None = None) -> Path:
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
+        for name, data in _xlsx_parts(sheet, workbook).items():
+            z.writestr(name, data)
+    return path
+
+
+def _sample_values(n: int = 200) -> list[float]:
+    return np.random.default_rng(3).gamma(4.0, 1.0, size=n).round(6).tolist()
+
+
+def xlsx_valid(folder: Path) -> Path:
+    return write_xlsx(folder / "valid.xlsx", sheet_xml(_sample_values()))
+
+
+def xlsx_far_cell(folder: Path) -> Path:
+    """200 values in column A and one more in the last cell of a sheet, XFD1048576."""
+    far = '<row r="1048576"><c r="XFD1048576"><v>1</v></c></row>'
+    return write_xlsx(folder / "far_cell.xlsx", sheet_xml(_sample_values(), far))
+
+
+def xlsx_far_dimension(folder: Path) -> Path:
+    """200 values whose sheet declares the used range A1:XFD1048576."""
+    return write_xlsx(folder / "far_dimension.xlsx",
+                      sheet_xml(_sample_values(), dimension="A1:XFD1048576"))
+
+
+def xlsx_malformed(folder: Path) -> Path:
+    """A sheet whose XML stops in the middle of a cell."""
+    return write_xlsx(folder / "malformed.xlsx", sheet_xml(_sample_values())[:-60])
+
+
+def xlsx_billion_laughs(folder: Path) -> Path:
+    """A workbook part with nested entities (a "billion laughs")."""
+    ents = "".join(f'<!ENTITY e{i} "&e{i - 1};&e{i - 1};&e{i - 1};&e{i - 1};&e{i - 1};&e{i - 1};'
+                   f'&e{i - 1};&e{i - 1};&e{i - 1};&e{i - 1};">' for i in range(1, 10))
+    wb = (f'<?xml version="1.0" encoding="UTF-8"?><!DOCTYPE workbook [<!ENTITY e0 "lol">{ents}]>'
+          f'<workbook xmlns="{_XLSX_NS}" xmlns:r="{_REL_NS}"><sheets><sheet name="&e9;" '
+          'sheetId="1" r:id="rId1"/></sheets></workbook>').encode()
+    return write_xlsx(folder / "laughs.xlsx", sheet_xml(_sample_values()), wb)
+
+
+def xlsx_big_sheet(folder: Path, mib: int = 200) -> Path:
+    """A sheet of about ``mib`` MiB of XML: one column of numbers (a few MB compressed)."""
+    path = folder / f"big_{mib}.xlsx"
+    rng = np.random.default_rng(4)
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as z:
+        for name, data in _xlsx_parts(b"").items():
+            if name != "xl/worksheets/sheet1.xml":
+                z.writestr(name, data)
+        with z.open("xl/worksheets/sheet1.xml", "w", force_zip64=True) as f:
+            f.write(f'<?xml version="1.0" encoding="UTF-8"?><worksheet xmlns="{_XLSX_NS}">'
+                    '<sheetData><row r="1"><c r="A1" t="inlineStr"><is><t>p</t></is></c></row>'
+                    .encode())
+            written, row = 0, 2
+            while written < mib * 2**20:
+                v = rng.gamma(4.0, 1.0, size=10_000).round(6)
+                block = "".join(f'<row r="{row + i}"><c r="A{row + i}"><v>{x!r}</v></c></row>'
+                                for i, x in enumerate(v.tolist())).encode()
+                f.write(block)
+                written += len(block)
+                row += v.size
+            f.write(b"</sheetData></worksheet>")
+    return path
+
+
+# ---------------------------------------------------------------------------------------------
+# Parquet columns that are no column of numbers
+# ---------------------------------------------------------------------------------------------
+def parquet_nested(folder: Path, kind: str) -> Path:
+    """A Parquet file whose column ``p`` holds ``kind``: list, struct, map, fixed_list, or
+    ``duplicate`` (two columns named ``p``)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    x = _sample_values(20)
+    col = {"list": lambda: pa.array([[v, v] for v in x]),
+           "struct": lambda: pa.array([{"a": v, "b": v} for v in x]),
+           "map": lambda: pa.array([[("a", v)] for v in x], type=pa.map_(pa.string(), pa.float64())),
+           "fixed_list": lambda: pa.array([[v, v] for v in x], type=pa.list_(pa.float64(), 2)),
+           "duplicate": lambda: pa.array(x)}[kind]()
+    table = pa.Table.from_arrays([col, pa.array(x)], names=["p", "p" if kind == "duplicate" else "q"])
+    if kind != "duplicate":
+        table = table.select(["p"])
+    path = folder / f"{kind}.parquet"
+    pq.write_table(table, path)
+    return path

@@ -22,14 +22,14 @@ from contact import TopographyFileError
 REFUSED = {
     "x3p_zip_bomb": r"point data hold 134217728 bytes, but 100 x 100 points of type D need 80000",
     "x3p_lying_bomb": r"cannot read 'bindata/data.bin'|longer than",
-    "x3p_huge_grid": r"need 8000000000000",
+    "x3p_huge_grid": r"main.xml \(1000000 x 1000000 points\) declares 1000000000000 heights",
     "x3p_encrypted": r"is encrypted; save the file again without a password",
     "x3p_deflate64": r"compressed with Deflate64, which cannot be read",
     "x3p_broken_deflate": r"cannot read 'bindata/data.bin' from the archive",
     "x3p_inf": r"2 height\(s\) are infinite",
     "x3p_entity_expansion": r"not well-formed XML",
     "npy_huge_header": r"declares shape \(1000000, 1000000\) of float64 \(8000000000000 bytes\) but holds 8",
-    "npz_huge_header": r"'heights' declares shape \(1000000, 1000000\)",
+    "npz_huge_header": r"'heights' \(shape \(1000000, 1000000\)\) declares 1000000000000 heights",
     "npy_subarray": r"has dtype .*heights must be real numbers",
     "xyz_diagonal": r"span a grid of 20000 x 20000 = 400000000 points",
     "text_inf": r"2 height\(s\) are infinite \(first at index \(1, 1\)\)",
@@ -69,6 +69,9 @@ try:  # reset the peak (VmHWM) to the current size, so that only the reading cou
 except OSError:
     pass
 before = _status("VmRSS")
+import resource  # at most 1 GiB more address space: a reader without bounds fails, not the machine
+limit = _status("VmSize") * 1024 + 2**30
+resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 t0 = time.perf_counter()
 outcome = "read"
 if kind == "fit":
@@ -238,3 +241,52 @@ def test_non_ascii_digits_are_not_numbers_in_text_grids(tmp_path):
     path.write_text("# dx = 1e-6\n1 2 3\n4 \u0661 6\n7 8 9\n", encoding="utf-8")
     with pytest.raises(contact.TopographyFileError, match=r"line 3 holds a non-number"):
         contact.read(path)
+
+
+# ---------------------------------------------------------------------------------------------
+# files declaring more heights than they hold: refused from the declaration, before reading
+# ---------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("method", ["deflate", "bzip2", "lzma"])
+def test_x3p_declaring_a_huge_grid_is_refused_before_decompressing(tmp_path, method):
+    """8192 x 8192 points (512 MiB as 8-byte numbers) declared in a file of at most 0.5 MB:
+    refused by the declaration whatever the compression method (formerly 4.3 GB, then
+    MemoryError, for a complete stream)."""
+    path = hostile.x3p_declared_grid(tmp_path, 8192, method)
+    with pytest.raises(TopographyFileError,
+                       match=r"main.xml \(8192 x 8192 points\) declares 67108864 heights \(512 MiB"):
+        contact.read(path)
+
+
+def test_declared_size_rule_accepts_compressed_files_it_can_hold(tmp_path):
+    """Below the cap any compression ratio is read (64 x 64 zeros: 32 KiB from a few bytes)."""
+    for method in ("deflate", "bzip2", "lzma"):
+        s = contact.read(hostile.x3p_declared_grid(tmp_path, 64, method, full=True))
+        np.testing.assert_array_equal(s.heights, np.zeros((64, 64)))
+    # above the cap, a file holding one byte per MAX_EXPANSION bytes of heights is read
+    from contact._zip import MAX_DECLARED_BYTES, MAX_EXPANSION, check_declared_heights
+
+    n = MAX_DECLARED_BYTES // 8 + 1
+    least = -(-8 * n // MAX_EXPANSION)  # bytes on disk the rule asks for (rounded up)
+    check_declared_heights(n, least, "f", "it")
+    with pytest.raises(TopographyFileError, match="declares"):
+        check_declared_heights(n, least - 1, "f", "it")
+
+
+def test_mat_file_declaring_a_huge_matrix_is_refused_before_reading(tmp_path):
+    pytest.importorskip("SurfaceTopography", reason="reading .mat files needs SurfaceTopography")
+    path = hostile.mat_declared(tmp_path, 8192, 8192)
+    with pytest.raises(TopographyFileError, match=r"\(8192 x 8192 points\) declares 67108864"):
+        contact.read(path, dx=1e-6, unit="m")
+    small = hostile.mat_declared(tmp_path, 30, 40, full=True)
+    assert contact.read(small, dx=1e-6, unit="m").shape == (30, 40)
+
+
+@pytest.mark.slow
+def test_complete_compressed_streams_declaring_huge_grids_cost_no_memory(tmp_path):
+    """The complete streams (512 MiB of zeros each: 0.5 MB with Deflate, under 1 kB with bzip2)
+    are refused in a few MB (formerly 4.3 GB, then MemoryError)."""
+    paths = [hostile.x3p_declared_grid(tmp_path, 8192, m, full=True) for m in ("deflate", "bzip2")]
+    for path in paths:
+        got = _measure(path)
+        assert got["outcome"] == "TopographyFileError", (path.name, got)
+        assert got["seconds"] < 2 and got["peak_mb"] < 20, (path.name, got)
