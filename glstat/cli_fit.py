@@ -226,7 +226,9 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
     Raises
     ------
     InputError
-        Bad options, output directory or input data.
+        Bad options, output directory or input data; an output file that cannot be written
+        (disk full, read-only file system, permissions: the message names the file and the
+        fix).
     FitError
         No GLD of the requested kind can be fitted.
     """
@@ -243,8 +245,13 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
         for note in res.notes:
             emit(f"note: {note}")
     with phase("writing figures and tables"):
-        write_figures(res, out)
-        write_tables(res, args, out)
+        try:
+            write_figures(res, out)
+            write_tables(res, args, out)
+        except OSError as exc:  # disk full, read-only file system, permissions
+            from .study.errors import write_failure
+
+            raise InputError(write_failure(exc, exc.filename or out)) from None
     emit("")
     emit(f"wrote {len(res.files)} files to {out}: {', '.join(sorted(res.files))}")
     return res

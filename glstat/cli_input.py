@@ -59,6 +59,9 @@ COMPRESSION = (".gz", ".bz2", ".xz", ".zip", ".zst")
 _SEPARATORS = {",": "commas", ";": "semicolons", "\t": "tabs", r"\s+": "whitespace"}
 _SEP_NAMES = {",": ",", ";": ";", "tab": "\t", "\\t": "\t", "\t": "\t", "space": r"\s+",
               "whitespace": r"\s+", " ": r"\s+"}
+#: A line of two integers separated by a comma: a number with a decimal comma ("1234,56"), or
+#: two columns.
+_COMMA_PAIR = re.compile(r"^\s*[-+]?\d+,\d+\s*$")
 _DECIMAL_COMMA = re.compile(r"^\s*[-+]?(\d+(,\d*)?|,\d+)([eE][-+]?\d+)?\s*$")
 #: Errors of reading or decompressing a file's bytes (corrupt streams, compression methods
 #: the standard library cannot read: NotImplementedError from zipfile); the file's fault.
@@ -417,6 +420,8 @@ def _read_delimited(path: Path, fmt: str, sep: str | None, decimal: str,
     head = scan.head.decode(scan.encoding, errors="replace")
     if sep is None:
         default = {"csv": ",", "tsv": "\t"}.get(fmt, r"\s+")
+        if decimal == "," and default == ",":
+            default = ";"  # decimal commas: a comma separates no fields
         sep = sniff_separator(head, decimal) or default
         if sep != default:
             notes.append(f"fields separated by {_SEPARATORS[sep]} (found in the file; --sep to "
@@ -461,6 +466,10 @@ def _read_delimited(path: Path, fmt: str, sep: str | None, decimal: str,
                          "the same number of fields") from None
     if headerless:
         df.columns = [str(i + 1) for i in range(df.shape[1])]
+        lines = _data_lines(head)
+        if sep == "," and decimal == "." and df.shape[1] == 2 and lines and all(
+                _COMMA_PAIR.match(line) for line in lines):
+            df.attrs["decimal_comma_like"] = lines[0].strip()
     else:
         df.columns = [str(c).strip() for c in df.columns]
         df = _drop_index_column(df, notes)
@@ -502,13 +511,9 @@ def _read_parquet(path: Path, column: str | None) -> pd.DataFrame:
     import pandas as pd
 
     try:
-        meta = pq.ParquetFile(path).metadata
-        names = [meta.schema.column(i).name for i in range(meta.num_columns)]
-        wanted = names
-        if column is not None and column.strip() in names:
-            wanted = [column.strip()]
-        elif column is not None and column.strip().isdigit() and 1 <= int(column) <= len(names):
-            wanted = [names[int(column) - 1]]
+        pf = pq.ParquetFile(path)
+        meta = pf.metadata
+        wanted = _parquet_columns(pf.schema_arrow, column, path)
         size = 0
         for g in range(meta.num_row_groups):
             rg = meta.row_group(g)
@@ -535,15 +540,72 @@ def _read_parquet(path: Path, column: str | None) -> pd.DataFrame:
     return df
 
 
-def _read_excel(path: Path) -> pd.DataFrame:
-    try:
-        import openpyxl  # noqa: F401
-    except ImportError as exc:
-        raise InputError(f"reading Excel files ({path.name}) needs the package 'openpyxl', which is not "
-                         "installed; install it with: pip install openpyxl   (or: pip install "
-                         "'glstat[all]'), or save the sheet as CSV") from exc
-    import pandas as pd
+#: Largest uncompressed XML of the sheet read from an Excel workbook, with its shared strings
+#: (bytes): 32 MiB, about 600 000 numbers. openpyxl reads about 2.5 MiB of sheet XML a second
+#: (32 MiB: 13 s on the reference machine); a larger sheet is refused before reading, and CSV
+#: has no limit.
+MAX_EXCEL_SHEET = 32 * 2**20
+_XML_START = 2**16  # bytes of an XML part where a DOCTYPE or the <dimension> of a sheet is found
+_DIMENSION = re.compile(rb'<(?:\w+:)?dimension\s[^>]*?\bref="([^"]*)"')
+#: A cell with its reference; group 3 is "/" for an empty cell (``<c r="B2" s="1"/>``).
+_CELL = re.compile(rb'<(?:\w+:)?c\s[^>]*?\br="([A-Z]{1,3})([0-9]{1,7})"[^>]*?(/?)>')
+_REF = re.compile(r"\$?([A-Z]{1,3})\$?([0-9]{1,7})$")
 
+
+def _column_number(letters: str) -> int:
+    """1 for A, 27 for AA, 16384 for XFD."""
+    n = 0
+    for ch in letters:
+        n = 26 * n + ord(ch) - 64
+    return n
+
+
+def _excel_error(path: Path, exc: BaseException) -> InputError:
+    """An unreadable workbook, in one line (openpyxl's messages span lines and name their
+    cause separately)."""
+    def first(e: BaseException) -> str:
+        lines = str(e).strip().splitlines()
+        return f"{type(e).__name__}: {quoted(lines[0], 160) if lines else ''}".rstrip(": ")
+
+    why = first(exc)
+    if exc.__cause__ is not None:
+        why += f"; {first(exc.__cause__)}"
+    return InputError(f"{path} could not be read as an Excel workbook ({why}); the file is damaged "
+                      "or not a workbook: open it in a spreadsheet and save the sheet as CSV")
+
+
+def _first_sheet(archive: zipfile.ZipFile, path: Path) -> zipfile.ZipInfo | None:
+    """The part of the first worksheet (the one pandas reads), from the workbook's listing."""
+    import xml.etree.ElementTree as ET
+
+    try:
+        book = ET.fromstring(archive.read("xl/workbook.xml"))
+        rels = ET.fromstring(archive.read("xl/_rels/workbook.xml.rels"))
+    except KeyError:
+        return None
+    except ET.ParseError as exc:
+        raise _excel_error(path, exc) from None
+    targets = {r.get("Id"): r.get("Target", "") for r in rels
+               if r.get("Type", "").endswith("/worksheet")}
+    for sheet in book.iter():
+        if sheet.tag.rsplit("}", 1)[-1] != "sheet":
+            continue
+        rid = next((v for k, v in sheet.attrib.items() if k.rsplit("}", 1)[-1] == "id"), None)
+        target = targets.get(rid)
+        if target:
+            name = target.lstrip("/") if target.startswith("/") else f"xl/{target}"
+            names = {n.lower(): n for n in archive.namelist()}
+            found = names.get(name.lower())
+            return archive.getinfo(found) if found else None
+    return None
+
+
+def _check_workbook(path: Path) -> None:
+    """Refuse, from the archive's directory and a streamed scan of the first sheet, a workbook
+    that would take more than :data:`MAX_DECOMPRESSED` to read or more than about ten seconds:
+    members above the cap, XML with a DOCTYPE (entity expansion), a sheet above
+    :data:`MAX_EXCEL_SHEET`, a used range (declared, or of the cells holding a value) of more
+    than :data:`MAX_DECOMPRESSED` / 32 cells."""
     from contact.errors import TopographyFileError
     from contact.x3p import check_zip_member
 
@@ -553,16 +615,161 @@ def _read_excel(path: Path) -> pd.DataFrame:
             for info in archive.infolist():
                 check_zip_member(info, str(path), repr(info.filename), limit=MAX_DECOMPRESSED)
                 total += info.file_size
-        if total > MAX_DECOMPRESSED:
-            raise _too_big(path, "holds")
-        df = pd.read_excel(path, engine="openpyxl")
+            if total > MAX_DECOMPRESSED:
+                raise _too_big(path, "holds")
+            for info in archive.infolist():
+                if info.filename.lower().endswith((".xml", ".rels", ".vml")):
+                    with archive.open(info) as f:
+                        head = f.read(_XML_START)
+                    if head.startswith((b"\xff\xfe", b"\xfe\xff")):
+                        head = head.decode("utf-16", "replace").encode()
+                    if b"<!DOCTYPE" in head or b"<!ENTITY" in head:
+                        raise InputError(
+                            f"{path} is not a valid Excel workbook: its part {quoted(info.filename)} "
+                            "declares a DOCTYPE (XML entities, which workbooks never use: a damaged "
+                            "file or an entity-expansion attack); save the sheet as CSV from the "
+                            "program that made it")
+            sheet = _first_sheet(archive, path)
+            if sheet is None:
+                return  # openpyxl says what is missing
+            strings = next((i for i in archive.infolist()
+                            if i.filename.lower() == "xl/sharedstrings.xml"), None)
+            size = sheet.file_size + (strings.file_size if strings is not None else 0)
+            if size > MAX_EXCEL_SHEET:
+                raise InputError(
+                    f"{path}: its first sheet holds {_mib(size)} of XML, more than the "
+                    f"{_mib(MAX_EXCEL_SHEET)} glstat fit reads from Excel (reading takes about 0.4 s "
+                    "per MiB); export the sheet as CSV (File > Save As > CSV), which has no limit")
+            _check_used_range(archive, sheet, path)
     except TopographyFileError as exc:
         raise InputError(str(exc).replace("cannot be read", "cannot be read as Excel")) from None
-    except InputError:
+    except (zipfile.BadZipFile, *_STREAM_ERRORS) as exc:
+        raise _excel_error(path, exc) from None
+
+
+def _check_used_range(archive: zipfile.ZipFile, sheet: zipfile.ZipInfo, path: Path) -> None:
+    """Refuse a sheet whose declared used range (``<dimension ref=...>``) or whose farthest cell
+    holding a value spans more than :data:`MAX_DECOMPRESSED` / 32 cells from A1: pandas makes a
+    table of them all, about 30 bytes a cell (one cell at XFD1048576 is 17 billion)."""
+    most = MAX_DECOMPRESSED // 32
+    fix = ("delete the rows and columns after the data (select them, Delete; then save), or "
+           "export the column to fit as CSV")
+    with archive.open(sheet) as f:
+        head = f.read(_XML_START)
+        m = _DIMENSION.search(head)
+        if m is not None:
+            last = _REF.match(m.group(1).decode("ascii", "replace").split(":")[-1])
+            if last is not None:
+                rows, cols = int(last.group(2)), _column_number(last.group(1))
+                if rows * cols > most:
+                    raise InputError(
+                        f"{path}: its first sheet declares the used range {m.group(1).decode()} "
+                        f"({rows} rows x {cols} columns = {rows * cols} cells), more than the "
+                        f"{most} cells glstat fit reads from Excel; {fix}")
+        far_row = far_col = 0
+        far = ""
+        tail = b""
+        chunk = head
+        while chunk:
+            block = tail + chunk
+            cut = block.rfind(b"<")  # a cell tag cut by the chunk's end is scanned with the next
+            cut = cut if cut > len(block) - 512 else len(block)
+            for c in _CELL.finditer(block, 0, cut):
+                if c.group(3):
+                    continue
+                row, col = int(c.group(2)), _column_number(c.group(1).decode())
+                if row > far_row or col > far_col:
+                    far_row, far_col = max(far_row, row), max(far_col, col)
+                    if far_row * far_col > most:
+                        far = c.group(1).decode() + c.group(2).decode()
+                        raise InputError(
+                            f"{path}: its first sheet has a value in cell {far}, so the table read "
+                            f"spans {far_row} rows x {far_col} columns = {far_row * far_col} cells "
+                            f"from A1, more than the {most} cells glstat fit reads from Excel; "
+                            f"{fix}")
+            tail = block[cut:]
+            chunk = f.read(_CHUNK)
+
+
+def _nested(dtype) -> str | None:
+    """What a nested Arrow type holds, in words (None for a plain type)."""
+    import pyarrow as pa
+
+    if pa.types.is_fixed_size_list(dtype):
+        return "fixed-size lists"
+    if pa.types.is_map(dtype):
+        return "maps (key-value pairs)"
+    if pa.types.is_list(dtype) or pa.types.is_large_list(dtype) or (
+            hasattr(pa.types, "is_list_view") and pa.types.is_list_view(dtype)):
+        return "lists"
+    if pa.types.is_struct(dtype):
+        return "structures (several fields in one column)"
+    if pa.types.is_nested(dtype) or pa.types.is_union(dtype):
+        return f"nested values ({dtype})"
+    return None
+
+
+def _parquet_columns(schema, column: str | None, path: Path) -> list[str]:
+    """The top-level columns of a Parquet file to read: the one chosen with ``column``, else
+    every column of plain values; a chosen column holding lists, structures or maps, and
+    columns whose names appear more than once, are refused."""
+    from collections import Counter
+
+    fields = list(schema)
+    names = [f.name for f in fields]
+    counts = Counter(names)
+    hint = "choose a numeric column"
+    plain = [f.name for f in fields if _nested(f.type) is None]
+    listing = f" (columns of plain values: {_listing(plain)})" if plain else ""
+    if column is not None:
+        key = column.strip()
+        if key in counts:
+            chosen = [f for f in fields if f.name == key]
+        elif key.isdigit() and 1 <= int(key) <= len(fields):
+            chosen = [fields[int(key) - 1]]
+        else:
+            return names if all(n == 1 for n in counts.values()) else plain
+        if counts[chosen[0].name] > 1:
+            raise InputError(f"{path} has {counts[chosen[0].name]} columns named "
+                             f"{quoted(chosen[0].name)}; rename them so that each name is unique, or "
+                             "save the column to fit in a file of its own")
+        kind = _nested(chosen[0].type)
+        if kind is not None:
+            raise InputError(f"column {quoted(chosen[0].name)} in {path} holds {kind}, not one number "
+                             f"per row; {hint}{listing}")
+        return [chosen[0].name]
+    if not plain:
+        first = fields[0]
+        raise InputError(f"column {quoted(first.name)} in {path} holds {_nested(first.type)}, not one "
+                         f"number per row, and no column holds plain values; {hint}, e.g. save the "
+                         "values to fit as a column of numbers")
+    repeated = [n for n in plain if counts[n] > 1]
+    if repeated:
+        raise InputError(f"{path} has {counts[repeated[0]]} columns named {quoted(repeated[0])}; "
+                         "rename them so that each name is unique, or choose another column with "
+                         "--column")
+    return plain
+
+
+def _read_excel(path: Path) -> pd.DataFrame:
+    try:
+        import openpyxl  # noqa: F401
+    except ImportError as exc:
+        raise InputError(f"reading Excel files ({path.name}) needs the package 'openpyxl', which is not "
+                         "installed; install it with: pip install openpyxl   (or: pip install "
+                         "'glstat[all]'), or save the sheet as CSV") from exc
+    import xml.etree.ElementTree as ET
+
+    import pandas as pd
+
+    _check_workbook(path)
+    try:
+        df = pd.read_excel(path, engine="openpyxl")
+    except MemoryError:
         raise
-    except (*_READ_ERRORS, KeyError, TypeError) as exc:
-        raise InputError(f"{path} could not be read as an Excel workbook ({type(exc).__name__}: "
-                         f"{exc}); save the sheet as CSV") from None
+    except (*_READ_ERRORS, KeyError, TypeError, IndexError, AttributeError, ET.ParseError) as exc:
+        # openpyxl's errors of damaged parts: ValueError, KeyError, ParseError, ...
+        raise _excel_error(path, exc) from None
     df.columns = [str(c).strip() for c in df.columns]
     return df
 
@@ -682,6 +889,12 @@ def _select_column(df, column: str | None, path: Path, fmt: str) -> tuple[str, A
                 "with --column")
         raise InputError(f"{path} has no numeric column (columns: {describe_columns(df)}); the values "
                          f"to fit must be numbers - {hint}")
+    if df.attrs.get("decimal_comma_like"):
+        line = quoted(df.attrs["decimal_comma_like"])
+        raise InputError(f"{path}: every line looks like one number with a decimal comma (e.g. "
+                         f"{line}), read here as 2 columns separated by commas; "
+                         "pass --decimal , to read them as numbers (or --column 1 or --column 2 if "
+                         "they are two columns of integers)")
     example = numeric[-1] if len(str(numeric[-1])) <= 60 else names.index(numeric[-1]) + 1
     raise InputError(f"{path} has {len(numeric)} numeric columns ({_listing(numeric)}); choose the one "
                      f"to fit with --column, e.g. --column {example}")
@@ -809,6 +1022,11 @@ def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "
                     notes.append("decimal commas read as decimal points (--decimal , says so "
                                  "explicitly)")
     name, series = _select_column(df, column, path, fmt)
+    if df.attrs.get("decimal_comma_like"):
+        line = quoted(df.attrs["decimal_comma_like"])
+        notes.append(f"every line looks like one number with a decimal comma (e.g. {line}); "
+                     "read as two columns separated by commas, as "
+                     "--column asks (--decimal , reads them as numbers)")
     values = _to_float(series, name, path, df)
     nan = np.isnan(values)
     inf = np.isinf(values)
