@@ -38,6 +38,26 @@ from .campaign import (
     surface_path,
 )
 
+
+def _check_contact() -> None:
+    """Refuse an unrelated package named ``contact`` (there is one on PyPI) that shadows the one
+    glstat ships: found without importing it, by a module only glstat's has."""
+    import importlib.util
+    from pathlib import Path
+
+    spec = importlib.util.find_spec("contact")
+    if spec is None or spec.origin is None:  # absent: its first use says so
+        return
+    where = Path(spec.origin).parent
+    if not (where / "_asperity_kernels.py").is_file():
+        raise ImportError(
+            f"the module 'contact' found at {where} is not the contact package glstat ships (an "
+            f"unrelated package of the same name, e.g. from PyPI?): pip uninstall contact, then "
+            f"pip install --force-reinstall glstat")
+
+
+_check_contact()
+
 __all__ = [
     "TRUNCATION_TABLE",
     "AnalysisSettings",
