@@ -14,9 +14,13 @@ Outcomes:
 * clear error: the project's error type (``TopographyFileError`` / exit status 2 of
   ``glstat fit`` / ``TypeError``, ``ValueError``, ``FitError`` for API calls) with a message;
 * accepted: a valid input read correctly;
-* crash: any other exception (a traceback);
+* crash: any other exception (a traceback), or more than one error line of ``glstat fit``;
+* silent: accepted although the input should be refused;
 * blow-up: more than ``--max-mb`` MB of peak memory or ``--max-seconds`` seconds, or the
-  memory limit reached.
+  memory limit reached;
+* hang: no answer within ``--hang-seconds`` (the subprocess is stopped).
+
+The table of every case goes to ``benchmarks/results/hostile_inputs.json``.
 
 The totals are those of docs/reliability.md. Campaign scenarios (lock, kill -9 and resume,
 swapped files, disk full, signals) are tests: ``pytest tests/test_campaign_safety.py``.
@@ -123,6 +127,12 @@ def contact_corpus(d: Path) -> list[tuple[str, Path, str]]:
                                b"<r><Record1><FeatureType>&x;</FeatureType></Record1></r>")
     for name in ("nomain.x3p", "badxml.x3p", "profile.x3p", "nodata.x3p", "external_entity.x3p"):
         cases.append((name.replace(".", "_"), d / name, "refused"))
+    # complete compressed streams declaring 512 MiB to 2 GiB of heights in at most 0.5 MB
+    for n, method in ((8192, "deflate"), (8192, "bzip2"), (8192, "lzma"), (16384, "bzip2")):
+        cases.append((f"x3p_{n}x{n}_{method}", hostile.x3p_declared_grid(d, n, method, full=True),
+                      "refused"))
+    cases.append(("mat_8192x8192_in_0.5MB", hostile.mat_declared(d, 8192, 8192, full=True),
+                  "refused"))
     return cases
 
 
@@ -181,8 +191,17 @@ def fit_corpus(d: Path) -> list[tuple[str, Path, str]]:
         cases.append(("valid_parquet", f / "good.parquet", "accepted"))
         _write(f / "trunc.parquet", (f / "good.parquet").read_bytes()[:300])
         cases.append(("truncated_parquet", f / "trunc.parquet", "refused"))
+        for kind in ("list", "struct", "map", "fixed_list", "duplicate"):
+            cases.append((f"parquet_{kind}_column", hostile.parquet_nested(f, kind), "refused"))
     except ImportError:
         pass
+    cases.append(("valid_xlsx", hostile.xlsx_valid(f), "accepted"))
+    for name in ("xlsx_far_cell", "xlsx_far_dimension", "xlsx_malformed", "xlsx_billion_laughs"):
+        cases.append((name, getattr(hostile, name)(f), "refused"))
+    cases.append(("xlsx_200MiB_sheet", hostile.xlsx_big_sheet(f, 200), "refused"))
+    cases.append(("decimal_comma_one_column", _write(f / "dc.csv", "".join(
+        f"{v:.2f}\n".replace(".", ",") for v in 100 * x)), "refused"))
+    cases.append(("disk_full_when_writing", f / "good.csv", "refused-disk"))
     return cases
 
 
@@ -201,6 +220,13 @@ if kind == "fit":
     from glstat.cli_fit import main
     import pandas, pyarrow.parquet, openpyxl, matplotlib.pyplot, glstat.gof, glstat.bootstrap
     ci.MAX_DECOMPRESSED = int(sys.argv[4])
+    if sys.argv[5] == "refused-disk":  # every output file meets a full disk
+        import errno, pathlib, matplotlib.figure
+        def full(self, name=None, *args, **kwargs):
+            target = self if isinstance(self, pathlib.Path) else name
+            raise OSError(errno.ENOSPC, "No space left on device", str(target))
+        pathlib.Path.write_text = full
+        matplotlib.figure.Figure.savefig = full
 else:
     import contact
 def _status(key):
@@ -316,6 +342,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--keep", help="write the corpus to this folder and keep it")
     p.add_argument("--max-mb", type=float, default=200.0, help="peak memory counted as a blow-up")
     p.add_argument("--max-seconds", type=float, default=10.0, help="time counted as a blow-up")
+    p.add_argument("--hang-seconds", type=float, default=120.0,
+                   help="time after which a case is stopped and counted as a hang")
     p.add_argument("--cap-mb", type=int, default=256,
                    help="decompression cap of glstat fit during the run (MiB; default the "
                         "shipped 256)")
@@ -331,18 +359,30 @@ def main(argv: list[str] | None = None) -> int:
     env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
     for kind, cases in (("contact", contact_corpus(d)), ("fit", fit_corpus(d))):
         for name, path, expected in cases:
-            proc = subprocess.run([sys.executable, "-c", CHILD, str(path), kind, str(d / "out" / name),
-                                   str(args.cap_mb * 2**20)], capture_output=True, text=True,
-                                  timeout=300, cwd=ROOT, env=env)
             try:
-                got = json.loads(proc.stdout.strip().splitlines()[-1])
-            except (IndexError, ValueError):
-                got = {"outcome": f"crash: child died ({proc.returncode}) {proc.stderr[-200:]}",
-                       "seconds": float("nan"), "peak_mb": float("nan")}
-            if "Traceback" in proc.stderr and not got["outcome"].startswith("crash"):
-                got["outcome"] = "crash: traceback on stderr"
+                proc = subprocess.run([sys.executable, "-c", CHILD, str(path), kind,
+                                       str(d / "out" / name), str(args.cap_mb * 2**20), expected],
+                                      capture_output=True, text=True, timeout=args.hang_seconds,
+                                      cwd=ROOT, env=env)
+            except subprocess.TimeoutExpired:
+                got = {"outcome": f"hang: no answer within {args.hang_seconds:.0f} s",
+                       "seconds": args.hang_seconds, "peak_mb": float("nan")}
+            else:
+                try:
+                    got = json.loads(proc.stdout.strip().splitlines()[-1])
+                except (IndexError, ValueError):
+                    got = {"outcome": f"crash: child died ({proc.returncode}) {proc.stderr[-200:]}",
+                           "seconds": float("nan"), "peak_mb": float("nan")}
+                if "Traceback" in proc.stderr and not got["outcome"].startswith("crash"):
+                    got["outcome"] = "crash: traceback on stderr"
+                lines = [ln for ln in proc.stderr.splitlines() if ln.startswith("glstat fit: error")]
+                if got["outcome"].startswith("clear error") and kind == "fit" and len(lines) != 1:
+                    got["outcome"] = f"crash: {len(lines)} error lines on stderr"
+                if got["outcome"] == "accepted" and expected != "accepted":
+                    got["outcome"] = "silent: accepted, expected a refusal"
             if got["peak_mb"] > args.max_mb or got["seconds"] > args.max_seconds:
-                got["outcome"] = "blow-up: " + got["outcome"]
+                if not got["outcome"].startswith("hang"):
+                    got["outcome"] = "blow-up: " + got["outcome"]
             rows.append({"kind": kind, "name": name, "expected": expected, **got})
             print(f"{kind:8s} {name:32s} {got['outcome'][:60]:60s} {got['seconds']:6.2f} s "
                   f"{got['peak_mb']:8.1f} MB", flush=True)
@@ -352,7 +392,7 @@ def main(argv: list[str] | None = None) -> int:
     for name, outcome in calls.items():
         print(f"api      {name:32s} {outcome[:60]}")
     outcomes = [r["outcome"] for r in rows] + list(calls.values())
-    wrong_accept = [r["name"] for r in rows if r["outcome"] == "accepted" and r["expected"] != "accepted"]
+    wrong_accept = [r["name"] for r in rows if r["outcome"].startswith("silent")]
     wrong_refuse = [r["name"] for r in rows if r["expected"] == "accepted" and r["outcome"] != "accepted"]
     total = {
         "files": len(rows), "api calls": len(calls),
@@ -360,6 +400,8 @@ def main(argv: list[str] | None = None) -> int:
         "accepted": sum(o == "accepted" for o in outcomes),
         "crashes": sum(o.startswith("crash") for o in outcomes),
         "blow-ups": sum(o.startswith("blow-up") for o in outcomes),
+        "hangs": sum(o.startswith("hang") for o in outcomes),
+        "silent (accepted, expected a refusal)": len(wrong_accept),
         "refused files expected to be read": wrong_refuse,
         "read files expected to be refused": wrong_accept,
         "largest peak of a refused file (MB)": max((r["peak_mb"] for r in rows
@@ -370,7 +412,11 @@ def main(argv: list[str] | None = None) -> int:
     print(json.dumps(total, indent=1))
     if tmp is not None:
         tmp.cleanup()
-    return 1 if total["crashes"] or total["blow-ups"] or wrong_accept or wrong_refuse else 0
+    out = ROOT / "benchmarks" / "results" / "hostile_inputs.json"
+    out.write_text(json.dumps({"totals": total, "cases": rows, "api": calls}, indent=1) + "\n")
+    print(f"wrote {out.relative_to(ROOT)}")
+    return 1 if (total["crashes"] or total["blow-ups"] or total["hangs"] or wrong_accept
+                 or wrong_refuse) else 0
 
 
 if __name__ == "__main__":

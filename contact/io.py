@@ -31,8 +31,11 @@ raises :class:`~contact.errors.TopographyFileError` and returns nothing.
 
 from __future__ import annotations
 
+import math
 import os
+import struct
 import warnings
+import zlib
 from collections.abc import Callable
 from pathlib import Path
 
@@ -105,6 +108,48 @@ def _import_surfacetopography(fname: str):
 Spacing = tuple[float | None, float | None]
 
 
+def _mat5_declared_points(path: Path) -> int:
+    """The most values one variable of a MATLAB 5 file declares (0 for other files), from the
+    headers of its data elements: a compressed element is inflated only as far as its header
+    (SurfaceTopography's reader, through scipy's, inflates the whole of it first)."""
+    with open(path, "rb") as f:
+        header = f.read(128)
+        if len(header) < 128 or not header.startswith(b"MATLAB") or header[126:] not in (b"IM", b"MI"):
+            return 0
+        order = "<" if header[126:] == b"IM" else ">"
+        size = path.stat().st_size
+        most, offset = 0, 128
+        while offset + 8 <= size:
+            f.seek(offset)
+            kind, nbytes = struct.unpack(order + "II", f.read(8))
+            if kind >> 16:  # small element: the data are in the tag
+                offset += 8
+                continue
+            if kind == 15:  # miCOMPRESSED: the header of the matrix inside
+                inflate = zlib.decompressobj()
+                head = b""
+                left = nbytes
+                while len(head) < 64 and left > 0 and not inflate.eof:
+                    piece = f.read(min(4096, left))
+                    if not piece:
+                        break
+                    left -= len(piece)
+                    head += inflate.decompress(piece, 64 - len(head))
+                    while inflate.unconsumed_tail and len(head) < 64:
+                        head += inflate.decompress(inflate.unconsumed_tail, 64 - len(head))
+                offset += 8 + nbytes
+            else:
+                head = struct.pack(order + "II", kind, nbytes) + f.read(56)
+                offset += 8 + nbytes + (-nbytes % 8)
+            # miMATRIX: tag, array flags (16 bytes), dimensions tag and int32 values
+            if len(head) >= 40 and struct.unpack(order + "I", head[:4])[0] == 14:
+                dim_type, dim_bytes = struct.unpack(order + "II", head[24:32])
+                if dim_type == 5 and 8 <= dim_bytes <= len(head) - 32:
+                    dims = struct.unpack(order + f"{dim_bytes // 4}i", head[32:32 + dim_bytes])
+                    most = max(most, math.prod(max(d, 0) for d in dims))
+        return most
+
+
 def _read_surfacetopography(path: Path, fname: str, unit: str | None = None,
                             spacing: Spacing = (None, None)) -> Stored:
     """Heights and spacing, in metres, of a 2-D map that SurfaceTopography reads.
@@ -114,6 +159,11 @@ def _read_surfacetopography(path: Path, fname: str, unit: str | None = None,
     file that stores none.
     """
     st = _import_surfacetopography(fname)
+    try:
+        declared = _mat5_declared_points(path)
+    except (OSError, struct.error, zlib.error):
+        declared = 0  # not a MATLAB file SurfaceTopography reads: its reader says why
+    check_declared_heights(declared, path.stat().st_size, fname, "a variable of the file")
     try:
         reader = st.open_topography(fname)
         channel = reader.default_channel
@@ -172,7 +222,8 @@ def _read_text_or_other(path: Path, fname: str, unit: str | None,
         return read_text(path, fname, unit)
     except NotOwnText as own:
         refusal = TopographyFileError(str(own))
-        if path.stat().st_size > TEXT_FALLBACK_MAX_BYTES:
+        size = path.stat().st_size
+        if size > TEXT_FALLBACK_MAX_BYTES or size == 0:  # nothing for another reader either
             raise refusal from None
         try:
             _import_surfacetopography(fname)

@@ -290,3 +290,12 @@ def test_complete_compressed_streams_declaring_huge_grids_cost_no_memory(tmp_pat
         got = _measure(path)
         assert got["outcome"] == "TopographyFileError", (path.name, got)
         assert got["seconds"] < 2 and got["peak_mb"] < 20, (path.name, got)
+
+
+@pytest.mark.parametrize("suffix", [".txt", ".csv"])
+def test_empty_text_file_is_a_file_error_not_a_unit_question(tmp_path, suffix):
+    """An empty text file is not handed to SurfaceTopography (which asked for its unit)."""
+    path = tmp_path / f"empty{suffix}"
+    path.write_bytes(b"")
+    with pytest.raises(TopographyFileError, match="holds no data rows"):
+        contact.read(path)
