@@ -219,6 +219,9 @@ def _study_parser() -> argparse.ArgumentParser:
                    help="cut each measured file (--topographies) into NX × NY areas of equal size, "
                         "each analysed as one surface: one scan studied as many areas (e.g. "
                         "--tile 4 3; one value N gives N × N). The form is removed from each area")
+    p.add_argument("--tile-size", type=_positive(float), nargs="+", metavar="MM",
+                   help="instead of --tile: the size of one area in mm (along x, and y; one value "
+                        "for a square area); each file is cut into as many such areas as fit")
     p.add_argument("--spacing", type=_positive(float), nargs="+", metavar="UM",
                    help="grid spacing in µm of measured files that store none (--topographies, "
                         "--like): DX, or DX DY along x and y; overrides a stored spacing")
@@ -267,8 +270,8 @@ def _study_settings(args, argv: list[str]):
         gamma=args.gamma, n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
         cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
     if not (args.topographies or args.like):
-        given = [o for o, v in (("--tile", args.tile), ("--spacing", args.spacing),
-                                ("--unit", args.unit)) if v is not None]
+        given = [o for o, v in (("--tile", args.tile), ("--tile-size", args.tile_size),
+                                ("--spacing", args.spacing), ("--unit", args.unit)) if v is not None]
         if given:
             raise StudyInputError(f"{', '.join(given)}: options of measured files; use them with "
                                   f"--topographies (or --spacing/--unit with --like)")
@@ -316,64 +319,6 @@ def _study_settings(args, argv: list[str]):
     return settings, asettings, surfaces
 
 
-class _Terminated(BaseException):
-    """SIGTERM, raised in the main thread so that the run stops as on Ctrl-C."""
-
-
-class _Signals:
-    """SIGINT and SIGTERM raised as exceptions in the main thread while the study runs, with
-    the signals received kept in :attr:`received` (whatever exception they became); signals
-    swallowed by an unraisable-exception hook are sent again."""
-
-    def __init__(self) -> None:
-        self.received: list[int] = []
-        self.previous: dict = {}
-        self.previous_hook = sys.unraisablehook
-
-    def _on_signal(self, signum, frame):
-        import signal
-
-        self.received.append(signum)
-        raise KeyboardInterrupt if signum == signal.SIGINT else _Terminated
-
-    def _redeliver(self, unraisable):
-        import signal
-
-        # an exception raised where Python cannot propagate it (a weakref callback, a __del__)
-        # is only reported; send the signal again so that the run still stops
-        if self.received and isinstance(unraisable.exc_value, (KeyboardInterrupt, _Terminated)):
-            signal.raise_signal(self.received[-1])
-        else:
-            self.previous_hook(unraisable)
-
-    def __enter__(self) -> _Signals:
-        import signal
-        import threading
-
-        if threading.current_thread() is threading.main_thread():
-            self.previous = {sig: signal.signal(sig, self._on_signal)
-                             for sig in (signal.SIGINT, signal.SIGTERM)}
-            self.previous_hook = sys.unraisablehook
-            sys.unraisablehook = self._redeliver
-        return self
-
-    def __exit__(self, *exc) -> None:
-        import signal
-
-        for sig, handler in self.previous.items():
-            signal.signal(sig, handler)
-        if self.previous:
-            sys.unraisablehook = self.previous_hook
-
-    def exit_status(self, exc: BaseException | None = None) -> tuple[str, int]:
-        """(what happened, exit status): SIGTERM 143, Ctrl-C 130."""
-        import signal
-
-        sigterm = (bool(self.received) and self.received[0] == signal.SIGTERM) or isinstance(
-            exc, _Terminated)
-        return ("terminated (SIGTERM)", 143) if sigterm else ("interrupted (Ctrl-C)", 130)
-
-
 def study_main(argv: list[str]) -> int:
     """``glstat study``: run the study and write the report; returns the exit status."""
     parser = _study_parser()
@@ -382,6 +327,7 @@ def study_main(argv: list[str]) -> int:
     except SystemExit as exc:  # --help, or a usage error already printed by argparse
         return exc.code if isinstance(exc.code, int) else 2
     out = args.out or (QUICK if args.quick else DEFAULTS)["out"]
+    from .cli_signals import Signals, Terminated
     from .study import CampaignError
 
     try:
@@ -389,27 +335,28 @@ def study_main(argv: list[str]) -> int:
     except (ValueError, FileNotFoundError) as exc:
         print(f"glstat study: error: {exc}", file=sys.stderr)
         return 2
-    signals = _Signals()
+    # a second Ctrl-C (or SIGTERM) ends the run at once with this line
+    signals = Signals(lambda how: f"glstat study: {how}: stopped at once; the surfaces saved so "
+                                  f"far are kept in {out}; rerun the same command to resume")
     try:
         with signals:
             t0 = time.perf_counter()
             res = _run_locked(args, argv, settings, asettings, out)
-    except (CampaignError, KeyboardInterrupt, _Terminated, SystemError) as exc:
+    except (CampaignError, KeyboardInterrupt, Terminated, SystemError) as exc:
         # a signal that arrives inside a compiled kernel can surface as a SystemError, or as
         # the failure of the task it interrupted: the signal decides, not the exception
-        if not signals.received and not isinstance(exc, (KeyboardInterrupt, _Terminated)):
+        if not signals.interrupted and not isinstance(exc, (KeyboardInterrupt, Terminated)):
             if isinstance(exc, CampaignError):
                 print(f"glstat study: error: {exc}", file=sys.stderr)
-                return 1
+                return getattr(exc, "exit_status", 1)  # 2: an unreachable --scheduler
             raise
         how, status = signals.exit_status(exc)
-        print(f"glstat study: {how}; the surfaces finished so far are saved in {out}; rerun the "
-              f"same command to resume", file=sys.stderr)
+        signals.report(f"glstat study: {how}; the surfaces finished so far are saved in {out}; "
+                       f"rerun the same command to resume")
         return status
-    if signals.received:  # a signal whose exception was swallowed on the way: it still decides
+    if signals.interrupted:  # a signal whose exception was swallowed on the way: it decides
         how, status = signals.exit_status()
-        print(f"glstat study: {how} as it finished; the results in {out} are complete",
-              file=sys.stderr)
+        signals.report(f"glstat study: {how} as it finished; the results in {out} are complete")
         return status
     print(f"study finished in {time.perf_counter() - t0:.1f} s "
           f"({len(res.campaign.computed)} surfaces computed, {res.campaign.skipped} reused)")
@@ -627,8 +574,11 @@ def _measured_settings(args, argv: list[str], settings, surfaces: int):
         scene["spacing"] = (dx, args.spacing[-1] * 1e-6)
     if args.unit is not None:
         scene["unit"] = "µm" if args.unit == "um" else args.unit
-    if args.tile is not None and not args.topographies:
-        raise ValueError("--tile cuts measured files into areas: use it with --topographies")
+    if (args.tile is not None or args.tile_size is not None) and not args.topographies:
+        raise ValueError("--tile and --tile-size cut measured files into areas: use them with "
+                         "--topographies")
+    if args.tile is not None and args.tile_size is not None:
+        raise ValueError("give --tile (a count of areas) or --tile-size (an area's size), not both")
     if args.topographies:
         given = [o for o in SIMULATION_OPTIONS if any(a == o or a.startswith(o + "=") for a in argv)]
         if given:
@@ -640,6 +590,11 @@ def _measured_settings(args, argv: list[str], settings, surfaces: int):
                 raise ValueError(f"--tile takes NX NY (or one N for N × N), got {len(args.tile)} "
                                  f"values")
             tiles = (args.tile[0], args.tile[-1])
+        if args.tile_size is not None:
+            if len(args.tile_size) > 2:
+                raise ValueError(f"--tile-size takes one or two lengths in mm, got "
+                                 f"{len(args.tile_size)} values")
+            scene["tile_size"] = (args.tile_size[0] * 1e-3, args.tile_size[-1] * 1e-3)
         measured = measured_settings(args.topographies, form=args.form, tiles=tiles, **scene)
         return measured, measured.n_surfaces
     if args.target_pressure is not None:

@@ -240,6 +240,11 @@ def test_one_scan_is_studied_as_many_areas(measured_dir, tmp_path):
         measured_settings(scan, tiles=(8, 16))
     with pytest.raises(ValueError, match="tiles cut measured files"):
         CampaignSettings(tiles=(2, 2))
+    # an area size instead of a count: as many areas of at least that size as fit
+    by_size = measured_settings(scan, tile_size=(0.06e-3, 0.12e-3))
+    assert by_size.tiles == (4, 2) and by_size.identity() == settings.identity()
+    with pytest.raises(ValueError, match="does not fit in a scan"):
+        measured_settings(scan, tile_size=(1e-3, 1e-3))
 
 
 def test_one_scan_without_tiles_says_to_cut_it_and_never_names_refused_options(measured_dir, tmp_path):

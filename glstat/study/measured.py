@@ -34,7 +34,7 @@ from .topography import FORMS, cut_tile, file_digest, measured_rq, read_file, re
 MIN_POINTS = 16
 
 __all__ = ["FORMS", "find_topographies", "like_settings", "like_template", "measured_settings",
-           "read_measured"]
+           "read_measured", "tiles_for_size"]
 
 #: Relative tolerance on the grid spacing shared by all files.
 SPACING_RTOL = 1e-6
@@ -195,8 +195,21 @@ def _hurst_estimate(surface: Any) -> float:
     return float(surface.roughness(level="plane", warn=False)["hurst"])
 
 
+def tiles_for_size(surface: Any, size: tuple[float, float]) -> tuple[int, int]:
+    """The cut ``(nx, ny)`` of ``surface`` into the most areas of at least ``size`` = (along x,
+    along y) metres each (at least one along each axis)."""
+    (lx, ly), (ax, ay) = surface.size, size
+    if not (ax > 0 and ay > 0 and math.isfinite(ax) and math.isfinite(ay)):
+        raise ValueError(f"the area size must be positive lengths in metres, got {size!r}")
+    if ax > lx * (1 + 1e-9) or ay > ly * (1 + 1e-9):
+        raise ValueError(f"an area of {ax * 1e3:g} × {ay * 1e3:g} mm does not fit in a scan of "
+                         f"{lx * 1e3:.4g} × {ly * 1e3:.4g} mm; choose a smaller area")
+    return max(1, math.floor(lx / ax + 1e-9)), max(1, math.floor(ly / ay + 1e-9))
+
+
 def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
                       form: str = "plane", tiles: tuple[int, int] | None = None,
+                      tile_size: tuple[float, float] | None = None,
                       spacing: tuple[float, float] | None = None, unit: str | None = None,
                       **scene: Any) -> CampaignSettings:
     """Campaign settings whose surfaces are measured files: one surface per file, or per area
@@ -213,6 +226,9 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
         Cut each file into ``nx × ny`` areas of equal size along x and y, each one surface
         (one scan studied as many areas); the points left over at the far end of an axis are
         not used.
+    tile_size : (float, float), optional
+        Instead of ``tiles``: the size of an area in metres (along x, along y); each file is
+        cut into as many such areas as fit (:func:`tiles_for_size`, from the first file).
     spacing : (float, float), optional
         Grid spacing ``(dx, dy)`` in metres of files that store none.
     unit : str, optional
@@ -231,6 +247,10 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
         — a label of the group, not a simulation input.
     """
     paths = find_topographies(specs)
+    if tile_size is not None:
+        if tiles is not None:
+            raise ValueError("give tiles (a count of areas) or tile_size (an area's size), not both")
+        tiles = tiles_for_size(read_file(paths[0], spacing=spacing, unit=unit), tile_size)
     surfaces = read_measured(paths, form, tiles=tiles, spacing=spacing, unit=unit,
                              need_summits=True)
     _check_units_agree(paths, surfaces, tiles)
