@@ -300,13 +300,14 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
 
 def plastic_text(summary: dict) -> str:
     """The plastic area fraction of a case as the first screen shows it: "0.85 % [0.76 %,
-    0.91 %]; 87 % of the load" ("—" without a capped solution)."""
+    0.91 %]; 87 % of the load; interval check passed" ("—" without a capped solution)."""
     if "plastic_area_fraction" not in summary:
         return "—"
     return (f"{fmt_probability(summary['plastic_area_fraction'])} "
             f"[{fmt_probability(summary['plastic_area_fraction_low'])}, "
             f"{fmt_probability(summary['plastic_area_fraction_high'])}]; "
-            f"{fmt_probability(summary.get('plastic_load_fraction', math.nan))} of the load")
+            f"{fmt_probability(summary.get('plastic_load_fraction', math.nan))} of the load; "
+            f"interval check {summary.get('plastic_check', 'not checked')}")
 
 
 #: The rms height printed in the paper, m.
