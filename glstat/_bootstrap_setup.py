@@ -13,7 +13,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._validate import check_level, check_method, check_n_resamples, check_param, real_values
+from ._validate import check_level, check_n_resamples, real_values
+from .fitting._aliases import resolve_method, resolve_param
 
 __all__ = ["COMPILED", "KINDS", "Arguments", "Groups", "check_arguments", "draw_entropy",
            "group_choices", "resample_seeds", "stream_seed"]
@@ -49,6 +50,7 @@ class Arguments(NamedTuple):
     confidence_level: float
     param: str
     groups: Groups | None
+    method: str = "moments"
 
 
 def check_arguments(data, param, method, n_resamples, confidence_level, kind, nan_policy,
@@ -65,8 +67,8 @@ def check_arguments(data, param, method, n_resamples, confidence_level, kind, na
     level = check_level(confidence_level)
     if kind not in KINDS:
         raise ValueError(f"kind must be 'nonparametric' or 'parametric', got {kind!r}")
-    check_method(method)
-    param = check_param(param)
+    method = resolve_method(method)
+    param = resolve_param(param)
     layout = None
     if groups is not None:
         if kind != "nonparametric":
@@ -74,7 +76,7 @@ def check_arguments(data, param, method, n_resamples, confidence_level, kind, na
         if nan_policy == "propagate":
             raise ValueError("groups need finite data: use nan_policy='raise' or 'omit'")
         layout = group_layout(data, groups)
-    return Arguments(n, level, param, layout)
+    return Arguments(n, level, param, layout, method)
 
 
 def group_layout(data, groups) -> Groups:

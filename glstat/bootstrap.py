@@ -164,6 +164,7 @@ def bootstrap(
     """
     args = check_arguments(data, param, method, n_resamples, confidence_level, kind, nan_policy,
                            groups)
+    method = args.method  # glstat's name of an R or scipy alias
     x, _ = _S.prepare_data(data, nan_policy)
     entropy = draw_entropy(rng)
     if x is None:  # nan_policy="propagate" met a non-finite value

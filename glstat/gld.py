@@ -21,7 +21,8 @@ class GLD(rv_continuous_frozen):
         lambda1 (location), lambda2 (inverse scale; for RS its sign is fixed by the region),
         lambda3 and lambda4 (shapes).
     param : {"rs", "fkml"}
-        Parameterisation: Ramberg–Schmeiser or Freimer–Kollia–Mudholkar–Lin.
+        Parameterisation: Ramberg–Schmeiser or Freimer–Kollia–Mudholkar–Lin (R's spelling
+        ``"fmkl"`` is accepted, in any case).
 
     Raises
     ------
@@ -45,6 +46,11 @@ class GLD(rv_continuous_frozen):
 
     def __init__(self, l1: float, l2: float, l3: float, l4: float, param: str = "rs"):
         param = str(param).lower()
+        if param not in ("rs", "fkml"):
+            # R's names ("fmkl", ...); imported here: glstat.fitting is built on this module
+            from .fitting._aliases import resolve_param
+
+            param = resolve_param(param)
         region = check_lambdas(l1, l2, l3, l4, param)
         dist = gld_rs if param == "rs" else gld_fkml
         self._lambdas = (float(l1), float(l2), float(l3), float(l4))
@@ -127,6 +133,43 @@ class GLD(rv_continuous_frozen):
     def isf(self, q):
         """Inverse survival function Q(1 - q), accurate for small q."""
         return self._quantile(q, True)
+
+    def density_quantile(self, u):
+        """Density quantile function f(Q(u)) = 1 / Q'(u): R's ``dqgl``.
+
+        Parameters
+        ----------
+        u : array_like
+            Probabilities in [0, 1].
+
+        Returns
+        -------
+        float or ndarray
+            The density at the u-quantile, in 1/(units of the data); NaN for u outside
+            [0, 1], 0 at an end point where the support is unbounded.
+
+        Notes
+        -----
+        Closed form, without inverting Q: RS ``lambda2 / (lambda3 u^(lambda3 - 1) +
+        lambda4 (1 - u)^(lambda4 - 1))``, FKML ``lambda2 / (u^(lambda3 - 1) +
+        (1 - u)^(lambda4 - 1))``, the powers formed as ``exp((lambda3 - 1) log u)`` and
+        ``exp((lambda4 - 1) log1p(-u))``. ``1 / density_quantile(u)`` is the quantile
+        density Q'(u).
+        """
+        _, l2, l3, l4 = self._lambdas
+        p = np.asarray(u, dtype=float)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            # a power 1 stays 1 at an end point (0 ** 0), where its logarithm is -inf
+            lo = np.ones_like(p) if l3 == 1.0 else np.exp((l3 - 1.0) * np.log(p))
+            hi = np.ones_like(p) if l4 == 1.0 else np.exp((l4 - 1.0) * np.log1p(-p))
+            if self._param == "rs":
+                # a shape 0 (RS boundary regions) removes its term, also where its power is inf
+                lo = np.zeros_like(p) if l3 == 0.0 else l3 * lo
+                hi = np.zeros_like(p) if l4 == 0.0 else l4 * hi
+            # RS: lambda2 has the sign of the bracket (its region), FKML: both positive
+            out = l2 / (lo + hi)
+        out = np.where((p >= 0.0) & (p <= 1.0), out, np.nan)
+        return out[()] if out.ndim == 0 else out
 
     def stats(self, moments="mv"):
         """Mean, variance, skewness and/or excess kurtosis (letters of ``moments``, as scipy).

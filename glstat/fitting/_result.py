@@ -9,6 +9,7 @@ from dataclasses import dataclass, fields
 from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
+from ..errors import FitError
 from ..gld import GLD
 from ..regions import rs_region
 from ._candidates import FitRecord, candidates_frame, count_valid
@@ -17,7 +18,12 @@ from ._eval import gld_support
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-__all__ = ["GLDFit", "as_gldfit"]
+__all__ = ["GLDFit", "NaNFitError", "as_gldfit"]
+
+
+class NaNFitError(FitError, ValueError):
+    """``GLDFit.dist`` of a NaN fit (``nan_policy="propagate"`` met a non-finite value): the
+    fit has no distribution. Caught by ``except glstat.FitError`` and ``except ValueError``."""
 
 
 @dataclass(frozen=True)
@@ -49,8 +55,11 @@ class GLDFit(FitRecord):
         The warnings of the fit (category and message): empty for a fit that covers the
         data with a Kolmogorov–Smirnov distance within the 1 % critical value and converged.
         :func:`fit` also emits them unless called with ``warn=False``.
-    dist : GLD or None
-        The selected frozen distribution (None for a NaN fit); built on first access.
+    ok : bool
+        True when the fit has a distribution; False for a NaN fit.
+    dist : GLD
+        The selected frozen distribution, built on first access; a NaN fit raises
+        :class:`NaNFitError` (a :class:`glstat.FitError` and a ``ValueError``) here.
     solutions : pandas.DataFrame
         Every root or candidate found: ``lambda1..lambda4``, ``region`` (RS), ``valid``,
         ``converged``, ``objective`` (residual of the equations or value of the objective),
@@ -58,11 +67,27 @@ class GLDFit(FitRecord):
         built on first access.
     """
 
+    @property
+    def ok(self) -> bool:
+        """True when the fit has a distribution (finite lambdas); False for the NaN fit of
+        ``nan_policy="propagate"``, whose ``dist`` raises."""
+        return all(math.isfinite(v) for v in self.lambdas)
+
     @cached_property
-    def dist(self) -> GLD | None:
-        """The selected distribution, ``GLD(*lambdas, param=param)`` (None for a NaN fit)."""
-        if not all(math.isfinite(v) for v in self.lambdas):
-            return None
+    def dist(self) -> GLD:
+        """The selected distribution, ``GLD(*lambdas, param=param)``.
+
+        Raises
+        ------
+        NaNFitError
+            For a NaN fit (``nan_policy="propagate"`` met a non-finite value): check
+            :attr:`ok` first. A :class:`glstat.FitError` and a ``ValueError``.
+        """
+        if not self.ok:
+            raise NaNFitError(f"this {self.param.upper()} {self.method} fit is a NaN fit (lambdas "
+                              f"{self.lambdas}: nan_policy='propagate' met a non-finite value) and "
+                              "has no distribution; check fit.ok before using fit.dist, or drop the "
+                              "non-finite values with nan_policy='omit'")
         return GLD(*self.lambdas, param=self.param)
 
     @cached_property
@@ -127,7 +152,7 @@ def _summary_text(f: GLDFit) -> str:
         return "n/a" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.6g}"
 
     sel = next((r for r in f._candidates if r["selected"]), None)
-    ok = f.dist is not None
+    ok = f.ok
     if ok:
         lo, hi = gld_support(f.param, f.lambdas)
         support = f"[{lo:.6g}, {hi:.6g}]"

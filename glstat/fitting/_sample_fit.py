@@ -10,8 +10,8 @@ from __future__ import annotations
 import dataclasses
 import logging
 
-from .._validate import check_method, check_param
 from . import _stats as S
+from ._aliases import resolve_method, resolve_param
 from ._candidates import FitRecord, count_valid, nan_record
 from ._equations import DATA_METHODS, fit_equations, poor_fit_issue
 
@@ -27,8 +27,8 @@ def fit_sample(data, param: str = "rs", method: str = "moments", nan_policy: str
     Nothing is warned: the issues of the fit, including a poor fit of the data, are in the
     record's ``issues``.
     """
-    param = check_param(param)
-    check_method(method)
+    param = resolve_param(param)
+    method = resolve_method(method)
     allowed = {"u"} if method == "percentiles" else set()
     if method in DATA_METHODS:
         allowed = {"maxiter", "starts", "optimizer", "start"}

@@ -11,10 +11,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_param as _check_param
 from ..errors import FitError
 from . import _kernels as K
 from . import _stats as S
+from ._aliases import resolve_method as _resolve_method
+from ._aliases import resolve_param as _check_param
 from ._candidates import FitIssue
 from ._candidates import emit_issues as _emit
 from ._equations import FAMILY as _FAM
@@ -191,6 +192,7 @@ def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0
         (equal to ``n_roots`` without ``extremes``).
     """
     param = _check_param(param)
+    method = _resolve_method(method)
     if method not in _KIND:
         raise ValueError(f"fit_batch supports {tuple(_KIND)}, got {method!r}")
     u = _check_u(u)
