@@ -16,6 +16,7 @@ from ._bootstrap_frames import summary_frame
 from ._bootstrap_intervals import (
     LAMBDA_NAMES,
     BootstrapInterval,
+    ConfidenceIntervalAccess,
     check_ci_method,
     finite_rows,
     make_interval,
@@ -233,7 +234,35 @@ class BootstrapFit:
                                                     self.options, self.fit.lambdas, self._seed(0))
         return self._cache["jack"]
 
-    def confidence_interval(
+    @property
+    def confidence_interval(self) -> ConfidenceIntervalAccess:
+        """Bootstrap confidence intervals: call it, or read it as scipy's attribute.
+
+        ``bf.confidence_interval(method="percentile", confidence_level=None, statistic=None,
+        *, vectorized=False, names=None)`` returns a :class:`BootstrapInterval` (see
+        :meth:`ConfidenceIntervalAccess.__call__`). Read as an attribute, as
+        ``scipy.stats.bootstrap(...).confidence_interval`` is, it is the default interval
+        (percentile, :attr:`confidence_level`, of the lambdas): ``.low``, ``.high`` (arrays
+        of shape (4,)), ``low, high = bf.confidence_interval`` and ``.standard_error``.
+        """
+        return ConfidenceIntervalAccess(self)
+
+    @property
+    def bootstrap_distribution(self) -> np.ndarray:
+        """The resampled lambdas in scipy's layout: shape (4, n_successful).
+
+        Row i holds lambda(i+1) of every resample with a fit, in resample order (the
+        successful rows of :attr:`lambdas`, transposed), as
+        ``scipy.stats.bootstrap(...).bootstrap_distribution`` holds a vector statistic with
+        its resamples along the last axis. Failed resamples are left out (they are the NaN
+        rows of :attr:`lambdas`), so the last axis is shorter than :attr:`n_resamples` when
+        some failed. A read-only view.
+        """
+        out = self._lam().T
+        out.flags.writeable = False
+        return out
+
+    def _confidence_interval(
         self,
         method: str = "percentile",
         confidence_level: float | None = None,
@@ -241,65 +270,25 @@ class BootstrapFit:
         *,
         vectorized: bool = False,
         names: tuple[str, ...] | None = None,
+        stacklevel: int = 2,
     ) -> BootstrapInterval:
-        """Bootstrap confidence interval of the lambdas or of a quantity derived from a GLD.
-
-        Parameters
-        ----------
-        method : {"percentile", "basic", "BCa"}
-            ``"percentile"``: quantiles alpha/2 and 1 - alpha/2 of the bootstrap values.
-            ``"basic"``: those quantiles reflected about the full-sample estimate.
-            ``"BCa"``: bias-corrected and accelerated (Efron 1987): the bias correction
-            z0 = Phi^-1(fraction of bootstrap values below the estimate, ties counted half),
-            the acceleration a = sum(d^3) / (6 (sum d^2)^(3/2)) from the jackknife
-            differences d (delete-one for n <= 1000 (compiled methods) or 100 (ML, MPS,
-            starship), otherwise delete-a-group over a random partition into that many
-            groups), and the quantiles Phi(z0 + (z0 + z) / (1 - a (z0 + z))) at
-            z = Phi^-1(alpha/2), Phi^-1(1 - alpha/2).
-        confidence_level : float, optional
-            Nominal coverage in (0, 1); default :attr:`confidence_level`.
-        statistic : callable, optional
-            Function of a :class:`glstat.GLD` returning a number or a 1-D array (e.g.
-            ``lambda d: d.ppf(0.9)``, ``lambda d: d.mean()``, ``lambda d: d.sf(2050.0)``).
-            Default: the lambdas themselves.
-        vectorized : bool
-            When True, ``statistic`` is called once with all distributions as one frozen
-            scipy distribution whose parameters have shape (k, 1) (see :meth:`batch`) and
-            must return shape (k,) or (k, p). Much faster than one call per GLD.
-        names : tuple of str, optional
-            Names of the entries of the statistic (default ``"statistic"`` or
-            ``"statistic[i]"``).
-
-        Returns
-        -------
-        BootstrapInterval
-            ``estimate``, ``low``, ``high``, ``standard_error`` (arrays; a float-like 0-d
-            array for a scalar statistic) over the successful resamples.
-
-        Raises
-        ------
-        ValueError
-            Unknown method or confidence_level outside (0, 1).
-
-        Warns
-        -----
-        BootstrapWarning
-            For the lambdas (no ``statistic``) when :attr:`branch_note` is not empty: the
-            resample fits lie in several RS regions or on several root branches. The note is
-            also the interval's ``note``.
-        """
+        """The interval of :class:`ConfidenceIntervalAccess` (its call documents the
+        arguments); warnings point to the frame ``stacklevel`` levels up from this one."""
         note = self.branch_note if statistic is None else ""
         if note:
-            warnings.warn(f"interval of the lambdas: {note}", BootstrapWarning, stacklevel=2)
-        return self._interval(method, confidence_level, statistic, vectorized, names, self._lam(), note)
+            warnings.warn(f"interval of the lambdas: {note}", BootstrapWarning, stacklevel=stacklevel)
+        return self._interval(method, confidence_level, statistic, vectorized, names, self._lam(), note,
+                              stacklevel + 1)
 
-    def _interval(self, method, confidence_level, statistic, vectorized, names, lam, note):
+    def _interval(self, method, confidence_level, statistic, vectorized, names, lam, note,
+                  stacklevel: int = 2):
         m = check_ci_method(method)
         level = self._level(confidence_level)
         if lam.shape[0] < 2:
             raise FitError(f"only {lam.shape[0]} of {self.n_resamples} resamples have a fit: no "
                            "bootstrap interval")
-        theta = finite_rows(statistic_values(statistic, vectorized, lam, self.param), stacklevel=2)
+        theta = finite_rows(statistic_values(statistic, vectorized, lam, self.param),
+                            stacklevel=stacklevel)
         full = np.array([self.fit.lambdas], dtype=float)
         est = statistic_values(statistic, vectorized, full, self.param)[0]
         jack = None

@@ -5,8 +5,9 @@ BCa bounds of a statistic over the bootstrap GLDs (:meth:`glstat.BootstrapFit.co
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from scipy import special
@@ -19,8 +20,10 @@ from .gld import GLD
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-__all__ = ["CI_METHODS", "LAMBDA_NAMES", "BootstrapInterval", "bca_bounds", "check_ci_method",
-           "finite_rows", "make_interval", "statistic_values"]
+    from ._bootstrap_fit import BootstrapFit
+
+__all__ = ["CI_METHODS", "LAMBDA_NAMES", "BootstrapInterval", "ConfidenceIntervalAccess", "bca_bounds",
+           "check_ci_method", "finite_rows", "make_interval", "statistic_values"]
 
 #: The interval methods, in lower case.
 CI_METHODS = ("percentile", "basic", "bca")
@@ -73,6 +76,121 @@ class BootstrapInterval:
              "note": self.note},
             index=pd.Index(self.names, name="quantity"),
         )
+
+
+class ConfidenceIntervalAccess:
+    """``BootstrapFit.confidence_interval``: a method to call and, read as an attribute, the
+    default interval in the shape of scipy's ``ConfidenceInterval(low, high)``.
+
+    ``scipy.stats.bootstrap`` returns a result whose ``confidence_interval`` is a named
+    tuple ``(low, high)``; :class:`glstat.BootstrapFit` has a method of that name with
+    choices (method, level, statistic). This object is both: calling it returns a
+    :class:`BootstrapInterval`; ``.low``, ``.high``, ``.standard_error``, unpacking
+    (``low, high = bf.confidence_interval``) and indexing (``[0]``, ``[1]``) give those of
+    the default interval: percentile, at the bootstrap's ``confidence_level``, of the
+    lambdas (arrays of shape (4,)). scipy's default method is BCa; for it write
+    ``bf.confidence_interval("BCa")``. The default interval is computed once per bootstrap
+    (its warning, when the lambdas lie on several branches, is given once).
+    """
+
+    __slots__ = ("_owner",)
+
+    def __init__(self, owner: BootstrapFit):
+        self._owner = owner
+
+    def __call__(
+        self,
+        method: str = "percentile",
+        confidence_level: float | None = None,
+        statistic: Callable[[Any], Any] | None = None,
+        *,
+        vectorized: bool = False,
+        names: tuple[str, ...] | None = None,
+    ) -> BootstrapInterval:
+        """Bootstrap confidence interval of the lambdas or of a quantity derived from a GLD.
+
+        Parameters
+        ----------
+        method : {"percentile", "basic", "BCa"}
+            ``"percentile"``: quantiles alpha/2 and 1 - alpha/2 of the bootstrap values.
+            ``"basic"``: those quantiles reflected about the full-sample estimate.
+            ``"BCa"``: bias-corrected and accelerated (Efron 1987): the bias correction
+            z0 = Phi^-1(fraction of bootstrap values below the estimate, ties counted half),
+            the acceleration a = sum(d^3) / (6 (sum d^2)^(3/2)) from the jackknife
+            differences d (delete-one for n <= 1000 (compiled methods) or 100 (ML, MPS,
+            starship), otherwise delete-a-group over a random partition into that many
+            groups), and the quantiles Phi(z0 + (z0 + z) / (1 - a (z0 + z))) at
+            z = Phi^-1(alpha/2), Phi^-1(1 - alpha/2).
+        confidence_level : float, optional
+            Nominal coverage in (0, 1); default :attr:`confidence_level`.
+        statistic : callable, optional
+            Function of a :class:`glstat.GLD` returning a number or a 1-D array (e.g.
+            ``lambda d: d.ppf(0.9)``, ``lambda d: d.mean()``, ``lambda d: d.sf(2050.0)``).
+            Default: the lambdas themselves.
+        vectorized : bool
+            When True, ``statistic`` is called once with all distributions as one frozen
+            scipy distribution whose parameters have shape (k, 1) (see :meth:`batch`) and
+            must return shape (k,) or (k, p). Much faster than one call per GLD.
+        names : tuple of str, optional
+            Names of the entries of the statistic (default ``"statistic"`` or
+            ``"statistic[i]"``).
+
+        Returns
+        -------
+        BootstrapInterval
+            ``estimate``, ``low``, ``high``, ``standard_error`` (arrays; a float-like 0-d
+            array for a scalar statistic) over the successful resamples.
+
+        Raises
+        ------
+        ValueError
+            Unknown method or confidence_level outside (0, 1).
+
+        Warns
+        -----
+        BootstrapWarning
+            For the lambdas (no ``statistic``) when :attr:`branch_note` is not empty: the
+            resample fits lie in several RS regions or on several root branches. The note is
+            also the interval's ``note``.
+        """
+        return self._owner._confidence_interval(method, confidence_level, statistic, vectorized=vectorized,
+                                                names=names, stacklevel=3)
+
+    def _default(self) -> BootstrapInterval:
+        cache = self._owner._cache
+        if "ci_default" not in cache:
+            # warnings point to the user's line: _confidence_interval, _default, the property
+            cache["ci_default"] = self._owner._confidence_interval(stacklevel=4)
+        return cache["ci_default"]
+
+    @property
+    def low(self) -> np.ndarray:
+        """Lower bounds of the default interval (percentile, lambda1..lambda4)."""
+        return self._default().low
+
+    @property
+    def high(self) -> np.ndarray:
+        """Upper bounds of the default interval (percentile, lambda1..lambda4)."""
+        return self._default().high
+
+    @property
+    def standard_error(self) -> np.ndarray:
+        """Bootstrap standard errors of lambda1..lambda4 (divisor B - 1)."""
+        return self._default().standard_error
+
+    def __iter__(self) -> Iterator[np.ndarray]:
+        d = self._default()
+        return iter((d.low, d.high))
+
+    def __len__(self) -> int:
+        return 2
+
+    def __getitem__(self, i: int) -> np.ndarray:
+        return (self.low, self.high)[i]
+
+    def __repr__(self) -> str:
+        d = self._default()
+        return f"ConfidenceInterval(low={d.low!r}, high={d.high!r})"
 
 
 def check_ci_method(method) -> str:
