@@ -342,9 +342,10 @@ def study_main(argv: list[str]) -> int:
         with signals:
             t0 = time.perf_counter()
             res = _run_locked(args, argv, settings, asettings, out)
-    except (CampaignError, KeyboardInterrupt, Terminated, SystemError) as exc:
-        # a signal that arrives inside a compiled kernel can surface as a SystemError, or as
-        # the failure of the task it interrupted: the signal decides, not the exception
+    except BaseException as exc:
+        # a signal that arrives inside a compiled kernel can surface as a SystemError, as the
+        # failure of the task it interrupted, or as the error of the code it interrupted (a
+        # zip file left half-written): the signal decides, not the exception
         if not signals.interrupted and not isinstance(exc, (KeyboardInterrupt, Terminated)):
             if isinstance(exc, CampaignError):
                 print(f"glstat study: error: {exc}", file=sys.stderr)

@@ -11,6 +11,7 @@ import os
 import sys
 import threading
 import time
+import weakref
 from collections.abc import Callable, Iterable
 from concurrent.futures import Executor, Future, as_completed
 from typing import Any
@@ -21,13 +22,26 @@ from .errors import CampaignError
 from .files import atomic_write, npz_bytes
 
 __all__ = [
+    "SchedulerUnreachable",
     "SerialExecutor",
     "compute_and_save",
     "execute_tasks",
+    "kill_workers",
     "make_executor",
     "split_stored",
     "timed_task",
 ]
+
+#: The local process pools made by :func:`make_executor`, for :func:`kill_workers`.
+_POOLS: list[weakref.ref] = []
+
+
+class SchedulerUnreachable(CampaignError):
+    """The Dask scheduler did not answer (or has no worker) within the timeout; the message
+    names the address, what was waited for and what to check."""
+
+    #: Exit status of ``glstat study`` (a wrong option, as for other bad input).
+    exit_status = 2
 
 
 class SerialExecutor(Executor):
@@ -59,12 +73,17 @@ def make_executor(workers: int | None = None, scheduler: str | None = None,
         Address of a Dask scheduler (``tcp://host:8786``); its workers run the tasks through
         ``distributed.Client(address).get_executor()``.
     timeout : float
-        Seconds to wait for the scheduler.
+        Seconds each wait on the scheduler may last: the connection with Dask's handshake,
+        then a first worker, then the closing of the client.
 
     Raises
     ------
+    SchedulerUnreachable
+        The scheduler did not answer within ``timeout`` (nothing listens, or the port is not a
+        Dask scheduler's, such as its dashboard's), or it has no worker; the message names
+        the address, what was waited for and what to check. A :class:`CampaignError`.
     CampaignError
-        The scheduler cannot be reached, or ``distributed`` is not installed.
+        ``distributed`` is not installed.
     """
     if scheduler:
         return _dask_executor(scheduler, timeout)
@@ -83,26 +102,197 @@ def make_executor(workers: int | None = None, scheduler: str | None = None,
     context = multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
     pool = ProcessPoolExecutor(n, mp_context=context, initializer=_init_worker,
                                initargs=(os.getpid(),))
+    _POOLS[:] = [ref for ref in _POOLS if ref() is not None] + [weakref.ref(pool)]
     return pool, lambda: pool.shutdown(cancel_futures=True)
 
 
+def kill_workers(reap: bool = False) -> list[int]:
+    """Kill the worker processes of every local pool of :func:`make_executor` still alive.
+
+    Safe from any thread. The tasks they run are lost, and the pools are broken (their
+    futures fail with ``BrokenProcessPool``); results already saved are untouched.
+
+    Parameters
+    ----------
+    reap : bool
+        Also collect the killed processes' exit status (for at most 1 s), so that none is left
+        as a zombie; only when the process ends next, since the pool's own bookkeeping
+        expects to do it.
+
+    Returns
+    -------
+    list of int
+        The process ids killed.
+    """
+    killed = []
+    for ref in list(_POOLS):
+        pool = ref()
+        if pool is not None:
+            killed += _kill_pool(pool)
+    if reap and killed and hasattr(os, "WNOHANG"):
+        _reap(killed, 1.0)
+    return killed
+
+
+def _kill_pool(pool: Executor) -> list[int]:
+    """Kill (SIGKILL, or TerminateProcess on Windows) the workers of a process pool."""
+    try:
+        processes = list((getattr(pool, "_processes", None) or {}).values())
+    except RuntimeError:  # changed while copied: the pool is being shut down
+        return []
+    killed = []
+    for proc in processes:
+        pid = getattr(proc, "pid", None)
+        if pid is None:
+            continue
+        try:
+            proc.kill()
+        except (OSError, ValueError, AttributeError):  # already gone, or closed
+            continue
+        killed.append(pid)
+    return killed
+
+
+def _reap(pids: list[int], seconds: float) -> None:
+    """Collect the exit status of the child processes ``pids`` for at most ``seconds``."""
+    deadline = time.monotonic() + seconds
+    left = set(pids)
+    while left and time.monotonic() < deadline:
+        for pid in list(left):
+            try:
+                done, _ = os.waitpid(pid, os.WNOHANG)
+            except ChildProcessError:  # reaped already
+                done = pid
+            if done:
+                left.discard(pid)
+        if left:
+            time.sleep(0.005)
+
+
 def _dask_executor(scheduler: str, timeout: float) -> tuple[Executor, Callable[[], None]]:
-    """The executor of the Dask cluster at ``scheduler`` and the function that closes its client."""
+    """The executor of the Dask cluster at ``scheduler`` and the function that closes its client.
+
+    Every wait on the scheduler is bounded by ``timeout`` seconds, whatever answers at the
+    address: the connection with Dask's handshake, then the wait for a first worker, then the
+    closing of the client. Each runs in a daemon thread that is given up at the deadline (a
+    port that accepts connections but never answers, such as a dashboard, keeps Dask's own
+    connection waiting).
+    """
     try:
         from distributed import Client
     except ImportError:
         raise CampaignError(
             "a Dask scheduler needs the 'distributed' package: pip install 'glstat[distributed]'"
         ) from None
-    try:
-        client = Client(scheduler, timeout=f"{timeout}s")
-    except Exception as exc:  # OSError, TimeoutError, ValueError for a bad address
-        raise CampaignError(
-            f"cannot reach the Dask scheduler at {scheduler!r} within {timeout:g} s ({exc}); "
-            f"check the address and that the scheduler is running, or drop --scheduler to "
-            f"run on local processes"
+    made: list = []
+
+    class _Client(Client):  # keeps hold of a client whose start fails
+        def __init__(self, *args, **kwargs):
+            made.append(self)
+            super().__init__(*args, **kwargs)
+
+    done, result = _bounded(lambda: _Client(scheduler, timeout=f"{timeout}s",
+                                            set_as_default=False), timeout + 1.0,
+                            name="glstat-dask-connect", discard=_close_quietly)
+    if not done or isinstance(result, BaseException):
+        for half in made if done else ():
+            # it never connected: nothing to close, and closing it when it is collected
+            # would wait for a scheduler that is not there and print a traceback
+            half.status = "closed"
+        if isinstance(result, ValueError):  # an address Dask cannot parse
+            raise SchedulerUnreachable(
+                f"--scheduler {scheduler!r} is not an address of a Dask scheduler ({result}); "
+                f"give it as tcp://HOST:PORT (the scheduler's port, usually 8786)") from None
+        finding = _what_answers(scheduler, result if done else None)
+        raise SchedulerUnreachable(
+            f"cannot reach the Dask scheduler at {scheduler!r} within {timeout:g} s (waited for "
+            f"the connection and Dask's handshake): {finding}; check --scheduler: the address of a "
+            f"running scheduler with the scheduler's port (usually 8786, not the dashboard's "
+            f"8787), or raise --scheduler-timeout, or drop --scheduler to run on local processes"
         ) from None
-    return client.get_executor(), client.close
+    client = result
+    done, result = _bounded(lambda: client.wait_for_workers(1, timeout=timeout), timeout + 1.0,
+                            name="glstat-dask-workers")
+    if not done or isinstance(result, BaseException):
+        _bounded(lambda: client.close(timeout=timeout), timeout, name="glstat-dask-close")
+        raise SchedulerUnreachable(
+            f"the Dask scheduler at {scheduler!r} has no worker after {timeout:g} s (waited for a "
+            f"first worker to join it); start workers for it (dask worker {scheduler}), or "
+            f"raise --scheduler-timeout, or drop --scheduler to run on local processes"
+        ) from None
+
+    def close() -> None:
+        _bounded(lambda: client.close(timeout=timeout), timeout + 1.0, name="glstat-dask-close")
+
+    return client.get_executor(), close
+
+
+def _bounded(fn: Callable[[], Any], seconds: float, *, name: str,
+             discard: Callable[[Any], None] | None = None) -> tuple[bool, Any]:
+    """Call ``fn()`` in a daemon thread and wait for it at most ``seconds``.
+
+    Returns
+    -------
+    (bool, object)
+        Whether it ended in time, and its result or the exception it raised (None when it did
+        not end). A result arriving after the deadline is passed to ``discard``.
+    """
+    box: dict[str, Any] = {}
+    lock = threading.Lock()
+
+    def run():
+        try:
+            value = fn()
+        except BaseException as exc:  # handed to the caller
+            value = exc
+        with lock:
+            late = "given_up" in box
+            box["value"] = value
+        if late and discard is not None and not isinstance(value, BaseException):
+            discard(value)
+
+    thread = threading.Thread(target=run, name=name, daemon=True)
+    thread.start()
+    thread.join(seconds)
+    with lock:
+        if "value" in box:
+            return True, box["value"]
+        box["given_up"] = True
+    return False, None
+
+
+def _close_quietly(client: Any) -> None:
+    with contextlib.suppress(Exception):
+        client.close(timeout=1)
+
+
+def _what_answers(scheduler: str, error: BaseException | None) -> str:
+    """What a plain TCP connection finds at the address of a scheduler that did not answer
+    (``error``: Dask's exception, None when it gave no answer in time), in words."""
+    import socket
+
+    try:
+        from distributed.comm.addressing import parse_address, parse_host_port
+
+        scheme, location = parse_address(scheduler)
+        host, port = parse_host_port(location)
+    except Exception:  # an address whose port cannot be probed
+        scheme, host, port = "", "", None
+    if scheme not in ("tcp", "tls") or port is None:
+        return f"no answer ({error})" if error is not None else "no answer"
+    try:
+        with socket.create_connection((host, port), timeout=2.0):
+            pass
+    except ConnectionRefusedError:
+        return f"nothing listens on port {port} of {host} (connection refused)"
+    except TimeoutError:
+        return f"{host} did not accept a connection on port {port}"
+    except OSError as exc:
+        return f"cannot connect to {host} port {port} ({exc.strerror or exc})"
+    if error is None:
+        return f"port {port} accepts connections but never answered as a Dask scheduler"
+    return (f"port {port} accepts connections but answered otherwise than a Dask scheduler "
+            f"({type(error).__name__})")
 
 
 def _init_worker(parent: int) -> None:
@@ -112,11 +302,17 @@ def _init_worker(parent: int) -> None:
     so ``kill -9`` of a campaign leaves no worker behind. Elsewhere a daemon thread checks
     the parent once a second and ends the worker when it is gone. Ctrl-C (SIGINT, sent to
     the whole process group) is ignored by the workers: the parent stops the campaign and
-    reports it once. These settings belong to the worker process alone.
+    reports it once; SIGTERM ends the worker. These settings belong to the worker process
+    alone.
     """
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # a forked worker inherits the parent's SIGTERM handler and signal wake-up descriptor:
+    # SIGTERM ends the worker as it ends any program, and tells the parent nothing
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    with contextlib.suppress(ValueError, OSError):
+        signal.set_wakeup_fd(-1)
     if sys.platform.startswith("linux"):
         try:
             import ctypes
@@ -316,6 +512,12 @@ def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, r
     Exception or None
         The first failure of a task, of the executor or of a write (results finished before
         and around it are saved where possible).
+
+    Notes
+    -----
+    On Ctrl-C or SIGTERM (an exception raised in this thread) the results finished are saved
+    and the workers of the local pool are killed rather than awaited: the tasks they run
+    would not be saved.
     """
     shutdown = None
     if executor is None:
@@ -331,9 +533,14 @@ def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, r
         run.computed.append(key)
         run.task_times[key] = seconds
 
+    stopped = True
     try:
-        return execute_tasks(executor, fn, args, todo, save, limit=limit, bar=bar)
+        exc = execute_tasks(executor, fn, args, todo, save, limit=limit, bar=bar)
+        stopped = False
+        return exc
     finally:
         bar.close()
         if shutdown is not None:
+            if stopped:  # Ctrl-C or SIGTERM: the tasks running are lost, so do not wait for them
+                _kill_pool(executor)
             shutdown()
