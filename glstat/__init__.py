@@ -15,7 +15,13 @@ from .bootstrap import (
 from .checks import BinomialCheck, binomial_check
 from .counts import CountDistribution, ObservedCounts, PoissonCount
 from .cross_validation import MaximumCrossValidation, cross_validate_maximum
-from .damage import damage_probability, guaranteed_threshold, integrity_probability
+from .damage import (
+    damage_probability,
+    guaranteed_threshold,
+    integrity_probability,
+    return_level,
+    return_period,
+)
 from .distributions import gld_fkml, gld_rs
 from .errors import ConvergenceWarning, FitError, FitWarning, InvalidParameterError
 from .extremes import (
@@ -76,6 +82,8 @@ __all__ = [
     "order_statistic",
     "predict_maximum",
     "predict_maximum_pot",
+    "return_level",
+    "return_period",
     "rs_region",
 ]
 

@@ -33,7 +33,8 @@ import numpy as np
 from ._tails import TailAccess
 from .counts import as_count
 
-__all__ = ["damage_probability", "guaranteed_threshold", "integrity_probability"]
+__all__ = ["damage_probability", "guaranteed_threshold", "integrity_probability", "return_level",
+           "return_period"]
 
 _OUTSIDE = ("raise", "limit")
 
@@ -274,3 +275,104 @@ def guaranteed_threshold(dist, n=None, probability=None, area_factor=1.0, *, dam
     out = [par.quantile(u, q) for par in parents]
     res = np.stack(out) if many else out[0]
     return res[()] if res.ndim == 0 else res
+
+
+def _check_period(period) -> np.ndarray:
+    t = np.asarray(period, dtype=float)
+    bad = ~(np.isfinite(t) & (t > 1.0))
+    if bad.any():
+        first = t[bad].ravel()[0] if t.ndim else float(t)
+        raise ValueError(f"period must be finite and > 1 (blocks: a level exceeded once in T blocks "
+                         f"on average), got {first}")
+    return t
+
+
+def return_level(dist, period, n=None, area_factor=1.0, *, count=None):
+    """Return level of period T: the level the maximum of a block exceeds with probability 1/T.
+
+    The convention of pyextremes and of block-maxima analysis: a block is ``n`` points (or a
+    random ``count`` of them) of the distribution ``dist``, times ``area_factor``; the level
+    is :func:`guaranteed_threshold` with ``damage=1/T``, ``Q((1 - 1/T)^(1/(k n)))``.
+
+    Parameters
+    ----------
+    dist : frozen continuous distribution, or a sequence of them
+        As for :func:`integrity_probability` (e.g. a fitted ``glstat.GLD`` of the pressure
+        at one point, or of block maxima with ``n=1``).
+    period : array_like
+        Return period T in blocks (> 1), e.g. years for annual maxima or surfaces for the
+        maximum of one surface.
+    n : array_like, optional
+        Points per block (>= 1); default 1 (without ``count``): ``dist`` is then the
+        distribution of the block maximum itself.
+    area_factor : array_like, optional
+        k, blocks of ``k`` times the analysed area (> 0). Default 1.
+    count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
+        A random number of points per block instead of ``n``.
+
+    Returns
+    -------
+    float or ndarray
+        Level in the units of ``dist``; broadcast shape of period, n and area_factor
+        (preceded by the distribution axis for a sequence).
+
+    Raises
+    ------
+    ValueError
+        period <= 1 or non-finite, n < 1, area_factor <= 0.
+
+    See Also
+    --------
+    return_period : the inverse, 1 / P(block maximum > x).
+
+    Examples
+    --------
+    >>> import scipy.stats
+    >>> from glstat import return_level
+    >>> round(float(return_level(scipy.stats.expon(), 100.0)), 4)   # -log(1/100)
+    4.6052
+    """
+    t = _check_period(period)
+    n = 1.0 if n is None and count is None else n
+    return guaranteed_threshold(dist, n, area_factor=area_factor, damage=1.0 / t, count=count)
+
+
+def return_period(dist, x, n=None, area_factor=1.0, *, count=None, outside_support: str = "raise"):
+    """Return period of a level: 1 / P(maximum of a block > x), in blocks.
+
+    The inverse of :func:`return_level`: ``1 / damage_probability(dist, x, n, area_factor)``.
+
+    Parameters
+    ----------
+    dist, n, area_factor, count
+        As for :func:`return_level`.
+    x : array_like
+        Level, in the units of ``dist``.
+    outside_support : {"raise", "limit"}, optional
+        As for :func:`damage_probability`; with ``"limit"`` a level above the support has
+        the return period ``inf`` and one below it the period 1.
+
+    Returns
+    -------
+    float or ndarray
+        Return period in blocks (>= 1; ``inf`` where the block maximum cannot exceed ``x``),
+        shaped as for :func:`damage_probability`.
+
+    Raises
+    ------
+    ValueError
+        As for :func:`damage_probability`.
+
+    Examples
+    --------
+    >>> import scipy.stats
+    >>> from glstat import return_period
+    >>> round(float(return_period(scipy.stats.expon(), 4.6051701860)), 6)   # 1 / e^-x
+    100.0
+    """
+    n = 1.0 if n is None and count is None else n
+    d = np.asarray(damage_probability(dist, x, n, area_factor, count=count, outside_support=outside_support),
+                   dtype=float)
+    with np.errstate(divide="ignore"):
+        out = 1.0 / d
+    return out[()] if out.ndim == 0 else out
