@@ -134,8 +134,80 @@ def _pw(e, logx):
 
 
 @njit(cache=True, error_model="numpy")
+def _terms_log(fam, a, b, t, l1):
+    """Q(p) = C + sa e**la + sb e**lb: the two power terms as signs and logarithms and the
+    constant C (RS: s p**a - s (1-p)**b, C = 0; FKML: p**a/a - (1-p)**b/b, C = 1/b - 1/a;
+    a zero shape contributes its logarithm to C instead)."""
+    if fam == RS:
+        s = rs_sign(a, b)
+        la = a * t if a != 0.0 else -math.inf
+        lb = b * l1 if b != 0.0 else -math.inf
+        c = 0.0
+        if a == 0.0:
+            c += s
+        if b == 0.0:
+            c -= s
+        return s, la, -s, lb, c
+    c = 0.0
+    if a == 0.0:
+        la = -math.inf
+        sa = 1.0
+        c += t
+    else:
+        la = a * t - math.log(abs(a))
+        sa = 1.0 if a > 0.0 else -1.0
+        c -= 1.0 / a
+    if b == 0.0:
+        lb = -math.inf
+        sb = -1.0
+        c -= l1
+    else:
+        lb = b * l1 - math.log(abs(b))
+        sb = -1.0 if b > 0.0 else 1.0
+        c += 1.0 / b
+    return sa, la, sb, lb, c
+
+
+@njit(cache=True, error_model="numpy")
+def q_lower_log(fam, a, b, t, l1):
+    """Standardized Q(p) as (sign, log|Q|), for shapes whose power terms overflow (|lambda|
+    above ~1000 in the body, or a power tail beyond 1e308): the terms are combined in
+    logarithms, so that Q is finite wherever it is representable (inf - inf otherwise).
+    Relative accuracy: eps * (1 + max(|a t|, |b l1|)) / (relative cancellation of the
+    terms), the conditioning of the powers themselves."""
+    sa, la, sb, lb, c = _terms_log(fam, a, b, t, l1)
+    m = max(la, lb)
+    if m < 700.0:
+        v = _q_lower_direct(fam, a, b, t, l1)
+        return (1.0 if v >= 0.0 else -1.0), math.log(abs(v))
+    d = min(la, lb) - m
+    sm = sa if la >= lb else sb
+    if sa == sb:
+        lv = m + math.log1p(math.exp(d))
+    else:
+        if d == 0.0:
+            return (1.0 if c >= 0.0 else -1.0), math.log(abs(c))
+        lv = m + math.log(-math.expm1(d))
+    if lv > 700.0:
+        return sm, lv
+    v = sm * math.exp(lv) + c
+    return (1.0 if v >= 0.0 else -1.0), math.log(abs(v))
+
+
+@njit(cache=True, error_model="numpy")
 def q_lower(fam, a, b, t, l1):
     """Standardized Q(p) from t = log(p) and l1 = log1p(-p)."""
+    v = _q_lower_direct(fam, a, b, t, l1)
+    if v - v == 0.0 or t == -math.inf:
+        return v
+    # a power term overflowed (inf - inf, or an inf that the combined value need not be)
+    sg, lv = q_lower_log(fam, a, b, t, l1)
+    return sg * math.exp(lv)
+
+
+@njit(cache=True, error_model="numpy")
+def _q_lower_direct(fam, a, b, t, l1):
+    """Standardized Q(p) from t = log(p) and l1 = log1p(-p), in double arithmetic."""
     if fam == RS:
         s = rs_sign(a, b)
         if a * t < -LN2 and b * l1 < -LN2:
@@ -173,6 +245,11 @@ def log_qprime_lower(fam, a, b, t, l1):
     else:
         s = rs_sign(a, b)
         if s < 0.0 and a > 0.0:
+            c = -b
+            lc = math.log(c) - (c + 1.0) * l1
+            if lc > 600.0:
+                # regions 2, 6 with lambda4 below ~-900: c (1-p)**(-c-1) beyond the range
+                return lc + math.log1p(-math.exp(math.log(a) + (a - 1.0) * t - lc))
             return math.log(qprime_lower(fam, a, b, t, l1))
         if a == 0.0:
             return math.log(abs(b)) + (b - 1.0) * l1
@@ -262,6 +339,47 @@ def _pow_residual(fam, a, b, y, y_lo, t, p, l1):
 
 
 @njit(cache=True, error_model="numpy")
+def _log_residual(fam, a, b, y, y_lo, t, p, l1):
+    """Residual for power terms beyond the double range: Q - y = (C - y) + sa e**la +
+    sb e**lb (`_terms_log`) as log(sum of the positive parts) - log(sum of the negative
+    parts), which has the sign of Q - y and stays finite; with its t-derivative and
+    rounding noise. Returns the contraction 1 (no closed-form step)."""
+    sa, la, sb, lb, c = _terms_log(fam, a, b, t, l1)
+    w = (c - y) - y_lo
+    dla = a
+    dlb = -b * p / (1.0 - p)
+    pos = -math.inf
+    neg = -math.inf
+    if sa > 0.0:
+        pos = la
+    else:
+        neg = la
+    if sb > 0.0:
+        pos = log_add_exp(pos, lb) if pos > -math.inf else lb
+    else:
+        neg = log_add_exp(neg, lb) if neg > -math.inf else lb
+    if w > 0.0:
+        pos = log_add_exp(pos, math.log(w)) if pos > -math.inf else math.log(w)
+    elif w < 0.0:
+        neg = log_add_exp(neg, math.log(-w)) if neg > -math.inf else math.log(-w)
+    dpos = 0.0
+    dneg = 0.0
+    if la > -math.inf:
+        if sa > 0.0:
+            dpos += math.exp(la - pos) * dla
+        else:
+            dneg += math.exp(la - neg) * dla
+    if lb > -math.inf:
+        if sb > 0.0:
+            dpos += math.exp(lb - pos) * dlb
+        else:
+            dneg += math.exp(lb - neg) * dlb
+    noise = EPS * (abs(la) + abs(lb) + abs(pos) + abs(neg)) if la > -math.inf and lb > -math.inf \
+        else EPS * (abs(pos) + abs(neg))
+    return pos - neg, dpos - dneg, noise, 1.0
+
+
+@njit(cache=True, error_model="numpy")
 def residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     """Residual R(t) = Q(e^t) - y (offset form), dR/dt, rounding noise of R, contraction.
 
@@ -271,6 +389,10 @@ def residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
     """
     p = math.exp(t)
     l1 = math.log1p(-p)
+    if a * t > 600.0 or b * l1 > 600.0:
+        # a power term near or beyond the double range (|lambda| above ~900 in the body)
+        fam = FKML if (case == FPOS or case == FINF or case == FPD) else RS
+        return _log_residual(fam, a, b, y, y_lo, t, p, l1)
     if case == R3A:
         pa = math.exp(a * t)
         h = -math.expm1(b * l1) if b != 0.0 else 0.0
@@ -723,8 +845,12 @@ def standardize(x, loc, inv_scale):
     rounding, so that points next to a finite end point keep their distance to it."""
     if loc == 0.0 and inv_scale == 1.0:
         return x, 0.0
-    if not (x - loc == x - loc) or abs(x) == math.inf:
-        return (x - loc) * inv_scale, 0.0
+    d = x - loc
+    if not (d == d) or abs(d) == math.inf:
+        # NaN, an infinite x, or a difference of finite doubles beyond the double range
+        # (loc = 1e308, x = -1e308): an infinite standardized point, which `overflow_point`
+        # resolves from x and loc themselves
+        return d * inv_scale, 0.0
     d_hi, d_lo = two_sum(x, -loc)
     y_hi, e = two_prod(d_hi, inv_scale)
     return fast_two_sum(y_hi, e + d_lo * inv_scale)
@@ -1032,6 +1158,26 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
         out[i] = emit(what, fam, ae, be, p, lp, upper, inv_scale, log_scale)
 
 
+_LN2_HI = 0.6931471803691238  # ln 2 in 32 bits: k * _LN2_HI is exact for |k| < 2**20
+_LN2_LO = 1.9082149292705877e-10
+
+
+@njit(cache=True, error_model="numpy")
+def _q_scaled(fam, a, b, t, l1, inv_scale):
+    """Q(p) / inv_scale; where Q itself overflows but the quotient need not (inv_scale > 1),
+    from log|Q| with the power of two of the quotient applied exactly."""
+    q = q_lower(fam, a, b, t, l1)
+    if math.isfinite(q) or t == -math.inf:
+        return q / inv_scale
+    sg, lq = q_lower_log(fam, a, b, t, l1)
+    if not math.isfinite(lq):
+        return sg * math.exp(lq)
+    m, e = math.frexp(inv_scale)
+    k = round(lq / LN2)
+    r = (lq - k * _LN2_HI) - k * _LN2_LO
+    return sg * math.ldexp(math.exp(r) / m, int(k) - e)
+
+
 # what = 0 ppf(u), 1 isf(q)
 @njit(cache=True, error_model="numpy")
 def quantile_kernel(u, a, b, fam, what, out, loc=0.0, inv_scale=1.0):
@@ -1067,9 +1213,9 @@ def quantile_kernel(u, a, b, fam, what, out, loc=0.0, inv_scale=1.0):
             qs = (abs(ai) / c) * tl - (abs(bi) / c) * tu
             out[i] = loc + qs * (c / inv_scale) if c / inv_scale > 0.0 else loc + qs * c / inv_scale
         elif lower:
-            out[i] = loc + q_lower(fam, ai, bi, t, l1) / inv_scale
+            out[i] = loc + _q_scaled(fam, ai, bi, t, l1, inv_scale)
         else:
-            out[i] = loc - q_lower(fam, bi, ai, t, l1) / inv_scale
+            out[i] = loc - _q_scaled(fam, bi, ai, t, l1, inv_scale)
 
 
 @njit(cache=True, error_model="numpy")
