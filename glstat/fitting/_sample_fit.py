@@ -10,6 +10,8 @@ from __future__ import annotations
 import dataclasses
 import logging
 
+import numpy as np
+
 from . import _stats as S
 from ._aliases import resolve_method, resolve_param
 from ._candidates import FitRecord, count_valid, nan_record
@@ -29,6 +31,14 @@ def fit_sample(data, param: str = "rs", method: str = "moments", nan_policy: str
     """
     param = resolve_param(param)
     method = resolve_method(method)
+    from ._censored import is_censored
+
+    if is_censored(data):
+        if data.num_censored() > 0:
+            from ._censored import fit_censored
+
+            return fit_censored(data, param, method, **options)
+        data = np.asarray(data._uncensored, dtype=float)  # nothing censored: the plain fit
     allowed = {"u"} if method == "percentiles" else set()
     if method in DATA_METHODS:
         allowed = {"maxiter", "starts", "optimizer", "start"}

@@ -233,11 +233,20 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
 
     Parameters
     ----------
-    data : array_like
-        Sample (any shape; flattened, never modified). Units: those of the data.
+    data : array_like or scipy.stats.CensoredData
+        Sample (any shape; flattened, never modified). Units: those of the data. Censored
+        data are fitted by ``method="mle"`` only: the likelihood sums logpdf over the exact
+        values, logcdf over the left-censored, logsf over the right-censored and
+        log(F(high) - F(low)) over the intervals (Nelder–Mead from the uncensored ML fit;
+        options ``maxiter``, ``starts``; no KS distance or poor-fit warning, which
+        censoring makes meaningless). ``statistics`` then also counts each kind of value.
     param : {"rs", "fkml"}
-        Parameterisation.
+        Parameterisation; R's spelling ``"fmkl"`` is accepted (any case).
     method : {"moments", "percentiles", "lmoments", "mle", "mps", "starship"}
+        R's names are accepted in any case: ``"ML"`` (``"mle"``), ``"MPS"``/``"MSP"``,
+        ``"SM"`` (``"starship"``), ``"Lmom"``/``"LM"`` (``"lmoments"``), ``"Mom"`` and
+        scipy's ``"MM"`` (``"moments"``); R's ``"TM"``, ``"TL"``, ``"DLA"`` raise
+        ``ValueError`` naming the closest glstat method (docs/fitting.md).
         ``"moments"``: match mean, variance, skewness, kurtosis (divisor n). ``"percentiles"``:
         Karian–Dudewicz rho statistics at ``u`` (option, default 0.1; sample quantile at
         (n+1)p). ``"lmoments"``: unbiased sample L-moments. ``"mle"``: maximum likelihood;
