@@ -19,6 +19,7 @@ from .quantile_function import (
     LN2,
     R3A,
     RMX,
+    RS,
     emit,
     end_density,
     invert_kernel,
@@ -216,8 +217,9 @@ def _lookup2(y, y_lo, d_ys, d_pl, o_ys, o_pl, y0):
 @njit(cache=True, error_model="numpy")
 def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
     """Same contract as ``quantile_function.invert_kernel`` for scalar shapes a, b and many points."""
-    if rs_tiny(fam, a, b):
-        # the linear regime of tiny RS shapes has its own per-point solver
+    if rs_tiny(fam, a, b) or (fam == RS and (a == 0.0 or b == 0.0)):
+        # the linear regime of tiny RS shapes has its own per-point solver; RS with a shape
+        # exactly 0 is inverted in closed form
         invert_kernel(y, np.array([a]), np.array([b]), fam, what, out, status, loc, inv_scale)
         return
     log_scale = math.log(inv_scale)

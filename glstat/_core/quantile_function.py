@@ -689,12 +689,13 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
     z_hi, z_lo = two_sum(z_hi, z_lo + y_lo)
     if case in (R3A, R3Z, R4Z, RMX, FPOS) and z_hi <= 0.0:
         return 0.0, -math.inf, OK
-    if case == R3Z:
-        p = -math.expm1(math.log1p(-z_hi) / b)
-        return p, math.log(p), OK
-    if case == R4Z:
-        p = -math.expm1(math.log1p(z_hi) / b)
-        return p, math.log(p), OK
+    if case == R3Z or case == R4Z:
+        p, lp, up = _rs_zero_shape(b, y, y_lo)
+        if up:
+            # above the median: lp is log(1 - p) of the lower-tail probability p
+            p = -math.expm1(lp)
+            lp = math.log(p)
+        return p, lp, OK
     t_hi = -LN2
     t_lo = -math.inf
     t = _initial_guess(case, a, b, y, z_hi, z_lo)
@@ -809,8 +810,44 @@ def _beyond_lower_end(fam, a, b, y, y_lo):
 
 
 @njit(cache=True, error_model="numpy")
+def _rs_zero_shape(b, y, y_lo):
+    """RS with lambda3 = 0 (b = lambda4 != 0): Q = sign(b) (1 - (1-p)**b), inverted in closed
+    form from the double-double y + y_lo, log(1 - p) = log(1 - sign(b) y)/b, with 1 - sign(b) y
+    formed exactly: for large b the upper half of the law lies within an ulp of the end point
+    1 (b > 0), where the low part of y carries the whole answer. Returns (smaller tail
+    probability, its log, upper?)."""
+    sg = 1.0 if b > 0.0 else -1.0
+    v_hi, v_lo = two_sum(1.0, -sg * y)
+    v_lo -= sg * y_lo
+    v_hi, v_lo = two_sum(v_hi, v_lo)
+    if not v_hi > 0.0:
+        # b > 0: at or above the upper end point 1
+        return 0.0, -math.inf, True
+    lv = math.log(v_hi) + math.log1p(v_lo / v_hi)
+    m = lv / b  # log(1 - p)
+    if not m < 0.0:
+        # at or below the lower end point 0 (b > 0) or -1 ... 0 side (b < 0): p = 0
+        return 0.0, -math.inf, False
+    if m < -LN2:
+        return math.exp(m), m, True
+    p = -math.expm1(m)
+    return p, math.log(p), False
+
+
+@njit(cache=True, error_model="numpy")
 def _invert(fam, a, b, y, y_lo=0.0):
     """Return (tail prob, log tail prob, upper?, status, a_eff, b_eff) for one point."""
+    if fam == RS and (a == 0.0) != (b == 0.0):
+        # one shape exactly 0: closed form on both sides (the mirrored law has the zero
+        # shape first)
+        if a == 0.0:
+            p, lp, up = _rs_zero_shape(b, y, y_lo)
+        else:
+            p, lp, up = _rs_zero_shape(a, -y, -y_lo)
+            up = not up
+        if up:
+            return p, lp, True, OK, b, a
+        return p, lp, False, OK, a, b
     # at or beyond a finite end point: decided before the side of the median, which may round
     # onto the end point itself (RS(1e-300, 1e4): the whole upper half lies within an ulp of 1)
     if _beyond_lower_end(fam, a, b, y, y_lo):
