@@ -189,14 +189,14 @@ class _GLDGen(rv_continuous):
         """Fit by :func:`glstat.fit`; returns ``(lam3, lam4, loc, scale)`` as scipy does.
 
         ``method`` is any :func:`glstat.fit` method (default ``"mle"``; scipy's ``"MLE"`` and
-        ``"MM"`` map to ``"mle"`` and ``"moments"``). Initial guesses (shapes in ``args``,
-        ``loc``, ``scale``, as ``scipy.stats.goodness_of_fit`` passes its ``guessed_params``)
-        are one more starting point of the data-based fit, never a replacement for the usual
-        ones: the result is at least as good as without them, at about the same cost.
-        Nothing is warned (``warn=True`` emits what :func:`glstat.fit` would); for the
-        fit's diagnostics call :func:`glstat.fit`, whose ``fit.dist`` is the fitted GLD in
-        the lambda (R) order. With fixed parameters (``f0``, ``floc``, ...) or
-        ``optimizer`` the generic ``rv_continuous.fit`` is used.
+        ``"MM"`` map to ``"mle"`` and ``"moments"``, R's names as in :func:`glstat.fit`).
+        Initial guesses (shapes in ``args``, ``loc``, ``scale``, as
+        ``scipy.stats.goodness_of_fit`` passes its ``guessed_params``) are one more starting
+        point of the data-based fit, never a replacement for the usual ones: the result is at
+        least as good as without them, at about the same cost. Nothing is warned (``warn=True``
+        emits what :func:`glstat.fit` would); for the fit's diagnostics call :func:`glstat.fit`,
+        whose ``fit.dist`` is the fitted GLD in the lambda (R) order. With fixed parameters
+        (``f0``, ``floc``, ...) or ``optimizer`` the generic ``rv_continuous.fit`` is used.
         """
         if any(k.startswith("f") or k == "optimizer" for k in kwds):
             return super().fit(data, *args, **kwds)
@@ -206,8 +206,10 @@ class _GLDGen(rv_continuous):
         from .fitting._sample_fit import fit_sample
 
         param = "rs" if self._family == quantile_function.RS else "fkml"
-        method = kwds.pop("method", "mle")
-        method = {"MLE": "mle", "MM": "moments"}.get(method, method)
+        from .fitting._aliases import resolve_method
+
+        # scipy's "MLE" and "MM", R's "ML", "Lmom", ... and glstat's names, in any case
+        method = resolve_method(kwds.pop("method", "mle"))
         warn = bool(kwds.pop("warn", False))
         guess = scipy_guess(data, param, args, kwds.pop("loc", None), kwds.pop("scale", None),
                             self.numargs)
