@@ -131,11 +131,14 @@ class Signals:
         self._stop_watcher()
 
     def _at_exit(self) -> None:
-        # the interpreter's last steps after an interrupted run: it resets the handlers of
-        # Python to the system's default (a further Ctrl-C would then kill the process with
-        # another status) while it frees its modules; ignored, the signal cannot change how
-        # the run ended
+        # the interpreter's last steps after an interrupted run. The lock is taken for good:
+        # an exit at once under way (a second signal seen by the wake-up thread) ends the
+        # process first, and none starts after this point. The interpreter then resets
+        # Python's handlers to the system's default (a further Ctrl-C would kill the process
+        # with another status) while it frees its modules: ignored, a signal cannot change
+        # how the run ended
         if self.interrupted:
+            self._stop_lock.acquire()
             for sig in STATUS:
                 with contextlib.suppress(OSError, ValueError):
                     signal.signal(sig, signal.SIG_IGN)
