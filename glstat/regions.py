@@ -21,7 +21,6 @@ FKML is valid for every finite (lambda3, lambda4) with lambda2 > 0.
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import xlogy
 
 from ._validate import check_param
 from .errors import InvalidParameterError
@@ -31,11 +30,23 @@ __all__ = ["check_lambdas", "fkml_valid", "rs_region", "rs_valid"]
 
 
 def _region56_inequality(a, b):
-    """Region 5 condition for a in (-1, 0), b > 1, evaluated in logs."""
+    """Region 5 condition for a in (-1, 0), b > 1, evaluated in logs without cancellation.
+
+    With c = 1 - a and d = b - 1 the condition c log c + d log d - (c + d) log(c + d) <
+    log(-a) - log(b) reads
+
+        g = -c log1p(d/c) - d log1p(c/d) - log(-a) + log1p(d) < 0,
+
+    a sum of terms of the size of log(b): the form with the three x log x terms loses
+    eps * b log b to cancellation (every digit once b exceeds ~1e13).
+    """
     with np.errstate(divide="ignore", invalid="ignore"):
-        lhs = xlogy(1.0 - a, 1.0 - a) + xlogy(b - 1.0, b - 1.0) - xlogy(b - a, b - a)
-        rhs = np.log(-a / b)
-    return lhs < rhs
+        c = 1.0 - a
+        d = b - 1.0
+        # d log1p(c/d) -> c as d -> inf and -> 0 as d -> 0 (xlogy-like limit at d = 0)
+        t = np.where(d > 0, d * np.log1p(c / np.where(d > 0, d, 1.0)), 0.0)
+        g = -c * np.log1p(d / c) - t - np.log(-a) + np.log1p(d)
+    return g < 0
 
 
 def rs_region(lam3, lam4):
