@@ -20,8 +20,6 @@ from .gld import GLD
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-    from ._bootstrap_fit import BootstrapFit
-
 __all__ = ["CI_METHODS", "LAMBDA_NAMES", "BootstrapInterval", "ConfidenceIntervalAccess", "bca_bounds",
            "check_ci_method", "finite_rows", "make_interval", "statistic_values"]
 
@@ -95,7 +93,7 @@ class ConfidenceIntervalAccess:
 
     __slots__ = ("_owner",)
 
-    def __init__(self, owner: BootstrapFit):
+    def __init__(self, owner: Any):  # the BootstrapFit (not imported: it imports this module)
         self._owner = owner
 
     def __call__(

@@ -16,12 +16,12 @@ import math
 import numpy as np
 
 from .._core.quantile_function import FKML, RS
-from ..distributions import evaluate
 from ..errors import ConvergenceWarning, FitError
 from . import _kernels as K
 from . import _likelihood as L
 from ._candidates import FitIssue, FitRecord, candidate, make_record, select_candidate
-from ._data import _std_theta, _to_lambdas, fit_data_objective
+from ._data import fit_data_objective, std_theta, to_lambdas
+from ._eval import gld_evaluate
 
 __all__ = ["CensoredParts", "censored_parts", "fit_censored", "is_censored"]
 
@@ -75,12 +75,9 @@ def loglik(param: str, lams, parts: CensoredParts) -> float:
 
 def _weighted_loglik(param: str, lams, parts: CensoredParts, w_left, w_right, w_interval) -> float:
     """:func:`loglik` with a weight (a multiplicity) per left, right and interval bound."""
-    l1, l2, a, b = lams
-    fam = RS if param == "rs" else FKML
-    loc, inv = float(l1), abs(float(l2))
-
     def ev(what, x):
-        return evaluate(fam, what, x, a, b, loc=loc, inv_scale=inv)
+        # never warns: a point where the inversion of Q hit its limit enters with its best estimate
+        return gld_evaluate(param, what, x, lams)[0]
 
     total = 0.0
     if parts.exact.size:
@@ -142,7 +139,7 @@ def fit_censored(data, param: str, method: str, **options) -> FitRecord:
         if not math.isfinite(val):
             return math.inf
         if bounds.left.size or bounds.right.size or bounds.interval.shape[0]:
-            val -= _weighted_loglik(param, _to_lambdas(theta, param, 0.0, 1.0), bounds, n_left, n_right,
+            val -= _weighted_loglik(param, to_lambdas(theta, param, 0.0, 1.0), bounds, n_left, n_right,
                                     n_ivl)
         return val if math.isfinite(val) else math.inf
 
@@ -152,7 +149,7 @@ def fit_censored(data, param: str, method: str, **options) -> FitRecord:
     flags = []
     shift = parts.exact.size * math.log(iqr)  # density Jacobian of the scaling
     for lams in seeds:
-        th = _std_theta(lams, med, iqr)
+        th = std_theta(lams, med, iqr)
         if not math.isfinite(objective(th)):
             continue
         ok = False
@@ -161,7 +158,7 @@ def fit_censored(data, param: str, method: str, **options) -> FitRecord:
                            options={"maxiter": maxiter, "xatol": 1e-9, "fatol": 1e-10})
             th, ok = np.asarray(res.x, dtype=float), bool(res.success)
         val = float(res.fun) + shift
-        lam = _to_lambdas(th, param, med, iqr)
+        lam = to_lambdas(th, param, med, iqr)
         row = candidate(lam, param, math.isfinite(val), val, None)
         row["covers_data"] = bool(math.isfinite(val))
         rows.append(row)

@@ -47,13 +47,13 @@ _MIN_DISTINCT = 5
 _PIN_MAXITER = 100
 
 
-def _std_theta(lams, med: float, iqr: float) -> np.ndarray:
+def std_theta(lams, med: float, iqr: float) -> np.ndarray:
     """theta = (lambda1, log scale, lambda3, lambda4) of the GLD of (x - med) / iqr."""
     l1, l2, a, b = lams
     return np.array([(l1 - med) / iqr, math.log(1.0 / (abs(l2) * iqr)), a, b])
 
 
-def _to_lambdas(theta, param: str, med: float, iqr: float) -> tuple[float, float, float, float]:
+def to_lambdas(theta, param: str, med: float, iqr: float) -> tuple[float, float, float, float]:
     l1s, lsc, a, b = (float(v) for v in theta)
     scale = math.exp(lsc) * iqr
     s = float(rs_sign(a, b)) if param == "rs" else 1.0
@@ -135,7 +135,7 @@ def _starting_points(x: np.ndarray, param: str, fam: int, med: float, iqr: float
     zmin, zmax = float(z[0]), float(z[-1])
     starts = []
     for lams in _equation_shapes(x, param):
-        th = cover_theta(_std_theta(lams, med, iqr), fam, zmin, zmax)
+        th = cover_theta(std_theta(lams, med, iqr), fam, zmin, zmax)
         if th is not None:
             starts.append(th)
     if 1 + np.count_nonzero(np.diff(x)) < _MIN_DISTINCT:
@@ -228,7 +228,7 @@ def _guess_theta(start, param: str, fam: int, med: float, iqr: float, z: np.ndar
     _, l2, a, b = lams
     if not (all(math.isfinite(v) for v in lams) and l2 != 0.0 and K.shape_valid(fam, a, b)):
         return None
-    return cover_theta(_std_theta(lams, med, iqr), fam, float(z[0]), float(z[-1]))
+    return cover_theta(std_theta(lams, med, iqr), fam, float(z[0]), float(z[-1]))
 
 
 def _same_basin(th, others) -> bool:
@@ -332,7 +332,7 @@ def fit_data_objective(x: np.ndarray, param: str, method: str, maxiter: int | No
             th, val, ok = _refine_nelder_mead(kind, fam, z, th0, w, maxiter, n)
         best_val = min(best_val, val)
         found.append(th)
-        lams = _to_lambdas(th, param, med, iqr)
+        lams = to_lambdas(th, param, med, iqr)
         obj = float(val) + shift
         rows.append(candidate(lams, param, math.isfinite(obj) and not abandoned, obj, x))
         logger.debug("%s %s start %d of %d (%s): %s %.10g, %s", method, param, i + 1, len(queue), optimizer,
@@ -374,10 +374,10 @@ def scipy_fitstart(data, param: str) -> tuple[float, float, float, float] | None
         med = float(np.median(x))
         iqr = float(np.subtract(*np.quantile(x, [0.75, 0.25]))) or float(x[-1] - x[0])
         z = (x - med) / iqr
-        th = cover_theta(_std_theta(res.lambdas, med, iqr), fam, float(z[0]), float(z[-1]))
+        th = cover_theta(std_theta(res.lambdas, med, iqr), fam, float(z[0]), float(z[-1]))
         if th is None:
             continue
-        l1, l2, a, b = _to_lambdas(th, param, med, iqr)
+        l1, l2, a, b = to_lambdas(th, param, med, iqr)
         return float(a), float(b), float(l1), 1.0 / abs(l2)
     return None
 
