@@ -142,6 +142,7 @@ class _GLDGen(rv_continuous):
         out = np.full((a.size, 4), np.nan)
         valid = np.asarray(self._argcheck(a, b)).ravel()
         if valid.any():
+            moments.warn_large_shapes(a.ravel()[valid], b.ravel()[valid], stacklevel=5)
             sub = np.empty((int(valid.sum()), 4))
             moments.mvsk_kernel(self._family, np.ascontiguousarray(a.ravel()[valid]),
                                 np.ascontiguousarray(b.ravel()[valid]), sub)
