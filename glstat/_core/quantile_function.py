@@ -1250,9 +1250,18 @@ def quantile_kernel(u, a, b, fam, what, out, loc=0.0, inv_scale=1.0):
             qs = (abs(ai) / c) * tl - (abs(bi) / c) * tu
             out[i] = loc + qs * (c / inv_scale) if c / inv_scale > 0.0 else loc + qs * c / inv_scale
         elif lower:
-            out[i] = loc + _q_scaled(fam, ai, bi, t, l1, inv_scale)
+            q = _q_lower_direct(fam, ai, bi, t, l1)
+            if not q - q == 0.0 and small > 0.0:
+                # a power term beyond the double range: combined in logarithms
+                out[i] = loc + _q_scaled(fam, ai, bi, t, l1, inv_scale)
+            else:
+                out[i] = loc + q / inv_scale
         else:
-            out[i] = loc - _q_scaled(fam, bi, ai, t, l1, inv_scale)
+            q = _q_lower_direct(fam, bi, ai, t, l1)
+            if not q - q == 0.0 and small > 0.0:
+                out[i] = loc - _q_scaled(fam, bi, ai, t, l1, inv_scale)
+            else:
+                out[i] = loc - q / inv_scale
 
 
 @njit(cache=True, error_model="numpy")
