@@ -103,10 +103,13 @@ def zero_shape():
                     v = 1 - (1 if l4 > 0 else -1) * y
                     if v <= 0:
                         continue
-                    F = 1 - v ** (1 / mp.mpf(l4))
+                    F = -mp.expm1(mp.log1p(-(1 if l4 > 0 else -1) * y) / mp.mpf(l4))
                     if not 0 < F < 1:
                         continue
                     f = mp.mpf(l2) / (abs(l4) * (1 - F) ** (l4 - 1))
+                tail = F if F <= 0.5 else 1 - F
+                if tail < 2.2250738585072014e-308:
+                    continue  # subnormal: relative accuracy limited by the format
                 worst = max(worst, _rel(g.cdf(x), F) if F <= 0.5 else _rel(g.sf(x), 1 - F))
                 if 1e-300 < f < 1e300:
                     worst_pdf = max(worst_pdf, _rel(g.pdf(x), f))
