@@ -90,7 +90,8 @@ class Signals:
         self._kill = kill or kill_local_workers
         self._seen: list[int] = []  # signals seen by the wake-up thread
         self._echoes = {"handler": 0, "watcher": 0}  # signals raised again, not from outside
-        self._count_lock = threading.Lock()
+        # reentrant: the handler runs in the main thread, possibly while it holds the lock
+        self._count_lock = threading.RLock()
         self._stop_lock = threading.Lock()  # held by the line written and by the final stop
         self._reported = False
         self._previous: dict = {}
