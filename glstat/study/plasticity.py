@@ -41,10 +41,10 @@ def plastic_interval(fractions: np.ndarray, level: float) -> tuple[float, float,
     for param, method in FITS:
         try:
             with warnings.catch_warnings(record=True):  # a fit's warnings are not the caller's
-                dist = glstat.fit(x, param, method).dist
-                if dist is None:
+                fit = glstat.fit(x, param, method)
+                if not fit.ok:
                     continue
-                low, high = dist.ppf([alpha, 1.0 - alpha])
+                low, high = fit.dist.ppf([alpha, 1.0 - alpha])
         except (ValueError, RuntimeError, ArithmeticError):
             continue
         if math.isfinite(low) and math.isfinite(high):
