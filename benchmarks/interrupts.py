@@ -11,7 +11,10 @@ in a process group of its own and sends SIGINT to the whole group (as a terminal
 Ctrl-C) twice, every third trial three times. The first Ctrl-C comes at a random moment of the
 run: after a random number of saved surfaces (even trials) or a random time after the
 campaign's manifest is written (odd trials: the surfaces, the analysis, the BEM solves or the
-report); the second 0.01–1 s later, the third 0.01–0.5 s after it. A trial passes when the run
+report); the second 0.01–0.3 s later, the third 0.01–0.2 s after it (a trial whose run ended
+before its second Ctrl-C, the first having stopped it, is run again with the Ctrl-C twice as
+close together, at most 3 times). A trial
+passes when the run
 ends within 5 s of the last Ctrl-C with status 130 and one line on stderr (no traceback), no
 process of its group is alive 3 s later, and rerunning the same command finishes (status 0)
 with the surface files saved before byte-identical and all surfaces identical to an
@@ -59,6 +62,13 @@ def _after_manifest(out: Path, delay: float):
     return ready
 
 
+def _clear(out: Path) -> None:
+    """Empty the output directory of a trial for another attempt."""
+    import shutil
+
+    shutil.rmtree(out)
+
+
 def _reference(base: Path) -> dict[str, bytes]:
     from glstat.cli import _study_parser, _study_settings
     from glstat.study import SerialExecutor, run_campaign
@@ -75,17 +85,22 @@ def run_trials(n: int, seed: int, rerun: bool, wait: float, base: Path) -> list[
     rows = []
     for k in range(n):
         out = base / f"trial{k:02d}"
-        if k % 2 == 0:
-            n_saved = rng.randint(1, 39)
-            first, moment = trials.surfaces_at_least(out, n_saved), f"{n_saved} surfaces saved"
-        else:
-            delay = rng.uniform(0.0, 6.0)
-            first, moment = _after_manifest(out, delay), f"{delay:.2f} s after the manifest"
-        gaps = [rng.uniform(0.01, 1.0)]
+        n_saved, delay = rng.randint(1, 39), rng.uniform(0.0, 6.0)
+        moment = f"{n_saved} surfaces saved" if k % 2 == 0 else f"{delay:.2f} s after the manifest"
+        gaps = [rng.uniform(0.01, 0.3)]
         if k % 3 == 2:
-            gaps.append(gaps[0] + rng.uniform(0.01, 0.5))
-        t = trials.run_trial(out, first, gaps, extra=FAST, wait=wait)
-        row = {"trial": k, "moment": moment, "ctrl_c": len(t.sent),
+            gaps.append(gaps[0] + rng.uniform(0.01, 0.2))
+        attempts = 0
+        while True:  # again when the run ended before the second Ctrl-C (at most 3 times)
+            attempts += 1
+            first = (trials.surfaces_at_least(out, n_saved) if k % 2 == 0
+                     else _after_manifest(out, delay))
+            scale = 0.5 ** (attempts - 1)  # closer together on each attempt
+            t = trials.run_trial(out, first, [g * scale for g in gaps], extra=FAST, wait=wait)
+            if len(t.sent) >= 2 or attempts == 3:
+                break
+            _clear(out)
+        row = {"trial": k, "moment": moment, "attempts": attempts, "ctrl_c": len(t.sent),
                "gaps_s": " ".join(f"{b - a:.2f}" for a, b in zip(t.sent[:-1], t.sent[1:], strict=True)),
                "seconds": round(t.seconds, 3), "status": t.returncode,
                "stderr_lines": len(t.lines), "traceback": "Traceback" in t.stderr,
@@ -97,15 +112,15 @@ def run_trials(n: int, seed: int, rerun: bool, wait: float, base: Path) -> list[
                                    capture_output=True, text=True, timeout=600)
             after = trials.surface_files(out)
             row["rerun_status"] = again.returncode
-            row["resumed_identical"] = (all(after.get(k) == v for k, v in saved.items())
+            row["resumed_identical"] = (all(after.get(name) == data for name, data in saved.items())
                                         and after == ref)
         row["passed"] = (t.seconds <= LIMIT and t.returncode == 130 and len(t.lines) == 1
                          and not row["traceback"] and not t.alive_after_3s
                          and row.get("rerun_status", 0) == 0
                          and row.get("resumed_identical", True) and len(t.sent) >= 2)
         rows.append(row)
-        print(f"{k:2d} {moment:<28} Ctrl-C x{len(t.sent)} ended {t.seconds:6.3f} s after the "
-              f"last, status {t.returncode}, {len(t.lines)} line(s), "
+        print(f"{k:2d} {moment:<28} (attempt {attempts}) Ctrl-C x{len(t.sent)} ended "
+              f"{t.seconds:6.3f} s after the last, status {t.returncode}, {len(t.lines)} line(s), "
               f"{len(t.alive_after_3s)} alive after 3 s"
               + (f", rerun {row['rerun_status']}, identical {row['resumed_identical']}"
                  if rerun else "") + ("" if row["passed"] else "  FAILED"), flush=True)
@@ -193,7 +208,8 @@ def main() -> int:
         ports = run_ports(base)
     ended = [r["seconds"] for r in rows if r["ctrl_c"] >= 2]
     within = sum(s <= LIMIT for s in ended)
-    print(f"\n{within} of {len(rows)} runs ended within {LIMIT:g} s of the last Ctrl-C "
+    print(f"\n{len(ended)} of {len(rows)} trials had their second Ctrl-C (the others ended "
+          f"after the first); {within} of {len(ended)} ended within {LIMIT:g} s of the last Ctrl-C "
           f"(longest {max(ended, default=float('nan')):.3f} s, median "
           f"{sorted(ended)[len(ended) // 2] if ended else float('nan'):.3f} s); "
           f"status 130: {sum(r['status'] == 130 for r in rows)}; one line: "
