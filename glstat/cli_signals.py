@@ -29,9 +29,10 @@ from collections.abc import Callable
 __all__ = ["Signals", "Terminated", "kill_local_workers"]
 
 #: Signal names in the lines of the command.
-_WHAT = {signal.SIGINT: ("interrupted", "Ctrl-C"), signal.SIGTERM: ("terminated", "SIGTERM")}
+_WHAT: dict[int, tuple[str, str]] = {signal.SIGINT: ("interrupted", "Ctrl-C"),
+                                     signal.SIGTERM: ("terminated", "SIGTERM")}
 #: Exit status of a run stopped by each signal (128 + the signal's number, as a shell reports).
-STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}
+STATUS: dict[int, int] = {signal.SIGINT: 130, signal.SIGTERM: 143}
 
 
 class Terminated(BaseException):
