@@ -347,7 +347,7 @@ def test_unwritable_output_directory(tmp_path, capsys):
 def test_unreachable_scheduler(tmp_path, capsys):
     rc = main(["study", *TINY, "--scheduler", "tcp://127.0.0.1:1", "--scheduler-timeout", "2",
                "--out", str(tmp_path / "d")])
-    assert rc == 1
+    assert rc == 2
     err = capsys.readouterr().err
     assert "cannot reach the Dask scheduler at 'tcp://127.0.0.1:1'" in err and "--scheduler" in err
 
