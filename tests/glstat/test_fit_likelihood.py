@@ -309,12 +309,12 @@ def test_generic_starts_cover_the_data_and_match_the_quartiles():
         assert {(round(a, 4), round(b, 4)) for a, b in _data._GENERIC_SHAPES[param]} <= shapes
         dist = glstat.gld_rs if param == "rs" else glstat.gld_fkml
         for th in starts:
-            lam = _data._to_lambdas(th, param, med, iqr)
+            lam = _data.to_lambdas(th, param, med, iqr)
             lo, hi = dist.support(lam[2], lam[3], loc=lam[0], scale=1.0 / abs(lam[1]))
             assert lo < x[0] and hi > x[-1]
         # an unwidened generic start has the median and interquartile range of the sample
         for a, b in _data._GENERIC_SHAPES[param]:
-            lam = _data._to_lambdas(_data._matched_theta(fam, a, b), param, med, iqr)
+            lam = _data.to_lambdas(_data._matched_theta(fam, a, b), param, med, iqr)
             q = dist.ppf([0.25, 0.5, 0.75], lam[2], lam[3], loc=lam[0], scale=1.0 / abs(lam[1]))
             assert q[1] == pytest.approx(med, rel=1e-10)
             assert q[2] - q[0] == pytest.approx(iqr, rel=1e-10)
