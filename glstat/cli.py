@@ -269,6 +269,10 @@ def _study_settings(args, argv: list[str]):
         rq=tuple(v * 1e-6 for v in args.rq),
         gamma=args.gamma, n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
         cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
+    if args.paper_table is not None and (args.topographies or args.like):
+        raise StudyInputError("--paper-table compares the simulated Weierstrass scene with the "
+                              "paper's Table 1; it does not apply to measured files "
+                              "(--topographies, --like)")
     if not (args.topographies or args.like):
         given = [o for o, v in (("--tile", args.tile), ("--tile-size", args.tile_size),
                                 ("--spacing", args.spacing), ("--unit", args.unit)) if v is not None]
@@ -305,6 +309,7 @@ def _study_settings(args, argv: list[str]):
                                  target_damage=args.target_damage / 100)
     if args.paper_table is not None:
         from .study.paper_table import read_table1
+
 
         args.paper_table = read_table1(args.paper_table)
     if args.compare_bem > surfaces and not any(a.startswith("--compare-bem") for a in argv):

@@ -122,6 +122,17 @@ def test_table_rows_are_validated():
         table1([{"hurst": 0.0}])
     with pytest.raises(ValueError, match="no rows"):
         table1([])
+    # values in the wrong unit or impossible ones are named, not used
+    with pytest.raises(ValueError, match=r"mean_mpa = 1724000000.0 is not a contact pressure in MPa"):
+        table1([{"hurst": 0.0, "mean_mpa": 1724e6}])
+    with pytest.raises(ValueError, match=r"sd_mpa = -5\.0 must be a positive standard deviation"):
+        table1([{"hurst": 0.0, "mean_mpa": 1724.0, "sd_mpa": -5.0}])
+    with pytest.raises(ValueError, match=r"kurtosis 0\.8 is below 1, which no distribution"):
+        table1([{"hurst": 0.0, "mean_mpa": 1724.0, "skewness": 0.0, "kurtosis": 0.8}])
+    with pytest.raises(ValueError, match="one row per H"):
+        table1([{"hurst": 0.5, "mean_mpa": 1.0}, {"hurst": 0.5, "mean_mpa": 2.0}])
+    with pytest.raises(ValueError, match=r"lambda1_mpa = 1.307e\+09 is not in MPa"):
+        table1([{"hurst": 1.0, "mean_mpa": 1108.0, "lambda1_mpa": 1307e6}])
 
 
 # -- moments, mirror, readings ---------------------------------------------------------------------
@@ -354,3 +365,12 @@ def test_bad_paper_table_is_a_usage_error(tmp_path, capsys):
     rc = main(["study", "--paper-table", str(bad), "--out", str(tmp_path / "o")])
     assert rc == 2
     assert "unknown column(s) mean, sd" in capsys.readouterr().err
+    empty_h = tmp_path / "nan.csv"
+    empty_h.write_text("hurst,mean_mpa\n0,1724\n,1369\n")
+    assert main(["study", "--paper-table", str(empty_h), "--out", str(tmp_path / "o")]) == 2
+    assert "a row without hurst or mean_mpa" in capsys.readouterr().err
+    good = tmp_path / "good.csv"
+    good.write_text("hurst,mean_mpa\n0,1724\n")
+    rc = main(["study", "--paper-table", str(good), "--topographies", str(tmp_path),
+               "--out", str(tmp_path / "o")])
+    assert rc == 2 and "does not apply to measured files" in capsys.readouterr().err

@@ -141,7 +141,44 @@ def table_rows(table) -> list[Table1Row]:
         rows.append(Table1Row(**{k: float(v) for k, v in r.items()}))
     if not rows:
         raise ValueError("Table 1 has no rows")
+    for row in rows:
+        _check_row(row)
+    hs = [r.hurst for r in rows]
+    if len(set(hs)) != len(hs):
+        raise ValueError(f"Table 1 must hold one row per H, got H = {sorted(hs)}")
     return rows
+
+
+#: Largest Table 1 a user may give (rows).
+MAX_ROWS = 100
+
+
+def _check_row(row: Table1Row) -> None:
+    """The values of one Table 1 row, in the table's units (MPa, 1/MPa): a Hurst exponent in
+    [0, 1], a positive mean contact pressure below 1e6 MPa (a value given in Pa is refused),
+    a positive standard deviation, a kurtosis (non-excess) of at least 1, and finite lambdas
+    where given (moments no distribution has, kurtosis below 1 + skewness², are reported by the
+    moment fits, not refused here)."""
+    h = f"H = {row.hurst:g}"
+    if not 0.0 <= row.hurst <= 1.0:
+        raise ValueError(f"Table 1: hurst must lie in [0, 1], got {row.hurst!r}")
+    if not (0.0 < row.mean_mpa < 1e6):
+        raise ValueError(f"Table 1, {h}: mean_mpa = {row.mean_mpa!r} is not a contact pressure in "
+                         f"MPa (positive, below 1e6; a value in Pa must be divided by 1e6)")
+    if not math.isnan(row.sd_mpa) and not (0.0 < row.sd_mpa < 1e6):
+        raise ValueError(f"Table 1, {h}: sd_mpa = {row.sd_mpa!r} must be a positive standard "
+                         f"deviation in MPa (below 1e6)")
+    if not math.isnan(row.kurtosis) and row.kurtosis < 1.0:
+        raise ValueError(f"Table 1, {h}: kurtosis {row.kurtosis:g} is below 1, which no "
+                         f"distribution has (the kurtosis is the non-excess one: a normal "
+                         f"distribution has 3)")
+    for name in ("lambda1_mpa", "lambda2_per_mpa", "lambda3", "lambda4"):
+        v = getattr(row, name)
+        if math.isinf(v):
+            raise ValueError(f"Table 1, {h}: {name} must be finite, got {v!r}")
+    if not math.isnan(row.lambda1_mpa) and abs(row.lambda1_mpa) >= 1e6:
+        raise ValueError(f"Table 1, {h}: lambda1_mpa = {row.lambda1_mpa:g} is not in MPa (a value "
+                         f"in Pa must be divided by 1e6)")
 
 
 def table1(table=None):
@@ -191,10 +228,19 @@ def read_table1(path) -> list[Table1Row]:
         A file that cannot be read, an unknown or missing column, or a value that is not a
         number (the message names the file and the fix).
     """
+    import os
+
     import pandas as pd
 
     try:
-        frame = pd.read_csv(path)
+        size = os.path.getsize(path)
+    except OSError as exc:
+        raise ValueError(f"--paper-table {path}: cannot read it ({exc})") from None
+    if size > 1 << 20:
+        raise ValueError(f"--paper-table {path}: {size / 2**20:.1f} MiB is no Table 1 (one row "
+                         f"per H, at most {MAX_ROWS} rows); give the paper's table")
+    try:
+        frame = pd.read_csv(path, nrows=MAX_ROWS + 1)
     except (OSError, ValueError, pd.errors.ParserError) as exc:
         raise ValueError(f"--paper-table {path}: cannot read it as CSV ({exc})") from None
     unknown = [c for c in frame.columns if c not in COLUMNS]
@@ -204,9 +250,18 @@ def read_table1(path) -> list[Table1Row]:
     for need in ("hurst", "mean_mpa"):
         if need not in frame.columns:
             raise ValueError(f"--paper-table {path}: the column {need} is missing")
+    if len(frame) > MAX_ROWS:
+        raise ValueError(f"--paper-table {path}: more than {MAX_ROWS} rows; Table 1 has one row "
+                         f"per H")
     try:
         frame = frame.astype(float)
     except (TypeError, ValueError):
         raise ValueError(f"--paper-table {path}: every value must be a number (MPa for "
                          "pressures, 1/MPa for lambda2_per_mpa)") from None
-    return table_rows(frame)
+    if frame[["hurst", "mean_mpa"]].isna().any().any():
+        raise ValueError(f"--paper-table {path}: a row without hurst or mean_mpa; every row needs "
+                         f"both")
+    try:
+        return table_rows(frame)
+    except ValueError as exc:
+        raise ValueError(f"--paper-table {path}: {exc}") from None
