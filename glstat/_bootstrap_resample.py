@@ -118,9 +118,9 @@ def resample_fit_task(x, seeds, kind, lam, param, method, options, groups=None):
 def _progress_bar(total, enabled, desc):
     if not enabled:
         return None
-    from tqdm.auto import tqdm
+    from ._progress import progress_bar
 
-    return tqdm(total=total, desc=desc, unit="resample")
+    return progress_bar(total, desc, "resample")
 
 
 def _compiled_statistics(x, seeds, kind, lam, fam, method, u, loc, scale, bar, groups=None):

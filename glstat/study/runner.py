@@ -522,10 +522,10 @@ def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, r
     shutdown = None
     if executor is None:
         executor, shutdown = make_executor(workers)
-    from tqdm.auto import tqdm
+    from .._progress import progress_bar
 
-    bar = tqdm(total=total, initial=run.skipped, desc=desc, unit="surface",
-               disable=not progress, leave=False)
+    # a bar on a terminal, a line per tenth in a log
+    bar = progress_bar(total, desc, "surface", enabled=progress, initial=run.skipped, leave=False)
 
     def save(key, arrays, seconds):
         stored = {**arrays, "task_key": np.asarray(key, dtype=np.int64), **(stamp or {})}
