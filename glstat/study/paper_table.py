@@ -155,16 +155,18 @@ MAX_ROWS = 100
 
 def _check_row(row: Table1Row) -> None:
     """The values of one Table 1 row, in the table's units (MPa, 1/MPa): a Hurst exponent in
-    [0, 1], a positive mean contact pressure below 1e6 MPa (a value given in Pa is refused),
+    [0, 1], a finite mean contact pressure below 1e6 MPa in magnitude (a value given in Pa is
+    refused),
     a positive standard deviation, a kurtosis (non-excess) of at least 1, and finite lambdas
     where given (moments no distribution has, kurtosis below 1 + skewness², are reported by the
     moment fits, not refused here)."""
     h = f"H = {row.hurst:g}"
     if not 0.0 <= row.hurst <= 1.0:
         raise ValueError(f"Table 1: hurst must lie in [0, 1], got {row.hurst!r}")
-    if not (0.0 < row.mean_mpa < 1e6):
+    if not (math.isfinite(row.mean_mpa) and abs(row.mean_mpa) < 1e6):
         raise ValueError(f"Table 1, {h}: mean_mpa = {row.mean_mpa!r} is not a contact pressure in "
-                         f"MPa (positive, below 1e6; a value in Pa must be divided by 1e6)")
+                         f"MPa (finite, below 1e6 in magnitude; a value in Pa must be divided by "
+                         f"1e6)")
     if not math.isnan(row.sd_mpa) and not (0.0 < row.sd_mpa < 1e6):
         raise ValueError(f"Table 1, {h}: sd_mpa = {row.sd_mpa!r} must be a positive standard "
                          f"deviation in MPa (below 1e6)")
