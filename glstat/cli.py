@@ -519,6 +519,7 @@ def _print_allowable(res, settings, asettings) -> None:
     """The allowable nominal pressure per case and area (the elastic BEM's when it ran on every
     surface), one line per case."""
     from .formatting import fmt_probability
+    from .study.allowable import allowable_text, area_words
 
     table = res.allowable_load()
     model = "bem" if res.bem_analysis else "asperity"
@@ -529,18 +530,8 @@ def _print_allowable(res, settings, asettings) -> None:
     for h, rows in table.groupby("hurst", sort=False):
         parts = []
         for _, r in rows.iterrows():
-            mm2 = r["area_mm2"]
-            area = f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²"
-            if r["status"] == "interpolated":
-                parts.append(f"{r['allowable_pressure_mpa']:.3g} MPa on {area}")
-            elif "below" in r["status"]:
-                parts.append(f"< {min(settings.pressures) / 1e6:g} MPa on {area} (below the lowest "
-                             f"load)")
-            elif "above" in r["status"]:
-                parts.append(f"> {max(settings.pressures) / 1e6:g} MPa on {area} (above the highest "
-                             f"load)")
-            else:
-                parts.append(f"— on {area} ({r['status']})")
+            parts.append(f"{area_words(r['area_mm2'] * 1e-6)}: "
+                         f"{allowable_text(r, settings.pressures, interval=False)}")
         case = "measured" if settings.measured else f"H = {h:g}"
         print(f"  {case}: " + "; ".join(parts))
 

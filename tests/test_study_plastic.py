@@ -78,3 +78,16 @@ def test_study_with_plasticity_writes_the_plastic_columns_and_the_allowable_load
     with pytest.raises(ValueError, match="not below the hardness"):
         run_study(settings, AnalysisSettings(hardness=5.0), tmp_path / "x", workers=1,
                   progress=False, model="both")
+
+
+def test_areas_and_allowable_pressures_in_words():
+    from glstat.study.allowable import allowable_text, area_words
+
+    assert [area_words(a) for a in (1e-6, 25e-6, 1e-4, 1e-3)] == ["1 mm²", "25 mm²", "1 cm²",
+                                                                  "10 cm²"]
+    row = {"status": "interpolated", "allowable_pressure_mpa": 7.3019,
+           "allowable_low_mpa": 2.969, "allowable_high_mpa": math.nan}
+    assert allowable_text(row, [5e6, 10e6]) == "7.3 MPa [2.97, —]"
+    assert allowable_text(row, [5e6, 10e6], interval=False) == "7.3 MPa"
+    assert allowable_text({"status": "below the lowest load"}, [5e6, 10e6]) == \
+        "< 5 MPa (below the lowest load)"

@@ -21,12 +21,38 @@ import numpy as np
 
 from .analysis_settings import PRIMARY_SAMPLE
 
-__all__ = ["ALLOWABLE_COLUMNS", "allowable_frame", "crossing"]
+__all__ = ["ALLOWABLE_COLUMNS", "allowable_frame", "allowable_text", "area_words", "crossing"]
 
 #: Columns of ``allowable_load.csv``.
 ALLOWABLE_COLUMNS = ("model", "hurst", "area_mm2", "target_damage", "allowable_pressure_mpa",
                      "allowable_low_mpa", "allowable_high_mpa", "status", "bracket_mpa",
                      "checks")
+
+
+def area_words(m2: float) -> str:
+    """An area in the unit a reader uses: "25 mm²" below 1 cm², "10 cm²" from 1 cm² on (the
+    area in m²)."""
+    mm2 = round(m2 * 1e6, 9)  # 1e-4 m² is 99.99999999999999 mm² in binary
+    return f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²"
+
+
+def allowable_text(row, pressures, interval: bool = True) -> str:
+    """One row of :func:`allowable_frame` as text: "7.3 MPa [2.97, —]" when interpolated,
+    "< 5 MPa (below the lowest load)" or "> 20 MPa (above the highest load)" otherwise
+    (``pressures`` in Pa, the loads run)."""
+    def mpa(v: float) -> str:
+        return "—" if v != v else f"{v:.3g}"
+
+    status = row["status"]
+    if status == "interpolated":
+        spread = (f" [{mpa(row['allowable_low_mpa'])}, {mpa(row['allowable_high_mpa'])}]"
+                  if interval else "")
+        return f"{row['allowable_pressure_mpa']:.3g} MPa{spread}"
+    if status == "below the lowest load":
+        return f"< {min(pressures) / 1e6:g} MPa ({status})"
+    if status == "above the highest load":
+        return f"> {max(pressures) / 1e6:g} MPa ({status})"
+    return f"— ({status})"
 
 
 def _logit(p: np.ndarray) -> np.ndarray:

@@ -351,11 +351,6 @@ def _readable(p: float) -> str:
     return fmt_probability(p)
 
 
-def _area_text(mm2: float) -> str:
-    """An area in the unit a reader uses: mm² below 1 cm², cm² above."""
-    return f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²"
-
-
 def area_damage_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = None
                      ) -> tuple[list[list[str]], list[str]]:
     """Growth with the area for the first screen: per case (and model, the elastic BEM first
@@ -373,7 +368,9 @@ def area_damage_rows(settings, asettings, analysis: dict, bem_analysis: dict | N
             row.append(f"{_readable(t['estimate'])} [{_readable(t['low'])}, {_readable(t['high'])}]")
         rows.append(row)
     lvl = round(100 * asettings.confidence_level)
-    columns = ["case", *(f"damage on {_area_text(a * 1e6)} [{lvl} % interval]"
+    from .allowable import area_words
+
+    columns = ["case", *(f"damage on {area_words(a)} [{lvl} % interval]"
                          for a in asettings.damage_areas)]
     return rows, columns
 

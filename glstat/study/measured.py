@@ -253,12 +253,13 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
         tiles = tiles_for_size(read_file(paths[0], spacing=spacing, unit=unit), tile_size)
     surfaces = read_measured(paths, form, tiles=tiles, spacing=spacing, unit=unit,
                              need_summits=True)
-    _check_units_agree(paths, surfaces, tiles)
+    rq = np.array([measured_rq(s) for s in surfaces])
+    _check_units_agree(paths, rq, tiles)
     estimates = [h for h in (_hurst_estimate(s) for s in surfaces) if math.isfinite(h)]
     hurst = float(np.clip(np.median(estimates), 0.0, 1.0)) if estimates else 0.5
     return CampaignSettings(
         hurst=(hurst,), n_surfaces=len(surfaces), **_grid_fields(surfaces[0]),
-        rq=float(np.mean([measured_rq(s) for s in surfaces])), n_terms=(None,),
+        rq=float(np.mean(rq)), n_terms=(None,),
         n_examples=min(1, len(surfaces)), topographies=tuple(os.fspath(p) for p in paths),
         digests=tuple(file_digest(p) for p in paths), form=form, tiles=tiles,
         file_spacing=spacing, file_unit=unit, **scene)
@@ -269,13 +270,13 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
 UNIT_MIXUP_RATIO = 100.0
 
 
-def _check_units_agree(paths: Sequence[Any], surfaces: list[Any],
+def _check_units_agree(paths: Sequence[Any], rq: np.ndarray,
                        tiles: tuple[int, int] | None) -> None:
-    """Refuse a file whose RMS height is more than :data:`UNIT_MIXUP_RATIO` times off the
-    median of the campaign's surfaces: one scan of a campaign in another length unit."""
-    if len(surfaces) < 3:
+    """Refuse a file whose RMS height (``rq``, m, one per surface) is more than
+    :data:`UNIT_MIXUP_RATIO` times off the median of the campaign's surfaces: one scan of a
+    campaign in another length unit."""
+    if len(rq) < 3:
         return
-    rq = np.array([measured_rq(s) for s in surfaces])
     median = float(np.median(rq))
     per_file = 1 if tiles is None else tiles[0] * tiles[1]
     for k, value in enumerate(rq):

@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from .allowable import area_words
 from .analysis import SAMPLE_LABELS
 from .analysis_settings import PRIMARY_SAMPLE
 from .answer import case_label
@@ -423,8 +424,7 @@ def allowable_figure(settings, asettings, analysis: dict, model: str):
             ax.fill_between(loads, low, high, color=line.get_color(), alpha=0.2, lw=0)
         ax.axhline(asettings.target_damage, color="C3", ls="--", lw=1,
                    label=f"target {100 * asettings.target_damage:g} %")
-        mm2 = area * 1e6
-        ax.set_title(f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²", fontsize=9)
+        ax.set_title(area_words(area), fontsize=9)
         ax.set_xlabel("nominal pressure (MPa)")
         ax.set_ylim(-0.02, 1.02)
         if ia == 0:

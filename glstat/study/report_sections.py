@@ -108,21 +108,15 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
 def _allowable_block(out: Blocks, settings, asettings, analysis: dict, bem_analysis) -> None:
     """The allowable nominal pressure (table) and the damage against the nominal pressure
     (figure) of a campaign of several loads, the elastic BEM's when it ran on every surface."""
-    from .allowable import allowable_frame
+    from .allowable import allowable_frame, allowable_text, area_words
 
     model, an = (("elastic BEM", bem_analysis) if bem_analysis else ("asperity model", analysis))
     frame = allowable_frame(settings, asettings, {model: an})
     target = fmt_probability(asettings.target_damage)
     rows = []
     for _, r in frame.iterrows():
-        mm2 = r["area_mm2"]
-        where = (f"{r['allowable_pressure_mpa']:.3g} MPa [{_mpa(r['allowable_low_mpa'])}, "
-                 f"{_mpa(r['allowable_high_mpa'])}]" if r["status"] == "interpolated"
-                 else f"{r['status']} ({'<' if 'below' in r['status'] else '>'} "
-                      f"{(min if 'below' in r['status'] else max)(settings.pressures) / 1e6:g} MPa)"
-                 if "load" in r["status"] else r["status"])
         rows.append([("measured" if settings.measured else f"H = {r['hurst']:g}"),
-                     f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²", where,
+                     area_words(r["area_mm2"] * 1e-6), allowable_text(r, settings.pressures),
                      r["bracket_mpa"] or "—", r["checks"] or "—"])
     lvl = round(100 * asettings.confidence_level)
     out.table(["case", "area", f"allowable nominal pressure for damage ≤ {target} [{lvl} % interval]",
@@ -141,12 +135,10 @@ def _allowable_block(out: Blocks, settings, asettings, analysis: dict, bem_analy
 
 def _areas_text(areas) -> str:
     """Areas in m² in words: "1 mm², 1 cm² or 10 cm²"."""
-    words = [f"{a * 1e6:g} mm²" if a < 1e-4 else f"{a * 1e4:g} cm²" for a in areas]
+    from .allowable import area_words
+
+    words = [area_words(a) for a in areas]
     return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
-
-
-def _mpa(v: float) -> str:
-    return "—" if v != v else f"{v:.3g}"
 
 
 def _answer_figures(out: Blocks, settings, asettings, analysis: dict, model: str = "") -> None:
