@@ -32,7 +32,7 @@ def main(argv: list[str] | None = None) -> int:
     if args[:1] in (["-V"], ["--version"]):
         print(f"glstat {_version()}")
         return 0
-    from glstat.cli import main as glstat_main
+    from glstat.cli.commands import main as glstat_main
 
     return glstat_main(args)
 

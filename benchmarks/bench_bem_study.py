@@ -39,7 +39,8 @@ from contact._constrained_cg import initial_pressure, polonsky_keer
 from contact._influence import NonPeriodicOperator, love_coefficients
 from contact.material import effective_modulus
 from glstat.study.bem import BEMSettings, simulate_bem
-from glstat.study.campaign import CampaignSettings, campaign_surface
+from glstat.study.campaign import campaign_surface
+from glstat.study.campaign_settings import CampaignSettings
 
 
 class BaselineOperator:

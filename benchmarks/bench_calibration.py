@@ -454,7 +454,7 @@ def predict_tail_gld(x: np.ndarray, ms: np.ndarray, thresholds: np.ndarray, rng:
 
 def gpd_zhang_stephens(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Generalized Pareto shape and scale of every row by Zhang and Stephens (2009): the
-    library's estimator (:func:`glstat.pot.fit_gpd`), vectorised over the rows.
+    library's estimator (:func:`glstat.extremes.peaks_over_threshold.fit_gpd`), vectorised over the rows.
 
     Parameters
     ----------
@@ -466,7 +466,7 @@ def gpd_zhang_stephens(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     xi, sigma : ndarray, shape (B,)
         Shape (> 0: power tail) and scale.
     """
-    from glstat.pot import fit_gpd
+    from glstat.extremes.peaks_over_threshold import fit_gpd
 
     return fit_gpd(y)
 

@@ -216,8 +216,8 @@ import json, resource, sys, time, traceback
 resource.setrlimit(resource.RLIMIT_AS, (6 * 2**30, 6 * 2**30))
 path, kind, out = sys.argv[1], sys.argv[2], sys.argv[3]
 if kind == "fit":
-    import glstat.cli_input as ci
-    from glstat.cli_fit import main
+    import glstat.cli.sample_files as ci
+    from glstat.cli.fit import main
     import pandas, pyarrow.parquet, openpyxl, matplotlib.pyplot, glstat.gof, glstat.bootstrap
     ci.MAX_DECOMPRESSED = int(sys.argv[4])
     if sys.argv[5] == "refused-disk":  # every output file meets a full disk

@@ -70,7 +70,7 @@ def _clear(out: Path) -> None:
 
 
 def _reference(base: Path) -> dict[str, bytes]:
-    from glstat.cli import _study_parser, _study_settings
+    from glstat.cli.commands import _study_parser, _study_settings
     from glstat.study import SerialExecutor, run_campaign
 
     argv = [*trials.SCENE, *FAST]

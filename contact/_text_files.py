@@ -22,7 +22,7 @@ from ._text_headers import ForeignHeader, NotOwnText
 from ._units import UNITS, missing_unit
 from .errors import TopographyFileError
 
-__all__ = ["XYZ_MAX_FILL", "NotOwnText", "read_text", "read_xyz"]
+__all__ = ["XYZ_MAX_FILL", "read_text", "read_xyz"]
 
 #: What a reader returns: heights (m), the stored spacing dx, dy (m, None when the file
 #: stores none) and the mask of missing points (None: NaN marks them).

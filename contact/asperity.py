@@ -15,15 +15,16 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import _asperity_kernels as kernels
-from ._deprecation import renamed_keywords
-from ._validate import (
+from _glstat_runtime.validation import (
     finite_separation,
     positive_integer,
     positive_pressure,
     real_scalar,
     tolerance,
 )
+
+from . import _asperity_kernels as kernels
+from ._deprecation import renamed_keywords
 from .errors import ContactWarning
 from .material import effective_modulus
 from .result import ContactResult

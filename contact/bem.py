@@ -18,9 +18,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ._constrained_cg import PKOutcome, initial_pressure, polonsky_keer
-from ._influence import NonPeriodicOperator, PeriodicOperator
-from ._validate import (
+from _glstat_runtime.validation import (
     finite_separation,
     flag,
     positive_finite,
@@ -28,6 +26,9 @@ from ._validate import (
     positive_pressure,
     tolerance,
 )
+
+from ._constrained_cg import PKOutcome, initial_pressure, polonsky_keer
+from ._influence import NonPeriodicOperator, PeriodicOperator
 from .material import effective_modulus
 from .result import ContactResult
 from .surface import Surface, surface_arrays

@@ -8,7 +8,14 @@ from typing import cast
 
 import numpy as np
 
-from ._validate import frequency_ratio, grid_shape, plausible_roughness, positive_finite, real_scalar
+from _glstat_runtime.validation import (
+    frequency_ratio,
+    grid_shape,
+    plausible_roughness,
+    positive_finite,
+    real_scalar,
+)
+
 from .surface import Surface
 
 __all__ = ["self_affine", "weierstrass"]

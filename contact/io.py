@@ -41,14 +41,16 @@ from pathlib import Path
 
 import numpy as np
 
+from _glstat_runtime.validation import positive_finite
+
 from ._formats import FORMATS, file_format
 from ._metropro import is_metropro, read_metropro
 from ._npy_files import Stored, read_npy, read_npz
 from ._text_files import XYZ_MAX_FILL as XYZ_MAX_FILL
-from ._text_files import NotOwnText, read_text, read_xyz
+from ._text_files import read_text, read_xyz
+from ._text_headers import NotOwnText
 from ._units import UNITS as _UNITS
 from ._units import checked_unit, conflicting_unit, missing_unit, unit_name
-from ._validate import positive_finite
 from ._writers import write
 from ._zip import MAX_DECLARED_BYTES as MAX_DECLARED_BYTES
 from ._zip import MAX_EXPANSION as MAX_EXPANSION

@@ -18,7 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import frequency_ratio, grid_shape, positive_integer
+from _glstat_runtime.validation import frequency_ratio, grid_shape, positive_integer
+
 from .errors import ContactWarning
 from .generators import self_affine, weierstrass
 from .spectrum import BINS_PER_OCTAVE as BINS_PER_OCTAVE

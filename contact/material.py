@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ._validate import elastic_constants
+from _glstat_runtime.validation import elastic_constants
 
 __all__ = ["effective_modulus"]
 

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import positive_finite
+from _glstat_runtime.validation import positive_finite
 
 __all__ = [
     "Cone",

@@ -11,7 +11,8 @@ import math
 
 import numpy as np
 
-from ._validate import positive_finite
+from _glstat_runtime.validation import positive_finite
+
 from .surface import Surface
 
 __all__ = ["resample"]

@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._validate import flag, positive_finite, real_scalar
+from _glstat_runtime.validation import flag, positive_finite, real_scalar
+
 from .result import ContactResult
 
 if TYPE_CHECKING:

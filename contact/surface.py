@@ -8,9 +8,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from _glstat_runtime.validation import height_map, positive_finite, real_array
+
 from . import _interop
 from ._iso25178 import ACF_THRESHOLD, inverse_material_ratio, material_ratio
-from ._validate import height_map, positive_finite, real_array
 from ._writers import write
 from .roughness import level_heights, roughness_parameters
 
@@ -345,7 +346,7 @@ def surface_arrays(surface) -> tuple[np.ndarray, np.ndarray]:
         ``surface`` is not a :class:`Surface` (see :func:`require_surface`).
     ValueError
         The surface's attributes were changed since it was made and break its rule (see
-        :func:`contact._validate.height_map`).
+        :func:`_glstat_runtime.validation.height_map`).
     """
     surface = require_surface(surface)
     return height_map(surface.heights, surface.mask)

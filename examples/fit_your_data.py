@@ -3,7 +3,7 @@
 Writes ``pressures.csv`` (2000 simulated contact pressures in MPa, with a ``surface`` label
 column and a ``pressure`` column, the way a measurement export often looks) and runs the
 ``glstat fit`` command on it, exactly as ``glstat fit pressures.csv --column pressure ...`` or
-``python -m glstat.cli_fit pressures.csv ...`` would from a shell. The analysed area has
+``python -m glstat.cli.fit pressures.csv ...`` would from a shell. The analysed area has
 1024² grid points; the damage probability at a hardness of 8000 MPa is given for that area
 and for areas 10 and 100 times larger, with 90 % bootstrap intervals.
 
@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from glstat import cli_fit
+from glstat.cli import fit as cli_fit
 
 
 def write_pressures(path: Path, n: int = 2000, seed: int = 2019) -> None:

@@ -1,9 +1,35 @@
 """glstat: Generalized Lambda Distributions and the statistics of contact pressures."""
 
-import _glstat_numba  # noqa: F401  (first: numba caches outside the package)
+import _glstat_runtime  # noqa: F401  (first: numba caches outside the package)
+from _glstat_runtime import moved_modules as _moved_modules
 
 from ._version import __version__  # noqa: F401  (the one version source)
-from .bootstrap import (
+from .cross_validation import MaximumCrossValidation, cross_validate_maximum
+from .distributions.gld import GLD
+from .distributions.rv_gld import gld_fkml, gld_rs
+from .errors import ConvergenceWarning, FitError, FitWarning, InvalidParameterError
+from .extremes.counts import CountDistribution, ObservedCounts, PoissonCount
+from .extremes.damage import (
+    damage_probability,
+    guaranteed_threshold,
+    integrity_probability,
+    return_level,
+    return_period,
+)
+from .extremes.order_statistics import (
+    MaximumCountDistribution,
+    MaximumDistribution,
+    OrderStatisticDistribution,
+    maximum,
+    order_statistic,
+)
+from .extremes.peaks_over_threshold import TailPrediction, predict_maximum_pot
+from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
+from .gof import compare_families, edf_statistics, gof_report
+from .gof.binomial_check import BinomialCheck, binomial_check
+from .prediction import MaximumPrediction, predict_maximum
+from .regions import rs_region
+from .resampling import (
     BootstrapFit,
     BootstrapInterval,
     BootstrapMaximum,
@@ -12,31 +38,6 @@ from .bootstrap import (
     MaximumMixture,
     bootstrap,
 )
-from .checks import BinomialCheck, binomial_check
-from .counts import CountDistribution, ObservedCounts, PoissonCount
-from .cross_validation import MaximumCrossValidation, cross_validate_maximum
-from .damage import (
-    damage_probability,
-    guaranteed_threshold,
-    integrity_probability,
-    return_level,
-    return_period,
-)
-from .distributions import gld_fkml, gld_rs
-from .errors import ConvergenceWarning, FitError, FitWarning, InvalidParameterError
-from .extremes import (
-    MaximumCountDistribution,
-    MaximumDistribution,
-    OrderStatisticDistribution,
-    maximum,
-    order_statistic,
-)
-from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
-from .gld import GLD
-from .gof import compare_families, edf_statistics, gof_report
-from .pot import TailPrediction, predict_maximum_pot
-from .prediction import MaximumPrediction, predict_maximum
-from .regions import rs_region
 
 __all__ = [
     "GLD",
@@ -88,11 +89,33 @@ __all__ = [
 ]
 
 
+#: Module paths of the previous release and where they went (warning stand-ins for one release).
+_MOVED = _moved_modules.register({
+    "glstat.gld": "glstat.distributions.gld",
+    "glstat.generalized_lambda": "glstat.distributions.generalized_lambda",
+    "glstat.counts": "glstat.extremes.counts",
+    "glstat.damage": "glstat.extremes.damage",
+    "glstat.pot": "glstat.extremes.peaks_over_threshold",
+    "glstat.checks": "glstat.gof.binomial_check",
+    "glstat.bootstrap": "glstat.resampling",
+    "glstat.bootstrap_maximum": "glstat.resampling.maxima",
+    "glstat.fitting.core": "glstat.fitting.fit_functions",
+    "glstat.cli_fit": "glstat.cli.fit",
+    "glstat.cli_fit_options": "glstat.cli.fit_options",
+    "glstat.cli_fit_output": "glstat.cli.fit_output",
+    "glstat.cli_fit_results": "glstat.cli.fit_results",
+    "glstat.cli_input": "glstat.cli.sample_files",
+    "glstat.cli_signals": "glstat.cli.signals",
+})
+
+
 def __getattr__(name: str):
     # scipy's distribution infrastructure costs import time: built on first use
     if name == "GeneralizedLambda":
-        from .generalized_lambda import GeneralizedLambda
+        from .distributions.generalized_lambda import GeneralizedLambda
 
         globals()[name] = GeneralizedLambda
         return GeneralizedLambda
+    if name in _MOVED:
+        return _MOVED[name]
     raise AttributeError(f"module 'glstat' has no attribute {name!r}")

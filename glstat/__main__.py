@@ -7,8 +7,8 @@ import sys
 
 import numpy as np
 
+from .distributions.gld import GLD
 from .errors import InvalidParameterError
-from .gld import GLD
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -24,9 +24,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._validate import check_level, check_method, check_n_resamples, check_param, real_values
-from .checks import FAILED, NOT_CHECKABLE, PASSED, BinomialCheck, binomial_check
-from .fitting._stats import MIN_N
+from _glstat_runtime.validation import check_level, check_method, check_n_resamples, check_param, real_values
+
+from ._fit_engine.sample_statistics import MIN_N
+from .gof.binomial_check import FAILED, NOT_CHECKABLE, PASSED, BinomialCheck, binomial_check
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd

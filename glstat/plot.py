@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from ._gof_inputs import as_float_array, named_distributions
+from .gof.inputs import as_float_array, named_distributions
 
 __all__ = [
     "plot_histogram",
@@ -101,7 +101,7 @@ def plot_integrity_vs_area(dist, threshold: float, n: float | None, area_factors
     matplotlib.axes.Axes
         First line: the integrity curve (label ``"integrity"``).
     """
-    from .damage import integrity_probability
+    from .extremes.damage import integrity_probability
 
     k = np.asarray(area_factors, dtype=float).ravel()
     ax = _axes(ax)

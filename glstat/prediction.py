@@ -24,12 +24,13 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
-from ._validate import real_values
+from _glstat_runtime.validation import real_values
+
 from .errors import FitError
 
 if TYPE_CHECKING:
-    from .bootstrap import BootstrapFit
-    from .bootstrap_maximum import BootstrapMaximum, BootstrapProbability
+    from .resampling import BootstrapFit
+    from .resampling.maxima import BootstrapMaximum, BootstrapProbability
 
 __all__ = ["MaximumPrediction", "collect_warnings", "predict_maximum"]
 
@@ -135,7 +136,7 @@ def _bootstrap_first_fit(data, fits, *, n_resamples, likelihood_resamples, confi
     """(BootstrapFit or None, param, method, note, warnings) of the first fit with a solution.
     Every attempt starts from the same seed or generator state, so the fit used does not
     depend on how many failed before it."""
-    from .bootstrap import bootstrap
+    from .resampling.bootstrap_fits import bootstrap
 
     state = rng.bit_generator.state if isinstance(rng, np.random.Generator) else None
     failures: list[str] = []

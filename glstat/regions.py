@@ -22,7 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import check_param
+from _glstat_runtime.validation import check_param
+
 from .errors import InvalidParameterError
 
 __all__ = ["check_lambdas", "fkml_valid", "rs_region", "rs_valid"]

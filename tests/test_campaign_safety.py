@@ -20,8 +20,10 @@ import pytest
 from glstat.study import CampaignError, CampaignSettings, SerialExecutor, load_results, run_campaign
 from glstat.study import campaign as campaign_mod
 from glstat.study import runner as runner_mod
-from glstat.study.campaign import LOCK_FILE, lock_directory, surface_path
+from glstat.study.campaign import LOCK_FILE
 from glstat.study.files import create_exclusive
+from glstat.study.lock import lock_directory
+from glstat.study.results import surface_path
 
 ROOT = Path(__file__).resolve().parents[1]
 TINY = CampaignSettings(n_surfaces=3, grid=32, n_terms=(4,), hurst=(0.5,), n_examples=0)
@@ -48,7 +50,7 @@ def _hold(out: Path, seconds: float) -> subprocess.Popen:
 
 
 def test_second_campaign_on_the_same_directory_is_refused_or_waits(tmp_path, capsys):
-    from glstat.cli import main
+    from glstat.cli.commands import main
 
     out = tmp_path / "run"
     proc = _hold(out, 3.0)

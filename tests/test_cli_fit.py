@@ -1,4 +1,4 @@
-"""``glstat fit`` (glstat.cli_fit): reading, printed tables, files written and bad input."""
+"""``glstat fit`` (glstat.cli.fit): reading, printed tables, files written and bad input."""
 
 from __future__ import annotations
 
@@ -15,7 +15,8 @@ import pytest
 from scipy import stats
 
 import glstat
-from glstat import cli_fit, cli_fit_options
+from glstat.cli import fit as cli_fit
+from glstat.cli import fit_options as cli_fit_options
 
 SEED = 3
 
@@ -596,7 +597,7 @@ def test_python_m_glstat_cli_fit(tmp_path):
     x = _pressures(100, seed=7)
     csv = tmp_path / "p.csv"
     pd.DataFrame({"pressure": x}).to_csv(csv, index=False)
-    proc = subprocess.run([sys.executable, "-m", "glstat.cli_fit", str(csv), "--bootstrap", "0",
+    proc = subprocess.run([sys.executable, "-m", "glstat.cli.fit", str(csv), "--bootstrap", "0",
                            "--gof-resamples", "0", "--out", str(tmp_path / "o")],
                           capture_output=True, text=True, timeout=120, check=False)
     assert proc.returncode == 0, proc.stderr

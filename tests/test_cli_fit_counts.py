@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 import glstat
-from glstat.cli import main
-from glstat.cli_fit import InputError, parse_n_max
+from glstat.cli.commands import main
+from glstat.cli.fit_options import parse_n_max
+from glstat.cli.sample_files import InputError
 
 
 @pytest.fixture(scope="module")

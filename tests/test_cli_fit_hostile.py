@@ -15,8 +15,8 @@ import hostile
 import numpy as np
 import pytest
 
-from glstat.cli_fit import main
-from glstat.cli_input import InputError, read_sample
+from glstat.cli.fit import main
+from glstat.cli.sample_files import InputError, read_sample
 
 QUICK = ["--bootstrap", "0", "--gof-resamples", "0"]
 
@@ -65,7 +65,7 @@ def test_workbook_with_a_large_sheet_is_refused_from_its_directory(tmp_path, cap
                                                                    monkeypatch):
     """A sheet above MAX_EXCEL_SHEET is refused before openpyxl reads it (a 200 MiB sheet took
     minutes); here with the limit lowered to 1 MiB and a 2 MiB sheet."""
-    import glstat.cli_input as ci
+    import glstat.cli.sample_files as ci
 
     monkeypatch.setattr(ci, "MAX_EXCEL_SHEET", 2**20)
     err = _refused(hostile.xlsx_big_sheet(tmp_path, 2), capsys, tmp_path)
@@ -78,7 +78,7 @@ def test_sparse_sheet_within_the_cell_limit_is_read(tmp_path, openpyxl, monkeypa
     values = hostile._sample_values(20)
     far = '<row r="500"><c r="C500"><v>1</v></c></row>'
     path = hostile.write_xlsx(tmp_path / "sparse.xlsx", hostile.sheet_xml(values, far))
-    import glstat.cli_input as ci
+    import glstat.cli.sample_files as ci
 
     monkeypatch.setattr(ci, "MAX_DECOMPRESSED", 32 * 1500)  # 1500 cells: 500 x 3 is read
     s = read_sample(path, column="p", nan_policy="omit")

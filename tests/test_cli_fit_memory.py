@@ -21,8 +21,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glstat import cli_input as ci
-from glstat.cli_input import MAX_DECOMPRESSED, InputError, read_sample
+from glstat.cli import sample_files as ci
+from glstat.cli.sample_files import MAX_DECOMPRESSED, InputError, read_sample
 
 #: The shipped limit; the bombs below exceed it without lowering it.
 CAP_MB = MAX_DECOMPRESSED / 2**20
@@ -246,7 +246,7 @@ def test_parquet_declared_rows_against_the_limit(tmp_path, monkeypatch):
 
 
 def test_long_column_names_and_entries_are_shortened_in_messages(tmp_path, capsys):
-    from glstat import cli_fit
+    from glstat.cli import fit as cli_fit
 
     name = "n" * 5000
     path = tmp_path / "long.csv"

@@ -12,7 +12,7 @@ import warnings
 import numpy as np
 import pytest
 
-from glstat.cli import _logging_at, _verbosity
+from glstat.cli.commands import _logging_at, _verbosity
 
 
 @pytest.mark.parametrize("argv, rest, level", [
@@ -41,8 +41,8 @@ def test_verbose_shows_the_library_log_and_default_does_not(tmp_path):
     assert verbose.returncode == 0
     assert re.search(r"glstat\.bootstrap: bootstrap rs moments: \d+ of 30 resamples fitted",
                      verbose.stderr)
-    assert "glstat.fitting.core:" not in verbose.stderr  # DEBUG records need -vv
-    assert "glstat.fitting.core: fit rs moments" in _fit(tmp_path, "-vv").stderr
+    assert "glstat.fitting.fit_functions:" not in verbose.stderr  # DEBUG records need -vv
+    assert "glstat.fitting.fit_functions: fit rs moments" in _fit(tmp_path, "-vv").stderr
 
 
 def test_quiet_silences_warnings_and_logs_and_restores_them():
@@ -61,7 +61,7 @@ def test_quiet_silences_warnings_and_logs_and_restores_them():
 def test_dask_logs_are_quiet_during_a_scheduler_run_and_restored_after():
     import logging
 
-    from glstat.cli import _QuietDaskLogs
+    from glstat.cli.commands import _QuietDaskLogs
 
     before = {n: logging.getLogger(n).level for n in ("distributed", "tornado")}
     with _QuietDaskLogs():

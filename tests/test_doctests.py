@@ -90,7 +90,8 @@ MODULES = _modules()
 
 
 def test_modules_found():
-    assert {"glstat.gld", "glstat.fitting.core", "glstat.gof", "contact.asperity"} <= set(MODULES)
+    assert {"glstat.distributions.gld", "glstat.fitting.fit_functions", "glstat.gof",
+            "contact.asperity"} <= set(MODULES)
     assert not set(KNOWN_FAILING) - set(MODULES), "KNOWN_FAILING names a module that no longer exists"
 
 

@@ -54,8 +54,8 @@ import json, sys, time
 path, kind = sys.argv[1], sys.argv[2]
 if kind == "fit":
     import pandas  # imported before the baseline: only the reading counts
-    import glstat.cli_input as ci
-    from glstat.cli_fit import main
+    import glstat.cli.sample_files as ci
+    from glstat.cli.fit import main
     ci.MAX_DECOMPRESSED = int(sys.argv[3])
 else:
     import contact
@@ -125,7 +125,7 @@ def test_long_text_grid_is_streamed(tmp_path):
 
 
 def test_glstat_fit_refuses_hostile_numpy_files_with_status_2(tmp_path, capsys):
-    from glstat.cli_fit import main
+    from glstat.cli.fit import main
 
     for path, words in [(hostile.npy_huge_header(tmp_path), "declares an array of shape (1000000, 1000000)"),
                         (hostile.npy_subarray(tmp_path), "field(s) 'a' are arrays")]:

@@ -14,7 +14,7 @@ import interrupt_trials as trials
 import numpy as np
 import pytest
 
-from glstat.cli_signals import Signals
+from glstat.cli.signals import Signals
 from glstat.study import SerialExecutor, run_campaign
 from glstat.study import runner as runner_mod
 
@@ -29,7 +29,7 @@ STOP_LINE = "glstat study: interrupted"
 
 def _scene_settings():
     """The campaign settings that ``glstat study`` derives from the trials' options."""
-    from glstat.cli import _study_parser, _study_settings
+    from glstat.cli.commands import _study_parser, _study_settings
 
     argv = [*trials.SCENE, *FAST]
     return _study_settings(_study_parser().parse_args(argv), argv)[0]
@@ -84,7 +84,7 @@ def test_two_and_three_ctrl_c_end_the_study_at_once_and_it_resumes(tmp_path):
 
 STOPPING = r"""
 import atexit, sys, threading, time
-from glstat.cli_signals import Signals
+from glstat.cli.signals import Signals
 from glstat.study.runner import make_executor
 
 mode = sys.argv[1]

@@ -1,5 +1,5 @@
 """The layers of the code: the statistics library imports without the contact package and
-contact without glstat; scipy's private names come through glstat._compat only; no module
+contact without glstat; scipy's private names come through glstat.distributions.scipy_base only; no module
 imports another module's private names (beyond the listed ones)."""
 
 from __future__ import annotations
@@ -9,8 +9,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("glstat", "contact", "_glstat_numba")
+PACKAGES = ("glstat", "contact", "_glstat_runtime.numba_cache")
 #: Private names shared between modules, each an exception to the rule: (importer, module, name).
 KNOWN: set[tuple[str, str, str]] = set()
 
@@ -74,11 +76,11 @@ def test_scipy_privates_only_in_compat():
             if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("scipy"):
                 private = any(p.startswith("_") for p in node.module.split(".")) or any(
                     a.name.startswith("_") for a in node.names)
-                if private and path.name != "_compat.py":
+                if private and path.name != "scipy_base.py":
                     bad.append(f"{path.relative_to(ROOT)}: from {node.module} import ...")
     assert not bad, bad
-    # and they are still where glstat._compat takes them from
-    from glstat._compat import ShapeInfo, rv_continuous_frozen  # noqa: F401
+    # and they are still where glstat.distributions.scipy_base takes them from
+    from scipy.stats._distn_infrastructure import rv_continuous_frozen  # noqa: F401
 
 
 def test_no_private_names_across_modules():
@@ -176,3 +178,104 @@ def test_no_import_cycles_beyond_the_known_ones():
 def test_the_cycle_finder_finds_a_cycle():
     graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
     assert _cycles(graph) == {frozenset({"a", "b", "c"})}
+
+
+#: The layers of glstat, bottom first: a unit (a folder of glstat, a loose module of it, or
+#: another package) imports only units of a lower rank, and itself.
+RANKS = {
+    "_glstat_runtime": 0, "glstat.errors": 0, "glstat._version": 0,
+    "glstat._core": 1, "glstat.regions": 1,
+    "glstat._fit_engine": 2,
+    "glstat.distributions": 3,
+    "glstat.fitting": 4,
+    "glstat.extremes": 5, "glstat.gof": 5,
+    "glstat.resampling": 6,
+    "glstat.prediction": 7, "glstat.plot": 7,
+    "glstat.cross_validation": 8,
+    "glstat": 9, "glstat.formatting": 9, "contact": 9,
+    "glstat.__main__": 10, "glstat.study": 10,
+    "glstat.cli": 11,
+}
+
+
+def _unit(module: str) -> str | None:
+    parts = module.split(".")
+    if parts[0] != "glstat":
+        return parts[0] if parts[0] in RANKS else None
+    return ".".join(parts[:2])
+
+
+def test_every_glstat_unit_has_a_rank():
+    units = {_unit(m) for m in _import_graph() if m.startswith("glstat")}
+    assert units <= set(RANKS), sorted(units - set(RANKS))
+
+
+def test_folders_import_only_the_layers_below():
+    bad = []
+    for module, targets in _import_graph().items():
+        unit = _unit(module)
+        if unit is None or unit == "contact" or unit == "_glstat_runtime":
+            continue
+        for target in targets:
+            other = _unit(target)
+            if other is not None and other != unit and RANKS[other] >= RANKS[unit]:
+                bad.append(f"{module} imports {target} ({unit} {RANKS[unit]} -> {other} {RANKS[other]})")
+    assert not bad, bad
+
+
+def test_the_layer_rule_fails_on_an_upward_import(monkeypatch):
+    monkeypatch.setitem(RANKS, "glstat.fitting", 8)  # the fits above the prediction: an upward edge
+    with pytest.raises(AssertionError, match=r"glstat\.fitting"):
+        test_folders_import_only_the_layers_below()
+
+
+def _private(module: str) -> bool:
+    last = module.rsplit(".", 1)[-1]
+    return last.startswith("_") and not last.startswith("__")
+
+
+def _folder(module: str, graph: dict[str, set[str]]) -> str:
+    """The folder (package) a module lives in."""
+    path = ROOT.joinpath(*module.split("."))
+    return module if (path / "__init__.py").is_file() else module.rsplit(".", 1)[0]
+
+
+def test_private_modules_are_used_only_inside_their_folder():
+    graph = _import_graph()
+    bad = sorted(f"{m} imports {t}" for m, targets in graph.items() for t in targets
+                 if _private(t) and _folder(t, graph) != _folder(m, graph))
+    assert not bad, bad
+
+
+def test_glstat_has_at_most_twelve_loose_modules():
+    loose = sorted(p.name for p in (ROOT / "glstat").glob("*.py"))
+    assert len(loose) <= 12, loose
+
+
+#: Public modules that gather names defined elsewhere, as their documentation says.
+FACADES = {
+    "contact/io.py",  # reading and writing of every format: ``contact.io.write``, ``FORMATS``
+    "contact/like.py",  # surfaces like a measured one, with the spectrum fit and the comparison
+}
+
+
+def test_only_init_modules_re_export():
+    bad = []
+    for path in _modules():
+        if path.name == "__init__.py" or str(path.relative_to(ROOT)) in FACADES:
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        defined, exported = set(), []
+        for node in tree.body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                defined.add(node.name)
+            elif isinstance(node, ast.Assign):
+                for target in node.targets:
+                    defined.update(n.id for n in ast.walk(target) if isinstance(n, ast.Name))
+                    if (isinstance(target, ast.Name) and target.id == "__all__"
+                            and isinstance(node.value, (ast.List, ast.Tuple))):
+                        exported = [ast.literal_eval(e) for e in node.value.elts]
+            elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+                defined.add(node.target.id)
+        bad.extend(f"{path.relative_to(ROOT)}: {name}" for name in exported if name not in defined)
+    assert not bad, bad

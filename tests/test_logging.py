@@ -10,7 +10,7 @@ import numpy as np
 import contact
 import glstat
 
-LOGGERS = ("glstat.fitting.core", "glstat.fitting._data", "glstat.bootstrap", "contact.bem",
+LOGGERS = ("glstat.fitting.fit_functions", "glstat._fit_engine.data_fits", "glstat.bootstrap", "contact.bem",
            "contact._constrained_cg", "contact.asperity")
 
 
@@ -31,9 +31,9 @@ def test_fit_and_bootstrap_log_their_decisions(caplog):
     with caplog.at_level(logging.DEBUG, logger="glstat"):
         f = glstat.fit(x, "fkml", "mle", warn=False)
         glstat.bootstrap(x, "rs", "moments", n_resamples=20, rng=1)
-    starts = _messages(caplog, "glstat.fitting._data")
+    starts = _messages(caplog, "glstat._fit_engine.data_fits")
     assert starts and all(m.startswith("mle fkml start ") and "neg_loglik" in m for m in starts)
-    fits = _messages(caplog, "glstat.fitting.core")
+    fits = _messages(caplog, "glstat.fitting.fit_functions")
     assert any(m.startswith(f"fit fkml mle of n=300: {len(f.solutions)} candidate(s)") for m in fits)
     boot = _messages(caplog, "glstat.bootstrap")
     assert any(m.startswith("bootstrap: 20 nonparametric resamples of 300 values") for m in boot)

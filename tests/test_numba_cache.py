@@ -12,17 +12,17 @@ from pathlib import Path
 
 import pytest
 
-import _glstat_numba as _numba_cache
+import _glstat_runtime.numba_cache as _numba_cache
 import contact
 import glstat
 
 PACKAGES = {name: Path(mod.__file__).resolve().parent for name, mod in
-            (("glstat", glstat), ("contact", contact), ("_glstat_numba", _numba_cache))}
+            (("glstat", glstat), ("contact", contact), ("_glstat_runtime.numba_cache", _numba_cache))}
 
 CHILD = r"""
 import json, os, sys
 import glstat, contact
-import _glstat_numba as c
+import _glstat_runtime.numba_cache as c
 x = float(glstat.GLD(0.0, 1.0, 0.1, 0.1).cdf(0.3))
 s = contact.weierstrass((32, 32), 1e-3, 0.5, rq=1e-6, rng=0)
 r = contact.solve(s, 1e6, 210e9, 0.3)

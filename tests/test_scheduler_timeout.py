@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from glstat.cli import main
+from glstat.cli.commands import main
 
 pytest.importorskip("distributed", reason="--scheduler needs the optional 'distributed' package")
 

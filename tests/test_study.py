@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glstat.cli import main
+from glstat.cli.commands import main
 from glstat.study import (
     AnalysisSettings,
     CampaignError,
@@ -426,7 +426,7 @@ def _fake_analysis(values):
 
 
 def test_damage_sentence_is_computed():
-    from glstat.study.report import damage_sentence
+    from glstat.study.report_text import damage_sentence
 
     settings = CampaignSettings(hurst=(0.0, 1.0), n_terms=(6,))
     certain = damage_sentence(settings, _fake_analysis([((1.0, 1.0, 1.0), (1.0, 1.0, 1.0))] * 2),
@@ -444,7 +444,7 @@ def test_damage_sentence_is_computed():
 
 def test_truncation_paragraph_only_on_the_reference_settings():
     from glstat.study import TRUNCATION_REFERENCE, TRUNCATION_TABLE
-    from glstat.study.report import truncation_caption, truncation_paragraphs
+    from glstat.study.report_text import truncation_caption, truncation_paragraphs
 
     rows = [[r[0], r[1], r[2], r[3], r[5], r[6]] for r in TRUNCATION_TABLE]
     info = {"truncation": rows, "truncation_reference": TRUNCATION_REFERENCE}
@@ -498,7 +498,7 @@ def test_cli_number_format():
 def test_calibration_verdict_needs_coverage_and_centring():
     from types import SimpleNamespace
 
-    from glstat.study.report import calibration_verdict
+    from glstat.study.report_text import calibration_verdict
 
     def v(lo, hi, reject):
         return SimpleNamespace(coverage_interval=(lo, hi), reject=reject)

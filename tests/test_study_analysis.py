@@ -9,15 +9,11 @@ import pandas as pd
 import pytest
 
 from glstat.formatting import fmt_mpa, fmt_probability
-from glstat.study.analysis import (
-    AnalysisSettings,
-    SampleAnalysis,
-    Validation,
-    _end_note,
-    choose_fit,
-    hardness_levels,
-)
+from glstat.study.analysis import SampleAnalysis, _end_note
+from glstat.study.analysis_settings import AnalysisSettings
 from glstat.study.answer import degenerate_scene
+from glstat.study.fit_choice import choose_fit
+from glstat.study.validation import Validation, hardness_levels
 
 
 def _surfaces(rng, n, sampler):

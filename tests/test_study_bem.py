@@ -14,7 +14,7 @@ import pytest
 
 import contact
 import glstat
-from glstat.cli import main
+from glstat.cli.commands import main
 from glstat.study import (
     AnalysisSettings,
     BEMSettings,
@@ -27,7 +27,9 @@ from glstat.study import (
     run_study,
 )
 from glstat.study import bem as bem_mod
-from glstat.study.bem import bem_path, contact_record, findings
+from glstat.study.bem import bem_path
+from glstat.study.both_models import contact_record
+from glstat.study.comparison_text import findings
 
 ARGS = ["study", "--surfaces", "2", "--grid", "64", "--rq", "5", "--bootstrap", "30", "--no-progress",
         "--workers", "1", "--model", "asperity"]
@@ -306,7 +308,7 @@ def test_spots_touching_the_patch_border_are_left_out():
     """A spot that reaches the outermost rows or columns is cut by the patch border; its
     pressures (a punch-edge singularity for the isolated BEM) leave the elastic sample."""
     from contact import ContactResult
-    from glstat.study.bem import contact_record, interior
+    from glstat.study.both_models import contact_record, interior
 
     p = np.zeros((8, 8))
     p[0:2, 3] = [9e9, 5e9]        # touches row 0: a border spot
@@ -328,7 +330,7 @@ def test_a_surface_without_a_spot_inside_the_patch_has_no_maximum_to_compare():
     comparison's means are over the other surfaces."""
     import pandas as pd
 
-    from glstat.study.bem import BEMComparison
+    from glstat.study.model_comparison import BEMComparison
 
     rows = []
     for surface, bem_max in ((0, 300.0), (1, float("nan")), (2, 600.0)):

@@ -4,7 +4,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from glstat.cli import main
+from glstat.cli.commands import main
 from glstat.study import BEMSettings, CampaignSettings, run_bem, run_campaign
 from glstat.study.bem import elastic_results
 

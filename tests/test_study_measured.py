@@ -12,7 +12,8 @@ import pytest
 
 import contact
 from glstat.study import AnalysisSettings, CampaignError, run_study
-from glstat.study.campaign import CampaignSettings, campaign_surface
+from glstat.study.campaign import campaign_surface
+from glstat.study.campaign_settings import CampaignSettings
 from glstat.study.measured import (
     find_topographies,
     like_settings,
@@ -263,7 +264,7 @@ def test_one_scan_without_tiles_says_to_cut_it_and_never_names_refused_options(m
 
 
 def test_cli_reads_files_without_spacing_with_spacing_and_unit(tmp_path, capsys):
-    from glstat.cli import main
+    from glstat.cli.commands import main
 
     s = contact.self_affine((64, 48), 0.2e-3, hurst=0.7, rq=0.5e-6, rng=4)
     np.save(tmp_path / "scan.npy", s.heights * 1e6)  # heights in µm, no spacing stored

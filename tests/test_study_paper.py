@@ -18,22 +18,10 @@ from scipy import optimize
 
 from glstat import GLD, InvalidParameterError
 from glstat.study import paper
-from glstat.study.paper import (
-    CLAIM_RANGES,
-    PAPER_CLAIMS,
-    SCENE_N_CONTACT,
-    TABLE1,
-    as_distribution,
-    damage_claims,
-    lambda_moments,
-    mirror_lambdas,
-    moment_fit_roots,
-    paper_consistency,
-    paper_findings,
-    printed_lambda_check,
-    table1,
-)
-from glstat.study.paper_checks import reading_family
+from glstat.study.paper import paper_consistency, paper_findings
+from glstat.study.paper_checks import damage_claims, moment_fit_roots, printed_lambda_check, reading_family
+from glstat.study.paper_gld import as_distribution, lambda_moments, mirror_lambdas
+from glstat.study.paper_table import CLAIM_RANGES, PAPER_CLAIMS, SCENE_N_CONTACT, TABLE1, table1
 
 # The GLDs the synthetic tables are built from (MPa): a region-3 GLD per H = 1, 0.5 and a
 # region-4 GLD (lambda2 < 0) for H = 0, the sign pattern of the paper's H = 0 row.
@@ -335,7 +323,7 @@ def test_stored_contact_counts_are_reproduced():
 def test_study_reads_the_printed_table_and_checks_it(tmp_path, synthetic):
     import pandas as pd
 
-    from glstat.cli import main
+    from glstat.cli.commands import main
 
     csv = tmp_path / "table1.csv"
     pd.DataFrame(synthetic).to_csv(csv, index=False)
@@ -358,7 +346,7 @@ def test_study_reads_the_printed_table_and_checks_it(tmp_path, synthetic):
 
 
 def test_bad_paper_table_is_a_usage_error(tmp_path, capsys):
-    from glstat.cli import main
+    from glstat.cli.commands import main
 
     bad = tmp_path / "bad.csv"
     bad.write_text("hurst,mean,sd\n0,1724,200\n")

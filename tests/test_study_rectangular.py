@@ -11,7 +11,8 @@ import pytest
 
 import contact
 from glstat.study import AnalysisSettings, run_study
-from glstat.study.campaign import CampaignSettings, campaign_surface
+from glstat.study.campaign import campaign_surface
+from glstat.study.campaign_settings import CampaignSettings
 from glstat.study.measured import like_settings, measured_settings, read_measured
 from glstat.study.report_surfaces import scene_sentence, surface_rows
 from glstat.study.topography import FORMS, remove_form

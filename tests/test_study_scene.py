@@ -147,7 +147,7 @@ def test_glstat_study_target_pressure_places_the_scene(tmp_path, capsys):
     records it in the manifest and the report."""
     import json
 
-    from glstat.cli import main
+    from glstat.cli.commands import main
 
     out = tmp_path / "run"
     rc = main(["study", "--surfaces", "4", "--grid", "128", "--hurst", "0.5", "--bootstrap", "20",
@@ -197,7 +197,7 @@ def test_one_rq_per_h_drives_the_campaign():
 
 
 def test_glstat_study_target_pressure_per_h(tmp_path, capsys):
-    from glstat.cli import main
+    from glstat.cli.commands import main
 
     out = tmp_path / "run"
     rc = main(["study", "--surfaces", "3", "--grid", "128", "--hurst", "0", "1", "--bootstrap",

@@ -230,7 +230,7 @@ def stats_from_indices(kind, x, idx, u, loc, scale, out, ext):
         Percentile probability (PERCENTILES only).
     loc, scale : float
         Centre and spread of ``x`` (its mean and largest absolute deviation from it, scale >
-        0, as from ``glstat.fitting._stats.location_spread``): the moments are accumulated as
+        0, as from ``glstat._fit_engine.sample_statistics.location_spread``): the moments are accumulated as
         power sums of ``(x - loc) / scale`` (MOMENTS only), which then lie in [-1, 1] whatever
         the scale of the data, so they neither underflow nor overflow.
     out : ndarray, shape (R, 4)

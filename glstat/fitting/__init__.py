@@ -5,6 +5,7 @@ See :func:`fit` for data and :func:`fit_moments`, :func:`fit_percentiles`,
 statistics-to-lambdas core meant for bootstrap loops.
 """
 
-from .core import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
+from .fit_functions import fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
+from .result import GLDFit
 
 __all__ = ["GLDFit", "fit", "fit_batch", "fit_lmoments", "fit_moments", "fit_percentiles"]

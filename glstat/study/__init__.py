@@ -22,21 +22,19 @@ from pathlib import Path
 
 import numpy as np
 
-from .analysis import AnalysisSettings, analyse, choose_fit, wilson_interval
+from .analysis import analyse
+from .analysis_settings import AnalysisSettings
 from .answer import calibration_frame, summary_frame
-from .bem import BEMComparison, BEMSettings, compare_bem, compare_study, load_bem_maps, run_bem
-from .campaign import (
-    CampaignError,
-    CampaignRun,
-    CampaignSettings,
-    SerialExecutor,
-    load_results,
-    make_executor,
-    nyquist_terms,
-    run_campaign,
-    simulate_surface,
-    surface_path,
-)
+from .bem import BEMSettings, compare_study, load_bem_maps, run_bem
+from .campaign import CampaignRun, nyquist_terms, run_campaign
+from .campaign_settings import CampaignSettings
+from .errors import CampaignError
+from .fit_choice import choose_fit
+from .model_comparison import BEMComparison, compare_bem
+from .results import load_results, surface_path
+from .runner import SerialExecutor, make_executor
+from .surface_task import simulate_surface
+from .validation import wilson_interval
 
 
 def _check_contact() -> None:

@@ -19,7 +19,7 @@ Every prediction is checked on surfaces the fit did not see (two folds: even and
 always against each held-out surface's maximal pressure: the damage probability ``P(max > Pd)``
 at the hardness against the fraction of held-out surfaces damaged, and the number of maxima
 inside their predicted interval against its level, each by an exact binomial test that says
-"not checkable" when the surfaces are too few to detect a miss (:mod:`glstat.checks`); the
+"not checkable" when the surfaces are too few to detect a miss (:mod:`glstat.gof.binomial_check`); the
 damage at other hardness levels and on groups of k = 2, 4 surfaces (the area scaling) is
 tabulated beside them.
 """
@@ -34,19 +34,13 @@ import numpy as np
 
 from ..prediction import MaximumPrediction
 from .analysis_settings import (
-    AREA_CHECKS,
-    CANDIDATES,
-    FALLBACKS,
     GROUPED_SAMPLES,
-    MLE_RESAMPLES,
     MODEL_NAMES,
     MODEL_SAMPLES,
     MODEL_SLOTS,
     MORE_SURFACES,
-    OVERLAP_MARGIN,
     PRIMARY_SAMPLE,
     SAMPLE_LABELS,
-    SAMPLES,
     SEED_SLOTS,
     AnalysisSettings,
     fit_order,
@@ -56,40 +50,12 @@ from .analysis_settings import (
     sample_rng,
     surface_values,
 )
-from .campaign import CampaignSettings
+from .campaign_settings import CampaignSettings
 from .fit_choice import FitChoice, choose_fit
 from .plasticity import plastic_summary
-from .validation import Validation, hardness_levels, validate_sample, wilson_interval
+from .validation import Validation, hardness_levels, validate_sample
 
-__all__ = [
-    "AREA_CHECKS",
-    "CANDIDATES",
-    "FALLBACKS",
-    "GROUPED_SAMPLES",
-    "MLE_RESAMPLES",
-    "MODEL_NAMES",
-    "MODEL_SAMPLES",
-    "MODEL_SLOTS",
-    "OVERLAP_MARGIN",
-    "PRIMARY_SAMPLE",
-    "SAMPLES",
-    "SAMPLE_LABELS",
-    "AnalysisSettings",
-    "FitChoice",
-    "SampleAnalysis",
-    "Validation",
-    "analyse",
-    "analyse_sample",
-    "choose_fit",
-    "fit_order",
-    "hardness_levels",
-    "overlap_sets_maximum",
-    "predict_sample",
-    "sample_rng",
-    "surface_values",
-    "validate_sample",
-    "wilson_interval",
-]
+__all__ = ["SampleAnalysis", "analyse", "analyse_sample"]
 
 
 @dataclass

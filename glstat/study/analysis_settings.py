@@ -112,9 +112,7 @@ class AnalysisSettings:
     target_damage: float = 0.01
 
     def __post_init__(self) -> None:
-        from contact._validate import positive_finite
-
-        from .._validate import check_level
+        from _glstat_runtime.validation import check_level, positive_finite
 
         positive_finite(self.hardness, "hardness", "pressure in MPa")
         for name in ("n_resamples", "grid_resamples"):

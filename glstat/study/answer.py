@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..formatting import fmt_mpa, fmt_probability
-from .analysis import PRIMARY_SAMPLE, SAMPLE_LABELS, SAMPLES
+from .analysis_settings import PRIMARY_SAMPLE, SAMPLE_LABELS, SAMPLES
 
 __all__ = ["calibration_frame", "degenerate_scene", "summary_frame"]
 

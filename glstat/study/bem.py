@@ -27,52 +27,36 @@ from typing import Any
 
 import numpy as np
 
-from .analysis import AnalysisSettings
-from .both_models import MODEL_LABELS, MODELS, contact_record, interior, solve_both, split_models
+from .analysis_settings import AnalysisSettings
+from .both_models import MODELS, contact_record, interior, solve_both, split_models
 from .campaign import (
     MANIFEST,
-    CampaignError,
-    CampaignSettings,
     atomic_write,
     campaign_surface,
     compute_and_save,
-    lock_directory,
     measured_rq,
     npz_has,
     split_stored,
-    surface_path,
     task_failure,
     task_stamp,
     write_failure,
 )
-from .comparison_text import findings
+from .campaign_settings import CampaignSettings
+from .errors import CampaignError
+from .lock import lock_directory
 from .model_comparison import (
-    QUANTITIES,
-    QUANTITY_LABELS,
-    SHORT_LABELS,
     BEMComparison,
-    compare_bem,
     compare_records,
 )
+from .results import surface_path
 from .surface_task import weierstrass_surface
 
 __all__ = [
-    "MODELS",
-    "MODEL_LABELS",
-    "QUANTITIES",
-    "QUANTITY_LABELS",
-    "SHORT_LABELS",
-    "BEMComparison",
     "BEMRun",
     "BEMSettings",
     "bem_path",
-    "compare_bem",
-    "compare_records",
     "compare_study",
-    "contact_record",
     "elastic_results",
-    "findings",
-    "interior",
     "load_bem",
     "load_bem_maps",
     "plastic_record",
@@ -139,7 +123,7 @@ class BEMSettings:
     hardness: float | None = None
 
     def __post_init__(self) -> None:
-        from contact._validate import flag, positive_finite, positive_integer, tolerance
+        from _glstat_runtime.validation import flag, positive_finite, positive_integer, tolerance
 
         if self.hardness is not None:
             object.__setattr__(self, "hardness", positive_finite(self.hardness, "hardness",

@@ -52,17 +52,7 @@ from .surface_task import campaign_surface as campaign_surface
 from .surface_task import simulate_surface as simulate_surface
 from .topography import measured_rq as measured_rq
 
-__all__ = [
-    "CampaignError",
-    "CampaignSettings",
-    "SerialExecutor",
-    "load_results",
-    "lock_directory",
-    "make_executor",
-    "run_campaign",
-    "simulate_surface",
-    "surface_path",
-]
+__all__ = ["run_campaign"]
 
 #: The manifest of an output directory: the identity of its campaign and when it was created.
 MANIFEST = "manifest.json"

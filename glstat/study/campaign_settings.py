@@ -202,7 +202,7 @@ class CampaignSettings:
         if self.length_y is not None:
             object.__setattr__(self, "length_y", float(self.length_y))
         _check_material(self)
-        from contact._validate import implausible
+        from _glstat_runtime.validation import implausible
 
         for note in self.implausible_values():
             implausible(note)
@@ -211,7 +211,7 @@ class CampaignSettings:
         """Values that are valid but implausible for their SI unit, in words (a unit mix-up is
         more likely than meant: MPa given as Pa, GPa as Pa, µm or mm as m); the report lists
         them on its first screen."""
-        from contact._validate import PLAUSIBLE_MODULUS, PLAUSIBLE_PRESSURE, PLAUSIBLE_ROUGHNESS
+        from _glstat_runtime.validation import PLAUSIBLE_MODULUS, PLAUSIBLE_PRESSURE, PLAUSIBLE_ROUGHNESS
 
         notes = [f"nominal pressure {v:g} Pa is implausibly small for pascals; did you mean "
                  f"{v:g}e6 ({v:g} MPa)?" for v in self.pressures if v < PLAUSIBLE_PRESSURE]
@@ -351,7 +351,7 @@ def terms_of(settings: CampaignSettings, ih: int) -> int:
 
 def _check_reading(s: CampaignSettings) -> None:
     """How the measured files are read and cut: tiles, spacing and unit (normalised in place)."""
-    from contact._validate import positive_finite
+    from _glstat_runtime.validation import positive_finite
 
     if s.tiles is not None:
         tiles = tuple(s.tiles)
@@ -392,7 +392,7 @@ def _check_measured_files(s: CampaignSettings) -> None:
 def _check_cases(s: CampaignSettings) -> None:
     """The (H, load) cases: distinct exponents in [0, 1], positive finite loads, one number
     of Weierstrass terms per exponent."""
-    from contact._validate import positive_finite
+    from _glstat_runtime.validation import positive_finite
 
     check_hurst(s.hurst)
     if not s.pressures:
@@ -407,7 +407,7 @@ def _check_cases(s: CampaignSettings) -> None:
 
 def _check_sampling(s: CampaignSettings) -> None:
     """The surfaces per case, the kept examples, the root seed and the grid."""
-    from contact._validate import positive_integer
+    from _glstat_runtime.validation import positive_integer
 
     positive_integer(s.n_surfaces, "n_surfaces", "surfaces per Hurst exponent and load")
     if not (is_integer(s.n_examples) and 0 <= s.n_examples <= s.n_surfaces):
@@ -430,7 +430,7 @@ def _check_sampling(s: CampaignSettings) -> None:
 def _check_geometry(s: CampaignSettings) -> None:
     """The surface: its side, RMS roughness, frequency ratio and the truncation of the series
     (at most the grid's Nyquist limit)."""
-    from contact._validate import frequency_ratio, positive_finite
+    from _glstat_runtime.validation import frequency_ratio, positive_finite
 
     positive_finite(s.length, "length", "side in metres")
     if s.length_y is not None:
@@ -450,7 +450,7 @@ def _check_geometry(s: CampaignSettings) -> None:
 
 def _check_material(s: CampaignSettings) -> None:
     """The rough body's elastic constants and the cone factor of the asperity model."""
-    from contact._validate import positive_finite
+    from _glstat_runtime.validation import positive_finite
 
     positive_finite(s.E, "E", "Young's modulus in pascals")
     if not (math.isfinite(s.nu) and -1.0 < s.nu <= 0.5):

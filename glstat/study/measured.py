@@ -27,14 +27,20 @@ from typing import Any
 
 import numpy as np
 
-from .campaign import CampaignSettings
-from .topography import FORMS, cut_tile, file_digest, measured_rq, read_file, remove_form
+from .campaign_settings import CampaignSettings
+from .topography import cut_tile, file_digest, measured_rq, read_file, remove_form
 
 #: Fewest grid points along each axis of a measured file.
 MIN_POINTS = 16
 
-__all__ = ["FORMS", "find_topographies", "like_settings", "like_template", "measured_settings",
-           "read_measured", "tiles_for_size"]
+__all__ = [
+    "find_topographies",
+    "like_settings",
+    "like_template",
+    "measured_settings",
+    "read_measured",
+    "tiles_for_size",
+]
 
 #: Relative tolerance on the grid spacing shared by all files.
 SPACING_RTOL = 1e-6

@@ -57,24 +57,7 @@ from .paper_table import table_rows
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-__all__ = [
-    "CLAIM_RANGES",
-    "PAPER_CLAIMS",
-    "SCENE_N_CONTACT",
-    "TABLE1",
-    "TABLE1_SOURCE",
-    "PaperConsistency",
-    "Table1Row",
-    "as_distribution",
-    "damage_claims",
-    "lambda_moments",
-    "mirror_lambdas",
-    "moment_fit_roots",
-    "paper_consistency",
-    "paper_findings",
-    "printed_lambda_check",
-    "table1",
-]
+__all__ = ["PaperConsistency", "paper_consistency", "paper_findings"]
 
 
 @dataclass
@@ -145,7 +128,7 @@ def paper_consistency(n_contact=None, *, table=None,
     """
     import pandas as pd
 
-    from contact._validate import positive_finite
+    from _glstat_runtime.validation import positive_finite
 
     hardness_mpa = positive_finite(hardness_mpa, "hardness_mpa", "hardness in MPa")
     rows = table_rows(table)

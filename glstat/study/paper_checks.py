@@ -26,7 +26,7 @@ from .paper_gld import (
 from .paper_table import CLAIM_RANGES, HARDNESS_MPA, PAPER_CLAIMS, SCENE_N_CONTACT, Table1Row, table_rows
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..gld import GLD
+    from ..distributions.gld import GLD
 
 __all__ = [
     "FAMILIES",
@@ -107,7 +107,7 @@ def moment_fit_roots(table=None, hardness_mpa: float = HARDNESS_MPA):
 
 def _root_row(s, hardness_mpa: float) -> dict:
     """The columns of :func:`moment_fit_roots` of one root ``s`` of ``fit_moments``."""
-    from ..gld import GLD
+    from ..distributions.gld import GLD
 
     lam = (float(s.lambda1), float(s.lambda2), float(s.lambda3), float(s.lambda4))
     row = {"selected": bool(s.selected), "lambda1_mpa": lam[0], "lambda2_per_mpa": lam[1],
@@ -216,7 +216,7 @@ def _readings(r: Table1Row, roots) -> list[tuple[str, GLD, tuple[float, ...]]]:
     """(source, GLD, λ's) of every reading of one row: the printed λ's (or, when they are not
     a valid GLD, each valid one of their other readings) and their mirror image, and every
     valid moment-fit root."""
-    from ..gld import GLD
+    from ..distributions.gld import GLD
 
     out: list[tuple[str, GLD, tuple[float, ...]]] = []
     if r.has_lambdas:

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from .paper_table import CLAIM_RANGES
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..gld import GLD
+    from ..distributions.gld import GLD
 
 __all__ = [
     "as_distribution",
@@ -120,8 +120,8 @@ def other_readings(l1: float, l2: float, l3: float,
 
 def valid_gld(lambdas: tuple[float, float, float, float]) -> GLD | None:
     """The RS GLD of ``lambdas``, or None when they are not a valid one."""
+    from ..distributions.gld import GLD
     from ..errors import InvalidParameterError
-    from ..gld import GLD
 
     try:
         return GLD(*lambdas)
@@ -157,8 +157,8 @@ def as_distribution(l1: float, l2: float, l3: float, l4: float):
     >>> reading, g.lambdas
     ('λ2 sign changed', (1700.0, -0.002, -0.1, -0.05))
     """
+    from ..distributions.gld import GLD
     from ..errors import InvalidParameterError
-    from ..gld import GLD
 
     try:
         return GLD(l1, l2, l3, l4), "as printed", ""
@@ -179,7 +179,7 @@ def gld_support(g) -> tuple[float, float]:
 
 def damage_at(g, hardness: float, n: float) -> float:
     """``1 − F(hardness)^n`` of the GLD ``g`` (0 or 1 beyond the ends of its support)."""
-    from ..damage import damage_probability
+    from ..extremes.damage import damage_probability
 
     return float(damage_probability(g, hardness, n, outside_support="limit"))
 

@@ -75,7 +75,7 @@ def plastic_summary(fractions, level: float = 0.9) -> dict[str, Any]:
         fitted on the other half, "k of m"), ``plastic_p_value`` and ``plastic_check``
         ("passed", "failed", "not checkable", or "not checked" with fewer than 4 surfaces).
     """
-    from ..checks import binomial_check
+    from ..gof.binomial_check import binomial_check
 
     x = np.asarray(fractions, dtype=float)
     low, high, fit = plastic_interval(x, level)

@@ -24,17 +24,8 @@ from .report_sections import (
     settings_section,
 )
 from .report_surfaces import like_section, measured_section
-from .report_text import (
-    PAPER_PRESSURES,
-    calibration_verdict,
-    damage_sentence,
-    truncation_caption,
-    truncation_matches,
-    truncation_paragraphs,
-)
 
-__all__ = ["PAPER_PRESSURES", "Report", "build_report", "calibration_verdict", "damage_sentence",
-           "truncation_caption", "truncation_matches", "truncation_paragraphs"]
+__all__ = ["build_report"]
 
 #: Title of the report.
 TITLE = "Mechanical integrity of rough surfaces in contact — study report"

@@ -50,7 +50,7 @@ def _method(settings, asettings, bsettings) -> str:
 
 def _quantity_table(out: Blocks, comparison, label: str, k: int) -> None:
     """The per-surface statistics of both models of one case, with their ratio."""
-    from .bem import QUANTITIES, QUANTITY_LABELS
+    from .model_comparison import QUANTITIES, QUANTITY_LABELS
 
     rows = []
     for rec in comparison_rows(comparison, (*QUANTITIES, *_EXTRA), QUANTITIES):
@@ -84,7 +84,8 @@ def bem_section(settings, asettings, comps: dict, bsettings, maps: dict) -> Bloc
     -------
     Blocks
     """
-    from .bem import MODEL_LABELS, MODELS, findings
+    from .both_models import MODEL_LABELS, MODELS
+    from .comparison_text import findings
 
     hard, lvl = asettings.hardness, round(100 * asettings.confidence_level)
     k = bsettings.n_compare

@@ -10,8 +10,7 @@ from typing import Any
 import numpy as np
 
 from .allowable import area_words
-from .analysis import SAMPLE_LABELS
-from .analysis_settings import PRIMARY_SAMPLE
+from .analysis_settings import PRIMARY_SAMPLE, SAMPLE_LABELS
 from .answer import case_label
 from .report_document import fmt_cell
 from .report_numbers import SAMPLE_ORDER, fitted
@@ -329,7 +328,7 @@ def integrity_figure(settings, asettings, analysis: dict):
 def _bem_histogram_panel(ax, comparison, hardness: float, title: str) -> None:
     """Contact-spot peak pressures of both models of one comparison on log axes, with their
     GLDs."""
-    from .bem import MODEL_LABELS, MODELS
+    from .both_models import MODEL_LABELS, MODELS
 
     colours = {"asperity": "tab:blue", "bem": "tab:red"}
     data = [comparison.fits[m].data for m in MODELS]
@@ -376,7 +375,7 @@ def bem_histograms_figure(comparisons: dict, labels: dict, hardness: float):
 def bem_maps_figure(settings, cases: list, maps: dict, labels: dict):
     """Surface 0 of every case: pressure of the asperity model (top) and of the elastic BEM
     (bottom) around the BEM's highest pressure, on a common log scale per case."""
-    from .bem import MODEL_LABELS, MODELS
+    from .both_models import MODEL_LABELS, MODELS
 
     fig, axes = pyplot().subplots(2, len(cases), figsize=(4.6 * len(cases), 7.4), squeeze=False,
                                   layout="constrained")

@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from ..formatting import fmt_probability
-from .analysis import SAMPLE_LABELS
+from .analysis_settings import SAMPLE_LABELS
 from .answer import case_label
 from .report_document import Blocks
 from .report_figures import (

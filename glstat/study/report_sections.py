@@ -5,8 +5,7 @@ surfaces. Each function returns its section as :class:`~glstat.study.report_docu
 from __future__ import annotations
 
 from ..formatting import fmt_number, fmt_probability
-from .analysis import SAMPLE_LABELS
-from .analysis_settings import PRIMARY_SAMPLE
+from .analysis_settings import PRIMARY_SAMPLE, SAMPLE_LABELS
 from .answer import (
     area_damage_rows,
     area_scaling_sentence,

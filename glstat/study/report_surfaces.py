@@ -162,7 +162,7 @@ def measured_section(settings, results: dict) -> Blocks:
 def measured_scope_notes(settings) -> list[str]:
     """What the measured surfaces can and cannot tell, as report paragraphs: how many surfaces
     the held-out checks need, and, for areas cut from few scans, what such areas describe."""
-    from ..checks import outcomes_needed
+    from ..gof.binomial_check import outcomes_needed
 
     notes = []
     n = settings.n_surfaces

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 
 from ..formatting import fmt_probability
-from .analysis import SAMPLE_LABELS
+from .analysis_settings import SAMPLE_LABELS
 from .answer import case_label
 from .report_document import fmt_cell
 from .report_numbers import SAMPLE_ORDER, damage_verdict, truncation_summary

@@ -522,7 +522,7 @@ def compute_and_save(fn: Callable, args: tuple, todo: list, path_of: Callable, r
     shutdown = None
     if executor is None:
         executor, shutdown = make_executor(workers)
-    from .._progress import progress_bar
+    from _glstat_runtime.progress import progress_bar
 
     # a bar on a terminal, a line per tenth in a log
     bar = progress_bar(total, desc, "surface", enabled=progress, initial=run.skipped, leave=False)

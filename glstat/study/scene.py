@@ -219,7 +219,7 @@ def rq_for_pressure(
     >>> 0.5e-6 < rq < 5e-6
     True
     """
-    from contact._validate import positive_integer, tolerance
+    from _glstat_runtime.validation import positive_integer, tolerance
 
     t0 = time.perf_counter()
     s, idx = _settings_for(settings, hurst)
@@ -351,7 +351,7 @@ def scene_summary(settings: CampaignSettings | None = None, *, n_seeds: int = 3,
     import pandas as pd
 
     import contact
-    from contact._validate import positive_integer
+    from _glstat_runtime.validation import positive_integer
 
     s = settings if settings is not None else CampaignSettings()
     n_seeds = positive_integer(n_seeds, "n_seeds", "surfaces per Hurst exponent")

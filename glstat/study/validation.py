@@ -174,7 +174,7 @@ def _pp(d: float) -> str:
 
 def held_out_check(predicted: float, hits: int, n: int):
     """:func:`glstat.binomial_check` at the study's level, power and largest undetected miss."""
-    from ..checks import binomial_check
+    from ..gof.binomial_check import binomial_check
 
     return binomial_check(min(max(float(predicted), 0.0), 1.0), int(hits), int(n),
                           significance=CHECK_SIGNIFICANCE, power=CHECK_POWER,

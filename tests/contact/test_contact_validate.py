@@ -1,5 +1,5 @@
 """One rule per argument: the functions of the contact package that take the same argument
-refuse the same values with the same message (contact._validate)."""
+refuse the same values with the same message (_glstat_runtime.validation)."""
 
 from __future__ import annotations
 

@@ -18,7 +18,7 @@ from mp_reference import entropy_reference, q_mp, tail_probability
 import glstat
 from glstat._core import inverse_table, moments
 from glstat._core import resample as R
-from glstat.fitting import _stats as S
+from glstat._fit_engine import sample_statistics as S
 from glstat.regions import rs_region
 
 RS, FKML = 0, 1

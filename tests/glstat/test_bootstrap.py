@@ -1,6 +1,6 @@
 """glstat.bootstrap: compiled resample statistics, reproducibility, failures, intervals, bad input.
 
-Reference values: the sample statistics of :mod:`glstat.fitting._stats` (numpy) on the same
+Reference values: the sample statistics of :mod:`glstat._fit_engine.sample_statistics` (numpy) on the same
 resample indices; the BCa and percentile intervals of ``scipy.stats.bootstrap`` for a
 statistic computed the same way (mean of a GLD fitted by moments = the sample mean).
 """
@@ -20,7 +20,7 @@ from scipy import stats
 import glstat
 from glstat import GLD, BootstrapWarning
 from glstat._core import resample as R
-from glstat.fitting import _stats as S
+from glstat._fit_engine import sample_statistics as S
 
 GAMMA = scipy.stats.gamma(5.0, scale=3.0)
 
@@ -163,7 +163,7 @@ def test_failed_fits_are_counted_and_listed():
 
 def test_all_failed_raises(sample, monkeypatch):
     """When no resample has a root the bootstrap raises, naming the reason."""
-    gb = importlib.import_module("glstat._bootstrap_resample")  # where the bootstrap calls fit_batch
+    gb = importlib.import_module("glstat.resampling._driver")  # where the bootstrap calls fit_batch
 
     def no_roots(stats, *args, **kwargs):
         zero = np.zeros(len(stats), dtype=np.int64)

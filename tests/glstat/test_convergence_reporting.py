@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 import glstat
-from glstat import distributions
 from glstat._core import quantile_function
+from glstat.distributions import rv_gld as distributions
 
 
 def test_status_of_the_compiled_solver_is_set_by_the_kernel():

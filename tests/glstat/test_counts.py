@@ -14,7 +14,7 @@ import scipy.stats as st
 from mp_reference import expon_fs
 
 import glstat
-from glstat.counts import RowCounts
+from glstat.extremes.counts import RowCounts
 
 mp.mp.dps = 50
 EXPON = st.expon()
@@ -167,7 +167,7 @@ def test_count_and_n_are_exclusive_and_raw_lists_refused():
     ([1, 2], [1, np.nan], "finite")])
 def test_bad_tabulated_counts_are_refused(values, weights, match):
     with pytest.raises(ValueError, match=match):
-        glstat.counts.TabulatedCount(values, weights)
+        glstat.extremes.counts.TabulatedCount(values, weights)
 
 
 def test_scipy_count_with_invalid_parameters_is_refused():

@@ -14,8 +14,8 @@ import pytest
 from scipy import stats
 
 import glstat
-from glstat.checks import binomial_check
 from glstat.cross_validation import _result, blocks_needed
+from glstat.gof.binomial_check import binomial_check
 
 
 def _low_outliers(seed: int = 0, n: int = 5000) -> np.ndarray:

@@ -363,7 +363,7 @@ def test_good_fit_and_fit_batch_are_silent():
         warnings.simplefilter("error")
         f = fit(x, "rs", "moments")
         # the bootstrap core counts non-covering fits itself
-        mvsk = glstat.fitting._stats.sample_moments(EXPO)
+        mvsk = glstat._fit_engine.sample_statistics.sample_moments(EXPO)
         lam, nroots = fit_batch([mvsk], "moments", "fkml",
                                 extremes=[[EXPO.min(), EXPO.max()]])
     assert f.solutions.ks[f.solutions.selected].iloc[0] < 1.63 / np.sqrt(x.size)

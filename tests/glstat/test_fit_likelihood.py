@@ -85,7 +85,7 @@ _GRAD_CASES = [
 @pytest.mark.parametrize("kind", [0, 1, 2], ids=["mle", "mps", "starship"])
 @pytest.mark.parametrize(("fam", "theta"), _GRAD_CASES)
 def test_objective_gradient_matches_differences(kind, fam, theta):
-    from glstat.fitting import _likelihood as L
+    from glstat._fit_engine import likelihood as L
 
     x = np.sort(stats.gamma(3).rvs(size=200, random_state=np.random.default_rng(0)))
     q25, q50, q75 = np.quantile(x, [0.25, 0.5, 0.75])
@@ -206,7 +206,7 @@ def test_no_start_hint_names_no_unavailable_param(param):
 
 
 def test_no_start_hint_points_to_the_other_param_when_it_has_starts(monkeypatch):
-    from glstat.fitting import _data
+    from glstat._fit_engine import data_fits as _data
 
     real = _data._starting_points
 
@@ -224,7 +224,9 @@ def test_ml_start_heading_into_the_rs_origin_is_stopped():
     # Karian–Dudewicz gamma case: the percentile root near the RS origin, (-0.0061, -0.0174), starts a
     # BFGS run whose shapes shrink towards 0 while the scale diverges; it used to run to
     # maxiter (500 iterations, ~0.1 s) for an objective worse than that of the other start
-    from glstat.fitting import _bfgs, _data, _likelihood
+    from glstat._fit_engine import bfgs as _bfgs
+    from glstat._fit_engine import data_fits as _data
+    from glstat._fit_engine import likelihood as _likelihood
 
     x = np.sort(stats.gamma(5, scale=3).rvs(1000, random_state=1))
     med = float(np.median(x))
@@ -263,7 +265,7 @@ _HEAVY_DATA = {
 def _fkml_ml_reference(x):
     """Log-likelihood of the FKML GLD maximised by Nelder-Mead from (lambda3, lambda4) = (0.1, -0.3), the
     location and scale matching the sample median and interquartile range."""
-    from glstat.fitting import _likelihood
+    from glstat._fit_engine import likelihood as _likelihood
 
     x = np.sort(x)
     n = x.size
@@ -296,7 +298,7 @@ def test_fkml_ml_on_heavy_tailed_data_reaches_the_optimum(name):
 
 
 def test_generic_starts_cover_the_data_and_match_the_quartiles():
-    from glstat.fitting import _data
+    from glstat._fit_engine import data_fits as _data
 
     x = np.sort(_HEAVY_DATA["pareto"]())
     med = float(np.median(x))

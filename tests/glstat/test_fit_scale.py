@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import glstat
-from glstat.fitting import _stats as S
+from glstat._fit_engine import sample_statistics as S
 
 Z = np.random.default_rng(0).gamma(3.0, size=500)
 SCALES = [1e-150, 1e-100, 1e-60, 1e-20, 1e20, 1e76, 1e100, 1e150]

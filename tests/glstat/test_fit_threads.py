@@ -192,7 +192,7 @@ def test_bad_guesses():
 # ---------------------------------------------------------------------------------------------
 def test_summary_fit_is_lazy(monkeypatch):
     ref = glstat.fit_moments(0, 1, 0, 3)
-    monkeypatch.setattr(glstat.fitting._result, "GLD", None)  # building a GLD now fails
+    monkeypatch.setattr(glstat.fitting.result, "GLD", None)  # building a GLD now fails
     f = glstat.fit_moments(0, 1, 0, 3)
     assert "dist" not in f.__dict__ and "solutions" not in f.__dict__
     assert f.lambdas == ref.lambdas and f.region == 3

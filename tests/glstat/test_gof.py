@@ -12,7 +12,7 @@ from scipy import special, stats
 
 import glstat
 from glstat import GLD, compare_families, edf_statistics, gof_report
-from glstat._gof_statistics import ad_asymptotic_sf
+from glstat.gof._statistics import ad_asymptotic_sf
 
 # RS approximation of N(0, 1) by moments (docs/method.md §14)
 RS_NORMAL = GLD(0.0, 0.197451, 0.134912, 0.134912)

@@ -21,7 +21,7 @@ def test_import_glstat_loads_neither_statsmodels_nor_matplotlib_nor_pandas():
                    check=True, timeout=300)
     got = _loaded(
         "import json, sys\n"
-        "import glstat, glstat.gof, glstat.plot, glstat.fitting, glstat.bootstrap, glstat.bootstrap_maximum\n"
+        "import glstat, glstat.gof, glstat.plot, glstat.fitting, glstat.bootstrap, glstat.resampling.maxima\n"
         f"print(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))\n"
     )
     assert got == []

@@ -9,7 +9,7 @@ import pytest
 from scipy import stats
 
 import glstat
-from glstat.pot import fit_gpd
+from glstat.extremes.peaks_over_threshold import fit_gpd
 
 
 @pytest.mark.parametrize("xi", [-0.2, 0.0, 0.25])

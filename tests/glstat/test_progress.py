@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import io
 
-from glstat._progress import LineProgress, progress_bar
+from _glstat_runtime.progress import LineProgress, progress_bar
 
 
 def test_a_log_gets_a_line_per_tenth_and_one_at_the_end():

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import glstat
-from glstat.fitting._aliases import resolve_method, resolve_param
+from glstat._fit_engine.aliases import resolve_method, resolve_param
 
 X = glstat.GLD(3.0, 2.0, 0.2, -0.05, param="fkml").rvs(300, random_state=np.random.default_rng(5))
 

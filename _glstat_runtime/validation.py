@@ -1,0 +1,571 @@
+"""Validation of arguments, shared by ``glstat`` and ``contact``: every rule in one place.
+
+Scalars (real numbers, pressures, lengths, tolerances, iteration limits, flags, elastic
+constants), grid shapes, height maps, samples, confidence levels, numbers of resamples and the
+names of parameterisations and fitting methods. Each check returns the value in the form the
+numerics use, or raises with a message that names the argument and its unit.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "FIT_METHODS",
+    "PARAMS",
+    "PLAUSIBLE_MODULUS",
+    "PLAUSIBLE_PRESSURE",
+    "PLAUSIBLE_ROUGHNESS",
+    "check_level",
+    "check_method",
+    "check_n_resamples",
+    "check_param",
+    "elastic_constants",
+    "finite_separation",
+    "flag",
+    "frequency_ratio",
+    "grid_shape",
+    "height_map",
+    "implausible",
+    "plausible_roughness",
+    "positive_finite",
+    "positive_integer",
+    "positive_pressure",
+    "real_array",
+    "real_scalar",
+    "real_values",
+    "tolerance",
+]
+
+
+#: The parameterisations of the GLD.
+PARAMS = ("rs", "fkml")
+#: The fitting methods of :func:`glstat.fit`.
+FIT_METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
+
+
+def check_n_resamples(n_resamples, allow_zero: bool = False) -> int:
+    """A number of bootstrap resamples: an integer >= 2, or 0 (no bootstrap) where
+    ``allow_zero``."""
+    if isinstance(n_resamples, (bool, np.bool_)) or not isinstance(n_resamples, numbers.Integral):
+        raise TypeError(f"n_resamples must be an integer, got {n_resamples!r}")
+    if allow_zero and n_resamples == 0:
+        return 0
+    if n_resamples < 2:
+        raise ValueError(f"n_resamples must be {'0 (no bootstrap) or ' if allow_zero else ''}"
+                         f">= 2, got {n_resamples}")
+    return int(n_resamples)
+
+
+def check_level(confidence_level, name: str = "confidence_level") -> float:
+    """A confidence level or probability: a real number strictly between 0 and 1 (``name``
+    is the argument's name in messages)."""
+    if isinstance(confidence_level, (bool, np.bool_)) or not isinstance(confidence_level, numbers.Real):
+        raise TypeError(f"{name} must be a real number, got {confidence_level!r}")
+    c = float(confidence_level)
+    if not 0.0 < c < 1.0:
+        raise ValueError(f"{name} must be strictly between 0 and 1, got {c}")
+    return c
+
+
+def check_param(param) -> str:
+    """A parameterisation, ``"rs"`` or ``"fkml"`` in any case; returned in lower case."""
+    p = str(param).lower()
+    if p not in PARAMS:
+        raise ValueError(f"param must be 'rs' or 'fkml', got {param!r}")
+    return p
+
+
+def check_method(method) -> str:
+    """A fitting method: one of :data:`FIT_METHODS`."""
+    if method not in FIT_METHODS:
+        raise ValueError(f"method must be one of {FIT_METHODS}, got {method!r}")
+    return method
+
+
+def real_values(data, name: str = "data") -> tuple[np.ndarray, np.ndarray | None]:
+    """A flat float copy of data that must be real numbers, and which entries are not masked.
+
+    Parameters
+    ----------
+    data : array_like
+        Integers or reals of any shape: a NumPy array, a list, a pandas Series of a numeric
+        dtype (nullable dtypes included: ``pd.NA`` becomes NaN), an object array holding
+        numbers, or a :class:`numpy.ma.MaskedArray` (masked entries are missing values).
+    name : str
+        The argument's name in messages.
+
+    Returns
+    -------
+    values : ndarray
+        1-d float array, a new array (the caller's data are never modified); non-finite values
+        are kept, masked entries included with their underlying value.
+    keep : ndarray of bool or None
+        For a masked array, True where the entry is not masked; None otherwise.
+
+    Raises
+    ------
+    TypeError
+        Complex numbers, dates or times, booleans, strings, or objects that are not real
+        numbers (``None``, ``pandas.NA`` in an object array, ...).
+    """
+    keep = None
+    if isinstance(data, np.ma.MaskedArray):
+        keep = ~np.ma.getmaskarray(data).ravel()
+        data = np.ma.getdata(data)
+    elif hasattr(data, "to_numpy") and hasattr(data, "dtype") and not isinstance(data, np.ndarray):
+        if getattr(data.dtype, "kind", "O") in "iuf":  # pandas numeric data: NA becomes NaN
+            data = data.to_numpy(dtype=float, na_value=np.nan)
+    arr = np.asarray(data)
+    kind = arr.dtype.kind
+    if kind == "c":
+        raise TypeError(f"{name} are complex ({arr.dtype}); pass real numbers: the real part, the "
+                        "modulus or another real quantity, explicitly")
+    if kind in "mM":
+        raise TypeError(f"{name} are dates or times ({arr.dtype}), not numbers; convert them to a "
+                        "real quantity (e.g. durations in seconds) first")
+    if kind in "bSUV":
+        raise TypeError(f"{name} must be real numbers, got an array of dtype {arr.dtype}")
+    if kind == "O":
+        try:
+            values = np.array(arr, dtype=float).ravel()
+        except (TypeError, ValueError):
+            flat = arr.ravel()
+            bad = next((v for v in flat if not isinstance(v, int | float | np.integer | np.floating)
+                        or isinstance(v, bool)), None)
+            raise TypeError(f"{name} must be real numbers, got an object array holding {bad!r} "
+                            f"({type(bad).__name__}); convert missing values to NaN first (e.g. "
+                            "series.to_numpy(dtype=float, na_value=np.nan))") from None
+        if any(isinstance(v, bool | np.bool_) for v in arr.ravel()):
+            raise TypeError(f"{name} must be real numbers, got booleans in an object array")
+    else:
+        values = np.array(arr, dtype=float, copy=True).ravel()
+    return values, keep
+
+
+
+def real_scalar(value) -> float | None:
+    """``value`` as a Python float when it is one real number, else None.
+
+    Parameters
+    ----------
+    value : object
+        Candidate scalar: a Python or NumPy integer or float, or a 0-d integer or float
+        array, in whatever unit the caller expects.
+
+    Returns
+    -------
+    float or None
+        ``float(value)`` (NaN and infinities included, for the caller to judge), or None
+        for booleans, strings, complex numbers, arrays with ``ndim > 0`` and other objects.
+    """
+    if isinstance(value, bool | np.bool_ | str | bytes) or np.ndim(value) != 0:
+        return None
+    if isinstance(value, np.ndarray | np.generic):
+        if value.dtype.kind not in "iuf":
+            return None
+        return float(value)
+    if isinstance(value, numbers.Real):
+        return float(value)
+    return None
+
+
+def implausible(message: str) -> None:
+    """Warn (:class:`contact.ContactWarning`) that a value is implausible for its unit: valid,
+    but more likely a unit mix-up (MPa given as Pa, µm as m) than meant. The warning points at
+    the caller's line: the first frame outside the ``contact`` and ``glstat`` packages."""
+    import os
+    import sys
+    import warnings
+
+    from contact.errors import ContactWarning
+
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    inside = tuple(os.path.join(here, pkg) + os.sep for pkg in ("contact", "glstat", "_glstat_runtime"))
+    level = 2  # stacklevel 2: the caller of this function
+    frame: Any = sys._getframe(1)
+    while frame is not None and (
+            os.path.abspath(frame.f_code.co_filename).startswith(inside)
+            # the generated __init__ of the packages' dataclasses
+            or type(frame.f_locals.get("self")).__module__.split(".")[0] in ("contact", "glstat")):
+        level, frame = level + 1, frame.f_back
+    warnings.warn(message, ContactWarning, stacklevel=level)
+
+
+#: Below these values (SI) a nominal pressure or a Young's modulus is more likely given in MPa
+#: or GPa than meant; above it an RMS roughness is more likely given in µm.
+PLAUSIBLE_PRESSURE = 1e3
+PLAUSIBLE_MODULUS = 1e6
+PLAUSIBLE_ROUGHNESS = 1e-3
+
+
+def plausible_roughness(rq: float, length: float | None = None, name: str = "rq") -> float:
+    """``rq`` (m), with a warning when it is more likely in µm than in metres: above a
+    millimetre, or above a tenth of the surface's side ``length`` (m)."""
+    if rq > PLAUSIBLE_ROUGHNESS or (length is not None and rq > 0.1 * length):
+        where = "" if length is None else f" on a {length:g} m long surface"
+        implausible(f"{name} = {rq:g} m{where} is implausible for an RMS roughness in metres; "
+                    f"did you mean {rq:g}e-6 ({rq:g} µm)?")
+    return rq
+
+
+def positive_pressure(value, warn: bool = True) -> float:
+    """``value`` as a nominal pressure: one real, finite, positive number.
+
+    Parameters
+    ----------
+    value : object
+        The imposed nominal pressure in pascals (compressive positive).
+    warn : bool, default True
+        Warn when it is implausibly small for pascals (below 1 kPa: MPa given as Pa?).
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`), or not finite and positive.
+    """
+    try:
+        p = positive_finite(value, "nominal_pressure", "pressure in pascals")
+    except ValueError as exc:
+        raise ValueError(f"{exc}; a compressive load is positive") from None
+    if warn and p < PLAUSIBLE_PRESSURE:
+        implausible(f"nominal_pressure = {p:g} Pa is implausibly small for a contact pressure in "
+                    f"pascals; did you mean {p:g}e6 ({p:g} MPa)?")
+    return p
+
+
+def positive_finite(value, name: str, what: str) -> float:
+    """``value`` as one real, finite, positive number.
+
+    Parameters
+    ----------
+    value : object
+        The candidate number, in the unit ``what`` names.
+    name : str
+        The argument's name, for messages.
+    what : str
+        What the number is, with its unit, for messages (e.g. ``"length in metres"``).
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`), or not finite and positive.
+    """
+    x = real_scalar(value)
+    if x is None or not (math.isfinite(x) and x > 0):
+        raise ValueError(f"{name} must be a positive finite {what}, got {value!r}")
+    return x
+
+
+def elastic_constants(E, nu, which: str = "") -> tuple[float, float]:
+    """``(E, nu)`` of one body as floats: a positive finite Young's modulus and a Poisson
+    ratio in (-1, 0.5].
+
+    Parameters
+    ----------
+    E : object
+        Young's modulus in pascals.
+    nu : object
+        Poisson ratio (dimensionless).
+    which : str, optional
+        Suffix of the argument names in messages, e.g. ``"2 (counter_face)"``.
+
+    Returns
+    -------
+    E, nu : float
+        ``float(E)``, ``float(nu)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number each (see :func:`real_scalar`), or outside the ranges.
+    """
+    e = positive_finite(E, f"E{which}", "Young's modulus in pascals")
+    if e < PLAUSIBLE_MODULUS:
+        implausible(f"E{which} = {e:g} Pa is implausibly small for a Young's modulus in pascals; "
+                    f"did you mean {e:g}e9 ({e:g} GPa)?")
+    n = real_scalar(nu)
+    if n is None or not (-1.0 < n <= 0.5):
+        raise ValueError(
+            f"nu{which} must be a Poisson ratio in (-1, 0.5], got {nu!r}; "
+            "0.5 is incompressible, typical metals are near 0.3"
+        )
+    return e, n
+
+
+def tolerance(value, name: str, upper: float, hint: str = "") -> float:
+    """``value`` as a relative tolerance: one real number in ``(0, upper)``.
+
+    Parameters
+    ----------
+    value : object
+        The tolerance (dimensionless).
+    name : str
+        The argument's name, for messages.
+    upper : float
+        Exclusive upper bound.
+    hint : str, optional
+        Appended to the message, e.g. ``"; 1e-8 is typical"``.
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`), or outside ``(0, upper)``.
+    """
+    x = real_scalar(value)
+    if x is None or not (0 < x < upper):
+        raise ValueError(
+            f"{name} must be a relative tolerance in (0, {upper:g}), got {value!r}{hint}"
+        )
+    return x
+
+
+def positive_integer(value, name: str, what: str) -> int:
+    """``value`` as a count: a whole number >= 1.
+
+    Parameters
+    ----------
+    value : object
+        A Python or NumPy integer, a 0-d integer array, or a float with an integral value.
+    name : str
+        The argument's name, for messages.
+    what : str
+        What is counted, for messages (e.g. ``"iteration limit"``).
+
+    Returns
+    -------
+    int
+        ``int(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`; booleans are refused), not whole,
+        or below 1.
+    """
+    x = real_scalar(value)
+    if x is None or not (math.isfinite(x) and x >= 1 and x == int(x)):
+        raise ValueError(f"{name} must be a positive integer ({what}), got {value!r}")
+    return int(x)
+
+
+def flag(value, name: str) -> bool:
+    """``value`` as a switch: True or False (NumPy booleans included).
+
+    Parameters
+    ----------
+    value : object
+        The switch.
+    name : str
+        The argument's name, for messages.
+
+    Returns
+    -------
+    bool
+        ``bool(value)``.
+
+    Raises
+    ------
+    TypeError
+        Anything but a Python or NumPy boolean (``1``, ``"yes"``, ``None``, ...).
+    """
+    if not isinstance(value, bool | np.bool_):
+        raise TypeError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def frequency_ratio(value) -> float:
+    """``value`` as the ratio ``gamma`` of successive Weierstrass frequencies: finite, > 1.
+
+    Parameters
+    ----------
+    value : object
+        The ratio (dimensionless).
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`), not finite or not above 1.
+    """
+    g = real_scalar(value)
+    if g is None or not (math.isfinite(g) and g > 1):
+        raise ValueError(f"gamma must be a finite frequency ratio > 1, got {value!r}")
+    return g
+
+
+def grid_shape(shape) -> tuple[int, int]:
+    """``shape`` as a grid ``(nx, ny)``: two integers >= 3.
+
+    Parameters
+    ----------
+    shape : object
+        Number of grid points along x and y.
+
+    Returns
+    -------
+    (int, int)
+        ``(nx, ny)``.
+
+    Raises
+    ------
+    ValueError
+        Not a pair of integers, or a side below 3 points.
+    """
+    try:
+        nx, ny = (int(n) for n in shape)
+    except (TypeError, ValueError):
+        raise ValueError(f"shape must be a pair of integers (nx, ny), got {shape!r}") from None
+    if (nx, ny) != tuple(shape) or nx < 3 or ny < 3:
+        raise ValueError(f"shape must be two integers >= 3, got {shape!r}")
+    return nx, ny
+
+
+def height_map(heights, mask) -> tuple[np.ndarray, np.ndarray]:
+    """Heights and the map of measured points, checked for the numerics.
+
+    The rule every height map of the package obeys (a :class:`contact.Surface` when it is
+    made, and again when a solver or the summit search takes it, since its attributes can
+    be reassigned): the mask has the heights' shape, the measured heights are finite, and
+    at least one point is measured.
+
+    Parameters
+    ----------
+    heights : array_like, shape (nx, ny)
+        Heights in metres.
+    mask : array_like of bool or None
+        True at missing points; None when every point is measured.
+
+    Returns
+    -------
+    h : ndarray of float64, shape (nx, ny)
+        C-contiguous heights in metres (``heights`` itself when it already is such an
+        array: not a copy).
+    valid : ndarray of bool, shape (nx, ny)
+        True at the measured points.
+
+    Raises
+    ------
+    ValueError
+        A mask of another shape, NaN or inf at a measured point, or no measured point.
+    """
+    h = np.ascontiguousarray(heights, dtype=np.float64)
+    if mask is None:
+        valid = np.ones(h.shape, dtype=np.bool_)
+    else:
+        valid = ~np.asarray(mask, dtype=np.bool_)
+        if valid.shape != h.shape:
+            raise ValueError(f"mask shape {valid.shape} does not match heights shape {h.shape}")
+        if not valid.any():
+            raise ValueError("the mask hides every point; nothing is left to analyse")
+    # without a mask no copy of the heights: isfinite on the map itself (a bool map, 1/8 size)
+    finite = np.isfinite(h).all() if mask is None else np.isfinite(h[valid]).all()
+    if not finite:
+        raise ValueError(
+            "heights contain NaN or inf at points that are not masked; pass "
+            "mask=~np.isfinite(heights) to mark missing points (surface.mask on a surface)"
+        )
+    return h, valid
+
+
+def finite_separation(value) -> float:
+    """``value`` as the height of the flat: one real, finite number.
+
+    Parameters
+    ----------
+    value : object
+        The separation in metres, in the surface's height coordinate.
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    ValueError
+        Not one real number (see :func:`real_scalar`), or not finite.
+    """
+    d = real_scalar(value)
+    if d is None or not math.isfinite(d):
+        raise ValueError(f"separation must be a finite height in metres, got {value!r}")
+    return d
+
+
+def real_array(value, name: str = "heights") -> tuple[np.ndarray, np.ndarray | None]:
+    """``value`` as a new float64 array, and the mask of a masked array.
+
+    Parameters
+    ----------
+    value : array_like
+        Real numbers: integers, floats or booleans-free numeric data; a
+        :class:`numpy.ma.MaskedArray` marks its masked entries as missing.
+    name : str
+        What the values are, for messages.
+
+    Returns
+    -------
+    values : ndarray of float64
+        A copy (the caller's data are never modified); masked entries are NaN.
+    mask : ndarray of bool or None
+        True at the masked entries of a masked array with any masked entry, else None.
+
+    Raises
+    ------
+    TypeError
+        Complex numbers, dates/times, strings, booleans, or objects that are not real
+        numbers (``None``, ``pandas.NA``, ...).
+    """
+    mask = None
+    if isinstance(value, np.ma.MaskedArray):
+        m = np.ma.getmaskarray(value)
+        mask = m.copy() if m.any() else None
+        data = np.ma.getdata(value)
+    else:
+        data = value
+    arr = np.asarray(data)
+    kind = arr.dtype.kind
+    if kind == "c":
+        raise TypeError(f"{name} are complex ({arr.dtype}); pass real numbers (e.g. .real or abs())")
+    if kind in "mM":
+        raise TypeError(f"{name} are dates or times ({arr.dtype}), not numbers")
+    if kind in "SUVb":
+        raise TypeError(f"{name} must be real numbers, got an array of dtype {arr.dtype}")
+    if kind == "O":
+        try:
+            out = np.array(arr, dtype=float)
+        except (TypeError, ValueError):
+            bad = next((v for v in arr.ravel() if not isinstance(v, numbers.Real)
+                        or isinstance(v, bool | np.bool_)), None)
+            raise TypeError(
+                f"{name} must be real numbers, got an object array holding {bad!r} "
+                f"({type(bad).__name__}); convert missing values to NaN first"
+            ) from None
+    else:
+        out = np.array(arr, dtype=float, copy=True)
+    if mask is not None:
+        out[mask] = np.nan
+    return out, mask

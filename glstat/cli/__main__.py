@@ -1,0 +1,7 @@
+"""``python -m glstat.cli``: the ``glstat`` command."""
+
+import sys
+
+from .commands import main
+
+sys.exit(main())

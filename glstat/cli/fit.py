@@ -1,0 +1,292 @@
+"""``glstat fit``: fit a GLD to one's own sample and report fit, goodness of fit and damage.
+
+Reads one column of values from a delimited text, Parquet, Excel or NPY file
+(:mod:`glstat.cli.sample_files`), fits a Generalized Lambda Distribution (:func:`glstat.fit`),
+tabulates every root found and the goodness of fit (:func:`glstat.gof_report`), bootstraps
+the fit (:func:`glstat.bootstrap`) and, on request, gives the distribution of the maximum of
+``--n-max`` values and the damage probability at a hardness ``--hardness`` for the analysed
+area and for areas ``--area-factor`` times larger, and checks that prediction by block
+cross-validation (:func:`glstat.cross_validate_maximum`). Figures, ``fit.json``,
+``summary.csv`` and ``cross_validation.csv`` go to ``--out``. Phases longer than two seconds
+announce themselves on stderr.
+
+Run as ``glstat fit FILE ...`` or ``python -m glstat.cli.fit FILE ...``; ``--help`` lists the
+options and ``docs/cli_fit.md`` shows an example session. Exit status: 0 on success, 2 for bad
+input or options (the message names the problem and the fix), 1 when no GLD can be fitted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import sys
+import threading
+import time
+import warnings
+from collections.abc import Callable
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, cast
+
+import numpy as np
+
+from ..errors import FitError
+from .fit_options import (
+    METHOD_NAMES,
+    build_parser,
+    check_options,
+    check_output_dir,
+    check_sample,
+    cross_validation_plan,
+    gof_resamples_for,
+)
+from .fit_output import (
+    print_bootstrap,
+    print_cross_validation,
+    print_damage,
+    print_fit,
+    print_gof,
+    print_header,
+    print_maximum,
+    write_figures,
+    write_tables,
+)
+from .fit_results import FitResults, collect_notes, damage_summary, maximum_summary
+from .sample_files import InputError, Sample, read_sample
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..fitting import GLDFit
+
+__all__ = ["main", "run"]
+
+
+def gof_refit(f: GLDFit, bar) -> Callable[[np.ndarray], Any]:
+    """Refit of one goodness-of-fit replicate (as :func:`glstat.gof_report` does for a fit)
+    that advances ``bar`` by one."""
+    from ..fitting import fit
+
+    def refit(sample: np.ndarray):
+        try:
+            return fit(sample, f.param, f.method, **dict(f.options)).dist
+        finally:
+            bar.update(1)
+
+    return refit
+
+
+#: Seconds after which a phase of the run announces itself on stderr.
+PHASE_NOTICE = 2.0
+
+
+@contextlib.contextmanager
+def phase(label: str, delay: float = PHASE_NOTICE):
+    """Announce ``label`` on stderr when the phase lasts longer than ``delay`` seconds, and
+    its duration when it ends (quick phases stay silent)."""
+    t0 = time.perf_counter()
+    shown = threading.Event()
+
+    def announce():
+        shown.set()
+        print(f"glstat fit: {label} ...", file=sys.stderr, flush=True)
+
+    timer = threading.Timer(delay, announce)
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        if shown.is_set():
+            print(f"glstat fit: {label}: done in {time.perf_counter() - t0:.1f} s", file=sys.stderr,
+                  flush=True)
+
+
+def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
+    from ..fitting import fit
+    from ..gof import gof_report
+
+    x = sample.values
+    # SeedSequence() without entropy draws a fresh int
+    seed = (int(args.seed) if args.seed is not None
+            else int(cast(int, np.random.SeedSequence().entropy) % 2**63))
+    notes: list[str] = []
+    with phase(f"fitting ({METHOD_NAMES[args.method]}, n = {x.size})"), \
+            warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        f = fit(x, args.param, args.method)
+    collect_notes(caught, notes)
+    if f.dist is None:
+        raise FitError(f"the {f.param.upper()} {f.method} fit has non-finite lambdas {f.lambdas}: "
+                       "no distribution to report")
+    lo, hi = (float(v) for v in f.dist.support())
+    res = FitResults(sample=sample, fit=f, gof=None, seed=seed, support=(lo, hi), notes=notes)
+    print_fit(res, emit)
+    res.gof_resamples, res.gof_note = gof_resamples_for(x.size, args.gof_resamples)
+    from tqdm import tqdm
+
+    # the bar shows on stderr as soon as the replicates take longer than PHASE_NOTICE seconds
+    bar = tqdm(total=res.gof_resamples, desc="goodness-of-fit p-values", unit="replicate",
+               file=sys.stderr, leave=False, delay=PHASE_NOTICE, disable=res.gof_resamples == 0)
+    try:
+        with phase("goodness of fit (statistics; the p-value replicates show a bar)"), \
+                warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            res.gof = gof_report(x, f, n_resamples=res.gof_resamples, rng=seed,
+                                 refit=gof_refit(f, bar))
+    finally:
+        bar.close()
+    collect_notes(caught, notes)
+    print_gof(res, emit)
+    n = args.n_max if args.n_max is not None else float(x.size)
+    factors = np.asarray(args.area_factor if args.area_factor is not None else [1.0], dtype=float)
+    if args.bootstrap:
+        from ..prediction import predict_maximum
+
+        with phase(f"bootstrap ({args.bootstrap} resamples)"):
+            # a progress bar (stderr) shows when the resamples are long
+            res.prediction = predict_maximum(
+                x, [(args.param, args.method)], n=None if args.count is not None else n,
+                count=args.count, threshold=args.hardness, area_factor=factors,
+                n_resamples=args.bootstrap, confidence_level=args.confidence_level, rng=seed,
+                maximum=args.n_max is not None, progress=None)
+        if res.prediction.boot is None:
+            raise FitError(f"the {args.param.upper()} {args.method} bootstrap has no fit: "
+                           f"{res.prediction.note}")
+        res.boot = res.prediction.boot
+        res.boot_summary = res.boot.summary()
+        collect_notes(res.prediction.notes, notes)
+        print_bootstrap(res.boot, res.boot_summary, emit)
+    if args.n_max is not None:
+        with phase("distribution of the maximum"):
+            res.maximum = maximum_summary(res, args.n_max, args.confidence_level, args.count)
+        print_maximum(res.maximum, emit)
+    if args.hardness is not None:
+        with phase("damage probability"):
+            res.damage = damage_summary(res, args.hardness, n, factors, args.confidence_level, args.count)
+        print_damage(res.damage, args, emit)
+    k_cv, b_cv, res.cross_validation_note = cross_validation_plan(args, x.size)
+    if k_cv:
+        from ..cross_validation import cross_validate_maximum
+
+        with phase(f"block cross-validation ({k_cv} blocks x {b_cv} resamples)"):
+            res.cross_validation = cross_validate_maximum(
+                x, [(args.param, args.method)], n_blocks=k_cv, threshold=args.hardness,
+                confidence_level=args.confidence_level, n_resamples=b_cv, rng=seed)
+    print_cross_validation(res, emit)
+    if args.pareto_tail:
+        _pareto_tail(args, res, x, n, factors, seed, emit)
+    return res
+
+
+def _pareto_tail(args, res: FitResults, x: np.ndarray, n: float, factors, seed,
+                 emit: Callable[[str], None]) -> None:
+    """``--pareto-tail``: the maximum and the damage from a generalized Pareto tail."""
+    from ..extremes.peaks_over_threshold import predict_maximum_pot
+
+    emit("")
+    if args.count is not None:
+        emit("generalized Pareto tail: skipped: it takes a fixed number of points (--n-max N), "
+             "not a random count")
+        return
+    try:
+        res.pareto_tail = predict_maximum_pot(
+            x, n=n, threshold=args.hardness, area_factor=factors,
+            n_resamples=max(args.bootstrap, 10), confidence_level=args.confidence_level, rng=seed)
+    except ValueError as exc:
+        emit(f"generalized Pareto tail: skipped: {exc}")
+        return
+    emit(res.pareto_tail.text())
+
+
+# ---------------------------------------------------------------------------------------------
+# entry point
+# ---------------------------------------------------------------------------------------------
+def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitResults:
+    """Carry out ``glstat fit`` for parsed arguments.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        As returned by :func:`build_parser`.
+    emit : callable, optional
+        Receives each line of the report (default ``print``).
+
+    Returns
+    -------
+    FitResults
+        Everything computed; the report went to ``emit`` and the files to the output directory.
+
+    Raises
+    ------
+    InputError
+        Bad options, output directory or input data; an output file that cannot be written
+        (disk full, read-only file system, permissions: the message names the file and the
+        fix).
+    FitError
+        No GLD of the requested kind can be fitted.
+    """
+    check_options(args)
+    with phase(f"reading {args.file}"):
+        sample = read_sample(args.file, args.column, args.nan_policy, sep=args.sep,
+                             decimal=args.decimal)
+    check_sample(args, sample)
+    out = check_output_dir(args.out if args.out is not None else f"glstat_fit_{Path(args.file).stem}")
+    print_header(sample, emit)
+    res = _compute(args, sample, emit)
+    if res.notes:
+        emit("")
+        for note in res.notes:
+            emit(f"note: {note}")
+    with phase("writing figures and tables"):
+        try:
+            write_figures(res, out)
+            write_tables(res, args, out)
+        except OSError as exc:  # disk full, read-only file system, permissions
+            from ..study.errors import write_failure
+
+            raise InputError(write_failure(exc, exc.filename or out)) from None
+    emit("")
+    emit(f"wrote {len(res.files)} files to {out}: {', '.join(sorted(res.files))}")
+    return res
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Command line ``glstat fit FILE [options]``.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``fit`` (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status: 0 success; 2 bad options or input (message on stderr); 1 no GLD could be
+        fitted (message on stderr).
+    """
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, or an option argparse rejected (it printed why)
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    from _glstat_runtime.numba_cache import compile_note
+
+    note = compile_note()
+    if note:
+        print(f"glstat fit: {note}", file=sys.stderr, flush=True)
+    try:
+        run(args)
+    except InputError as exc:
+        print(f"glstat fit: error: {exc}", file=sys.stderr)
+        return 2
+    except FitError as exc:
+        print(f"glstat fit: no GLD fit: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("glstat fit: interrupted (Ctrl-C); nothing was written unless listed above",
+              file=sys.stderr)
+        return 130
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

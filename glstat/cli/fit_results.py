@@ -1,0 +1,150 @@
+"""What ``glstat fit`` computed: :class:`FitResults`, and the maximum and damage summaries of a
+fit and its bootstrap."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .sample_files import Sample
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..cross_validation import MaximumCrossValidation
+    from ..fitting import GLDFit
+    from ..prediction import MaximumPrediction
+    from ..resampling import BootstrapFit
+
+__all__ = ["FitResults", "collect_notes", "damage_summary", "maximum_summary", "support_reason"]
+
+
+@dataclass
+class FitResults:
+    """Everything ``glstat fit`` computed (returned by :func:`run`).
+
+    Attributes
+    ----------
+    sample : Sample
+        The values read and where from.
+    fit : GLDFit
+        The full-sample fit.
+    gof : pandas.DataFrame
+        One-row :func:`glstat.gof_report` table of the fit.
+    seed : int
+        Seed of the goodness-of-fit and bootstrap resampling.
+    support : tuple of float
+        Lower and upper end of the fitted distribution's support (data units).
+    boot : BootstrapFit or None
+        The bootstrap (None with ``--bootstrap 0``).
+    boot_summary : pandas.DataFrame or None
+        Percentile intervals of the lambdas (``BootstrapFit.summary()``).
+    prediction : glstat.prediction.MaximumPrediction or None
+        The bootstrap's maximum and damage (None with ``--bootstrap 0``).
+    maximum : dict or None
+        Maximum of ``--n-max`` values: ``n``, ``mean``, ``low``, ``high``, the full-sample
+        fit's median and interval, and (with a bootstrap) the mixture interval and table.
+    damage : dict or None
+        Damage at ``--hardness``: ``hardness``, ``n``, ``area_factors``, ``points``,
+        ``estimate`` (damage), ``integrity``, ``low``, ``high`` (the damage interval; None
+        without bootstrap), ``reason`` (why it is exactly
+        0 or 1 when the hardness lies outside the fitted support, else None).
+    notes : list of str
+        Warnings raised while fitting (e.g. failed bootstrap resamples).
+    files : list of str
+        Names of the files written to the output directory.
+    gof_resamples : int
+        Replicates used for the goodness-of-fit p-values (``--gof-resamples``, or the default
+        adapted to the sample size).
+    gof_note : str or None
+        Why fewer than the default replicates (or none) were used, when the default was
+        adapted to the sample size.
+    cross_validation : glstat.MaximumCrossValidation or None
+        The block cross-validation of the maximum (None when it was not run).
+    pareto_tail : glstat.TailPrediction or None
+        The generalized Pareto tail's prediction (``--pareto-tail``).
+    cross_validation_note : str or None
+        Why it was skipped, or why it used fewer blocks than asked.
+    """
+
+    sample: Sample
+    fit: GLDFit
+    gof: Any
+    seed: int
+    support: tuple[float, float]
+    boot: BootstrapFit | None = None
+    boot_summary: Any = None
+    prediction: MaximumPrediction | None = None
+    maximum: dict[str, Any] | None = None
+    damage: dict[str, Any] | None = None
+    notes: list[str] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
+    gof_resamples: int = 0
+    gof_note: str | None = None
+    cross_validation: MaximumCrossValidation | None = None
+    cross_validation_note: str | None = None
+    pareto_tail: Any = None
+
+
+def collect_notes(caught, notes: list[str]) -> None:
+    """Append the messages of ``caught`` (warnings or strings) not yet in ``notes``."""
+    for w in caught:
+        msg = w if isinstance(w, str) else str(w.message)
+        if msg not in notes:
+            notes.append(msg)
+
+
+def maximum_summary(res: FitResults, n_max: float, level: float, count=None) -> dict[str, Any]:
+    from ..extremes.order_statistics import maximum
+
+    full = maximum(res.fit.dist, count=count) if count is not None else maximum(res.fit.dist, n_max)
+    a = (1.0 - level) / 2.0
+    out: dict[str, Any] = {"n": float(n_max), "count": count, "confidence_level": level,
+                           "full_fit_median": float(full.median()),
+                           "full_fit_low": float(full.ppf(a)), "full_fit_high": float(full.isf(a)),
+                           "dist": full}
+    bm = None if res.prediction is None else res.prediction.maximum
+    if bm is not None:
+        lo, hi = bm.interval()
+        mlo, mhi = bm.mixture_interval()
+        out.update(mean=bm.mean, low=lo, high=hi, mixture_low=mlo, mixture_high=mhi,
+                   table=bm.summary(), dist=bm.mixture)
+    else:
+        mean = float(full.mean())
+        out.update(mean=mean, low=out["full_fit_low"], high=out["full_fit_high"])
+    return out
+
+
+def support_reason(hardness: float, support: tuple[float, float]) -> str | None:
+    lo, hi = support
+    if hardness >= hi:
+        return (f"the hardness {hardness:g} is at or above the upper end of the fitted support ({hi:.6g}): "
+                "the fitted distribution never exceeds it, so the damage probability is 0")
+    if hardness <= lo:
+        return (f"the hardness {hardness:g} is at or below the lower end of the fitted support ({lo:.6g}): "
+                "every value exceeds it, so the damage probability is 1")
+    return None
+
+
+def damage_summary(res: FitResults, hardness: float, n: float, factors: np.ndarray, level: float,
+            count=None) -> dict[str, Any]:
+    from ..extremes.damage import damage_probability, integrity_probability
+
+    reason = support_reason(hardness, res.support)
+    nn = None if count is not None else n
+    est = np.asarray(damage_probability(res.fit.dist, hardness, nn, factors, count=count,
+                                        outside_support="limit"), dtype=float)
+    keep = np.asarray(integrity_probability(res.fit.dist, hardness, nn, factors, count=count,
+                                            outside_support="limit"), dtype=float)
+    out: dict[str, Any] = {"hardness": hardness, "n": float(n), "count": count, "area_factors": factors,
+                           "points": factors * n, "estimate": est, "integrity": keep,
+                           "low": None, "high": None,
+                           "confidence_level": level, "reason": reason}
+    bp = None if res.prediction is None else res.prediction.damage
+    if bp is not None and res.boot is not None:
+        out["low"], out["high"] = np.asarray(bp.low, dtype=float), np.asarray(bp.high, dtype=float)
+        out["boot_values"] = bp.values
+        sup = np.array([d.support() for d in res.boot.dists()], dtype=float)
+        out["n_boot_above_support"] = int(np.sum(hardness >= sup[:, 1]))
+        out["n_boot_below_support"] = int(np.sum(hardness <= sup[:, 0]))
+    return out

@@ -1,0 +1,334 @@
+"""Peaks over threshold: a generalized Pareto tail on the largest values of a sample, and the
+maximum of n draws and the damage probability it predicts, with bootstrap intervals.
+
+The GLD fits of :func:`glstat.predict_maximum` describe the whole sample; when the data's
+parent is not a GLD their upper tail is often too light and the intervals of the maximum miss
+high (docs/benchmarks.md "calibration"). The standard alternative of extreme-value statistics
+models only the tail: above u, the (k+1)-th largest of the N values,
+
+    S(x) = (k / N) (1 + xi (x - u) / sigma) ** (-1 / xi)      (x > u),
+
+the empirical distribution below it, with the generalized Pareto shape xi and scale sigma
+estimated from the k exceedances by Zhang and Stephens (2009), which needs no optimiser and is
+defined for every sample. The bootstrap resamples the whole sample, so u, k's values, xi and
+sigma vary with it. The maximum of n draws has ``P(max <= x) = F(x)^n`` and the damage on
+``area_factor`` areas ``1 - F(x)^(n k)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from _glstat_runtime.validation import check_level, real_values
+
+__all__ = ["TailPrediction", "fit_gpd", "predict_maximum_pot"]
+
+#: Percentile pair reported for a nominal 90 % interval: the 2.5 % and 97.5 % bootstrap
+#: percentiles, the widening that reached nominal coverage in docs/benchmarks.md
+#: "calibration" (the 5 % / 95 % pair covered 87 % on average).
+CALIBRATED_LEVELS = {0.9: 0.95}
+
+
+def fit_gpd(exceedances) -> tuple[np.ndarray, np.ndarray]:
+    """Generalized Pareto shape and scale of each row of exceedances (Zhang & Stephens 2009).
+
+    The profile likelihood in ``theta = -xi / sigma`` averaged over a fixed grid of
+    ``30 + sqrt(k)`` points (their empirical-Bayes estimator): no optimiser, vectorised over
+    the rows, defined for every sample with at least two distinct values.
+
+    Parameters
+    ----------
+    exceedances : array_like, shape (k,) or (B, k)
+        Exceedances over the threshold (>= 0), each row sorted in increasing order.
+
+    Returns
+    -------
+    xi, sigma : ndarray
+        Shape (> 0: a power tail; 0: exponential; < 0: bounded) and scale, one per row (a
+        0-d array for a 1-D input).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy import stats
+    >>> from glstat.extremes.peaks_over_threshold import fit_gpd
+    >>> y = np.sort(stats.genpareto.rvs(0.2, scale=3.0, size=20000, random_state=3))
+    >>> xi, sigma = fit_gpd(y)
+    >>> round(float(xi), 2), round(float(sigma), 1)
+    (0.2, 3.0)
+    """
+    y = np.asarray(exceedances, dtype=float)
+    one = y.ndim == 1
+    y = np.atleast_2d(y)
+    k = y.shape[1]
+    if k < 2:
+        raise ValueError(f"a generalized Pareto fit needs at least 2 exceedances, got {k}")
+    m = 30 + int(math.sqrt(k))
+    j = np.arange(1, m + 1, dtype=float)
+    xstar = y[:, math.floor(k / 4 + 0.5) - 1]  # the first quartile
+    with np.errstate(divide="ignore", invalid="ignore"):
+        theta = 1.0 / y[:, -1:] + (1.0 - np.sqrt(m / (j - 0.5)))[None, :] / (3.0 * xstar[:, None])
+        kk = np.mean(np.log1p(-theta[:, :, None] * y[:, None, :]), axis=2)
+        ll = k * (np.log(-theta / kk) - kk - 1.0)
+        w = np.exp(ll - np.nanmax(ll, axis=1, keepdims=True))
+        w = np.where(np.isfinite(w), w, 0.0)
+        theta_hat = np.sum(theta * w, axis=1) / np.sum(w, axis=1)
+        xi = np.mean(np.log1p(-theta_hat[:, None] * y), axis=1)
+        sigma = -xi / theta_hat
+    if one:
+        return xi[0], sigma[0]
+    return xi, sigma
+
+
+def _log_tail_sf(z: np.ndarray, xi: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """log S_GPD(z) for z >= 0 (-inf beyond a bounded tail's end)."""
+    t = z / sigma
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.where(np.abs(xi) < 1e-12, -t, -np.log1p(xi * t) / np.where(xi == 0, 1.0, xi))
+    return np.where((xi < 0) & (t >= -1.0 / np.where(xi == 0, -1.0, xi)), -np.inf, out)
+
+
+def _tail_isf(p: np.ndarray, xi: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """z >= 0 with S_GPD(z) = p, p in (0, 1]."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(np.abs(xi) < 1e-12, -sigma * np.log(p),
+                        sigma * np.expm1(-xi * np.log(p)) / np.where(xi == 0, 1.0, xi))
+
+
+@dataclass(frozen=True)
+class _Tails:
+    """Spliced models (empirical body, GPD tail) of the full sample (row 0) and the resamples."""
+
+    rows: np.ndarray  # (R, N) sorted samples
+    u: np.ndarray  # (R,) thresholds
+    xi: np.ndarray
+    sigma: np.ndarray
+    q: float  # k / N
+
+    def log_sf(self, x: np.ndarray) -> np.ndarray:
+        """log S(x) of every row at the points x (shape (T,)): shape (R, T)."""
+        x = np.asarray(x, dtype=float)[None, :]
+        tail = math.log(self.q) + _log_tail_sf(x - self.u[:, None], self.xi[:, None],
+                                               self.sigma[:, None])
+        n = self.rows.shape[1]
+        body = np.empty((self.rows.shape[0], x.shape[1]))
+        for r, row in enumerate(self.rows):
+            body[r] = (n - np.searchsorted(row, x[0], side="right")) / n
+        with np.errstate(divide="ignore"):
+            return np.where(x > self.u[:, None], tail, np.log(body))
+
+    def isf(self, s: np.ndarray) -> np.ndarray:
+        """x with S(x) = s for every row; s of shape (R, T)."""
+        out = self.u[:, None] + _tail_isf(np.minimum(s, self.q) / self.q, self.xi[:, None],
+                                          self.sigma[:, None])
+        body = s >= self.q
+        if body.any():
+            n = self.rows.shape[1]
+            idx = np.clip(np.ceil(n * (1.0 - s)).astype(int) - 1, 0, n - 1)
+            r = np.broadcast_to(np.arange(s.shape[0])[:, None], s.shape)
+            out[body] = self.rows[r[body], idx[body]]
+        return out
+
+
+@dataclass(frozen=True)
+class TailPrediction:
+    """A generalized Pareto tail of a sample and the maximum and damage it predicts.
+
+    Attributes
+    ----------
+    n : float
+        Number of draws of one analysed area.
+    tail_size : int
+        k, the number of largest values the tail is fitted to.
+    threshold_u : float
+        u, the (k+1)-th largest value (units of the data).
+    xi, sigma : float
+        Generalized Pareto shape and scale of the full-sample fit.
+    confidence_level : float
+        Nominal level of the intervals.
+    interval_level : float
+        Level of the bootstrap percentile pair reported as the interval (wider than the
+        nominal one where calibrated, :data:`CALIBRATED_LEVELS`).
+    n_resamples : int
+        Bootstrap resamples with a finite fit.
+    hardness : float or None
+        The threshold of :attr:`damage` (units of the data).
+    area_factor : ndarray
+        Area factors of :attr:`damage`.
+    damage : ndarray, shape (3, K) or None
+        Estimate (full-sample fit), low and high of ``P(max > hardness)`` on each area
+        factor.
+    maximum : ndarray, shape (3,)
+        Median of the maximum of n draws under the full-sample fit and the interval (low, high)
+        of the pooled bootstrap maxima.
+    """
+
+    n: float
+    tail_size: int
+    threshold_u: float
+    xi: float
+    sigma: float
+    confidence_level: float
+    interval_level: float
+    n_resamples: int
+    hardness: float | None
+    area_factor: np.ndarray
+    damage: np.ndarray | None
+    maximum: np.ndarray
+
+    def to_frame(self):
+        """The damage per area factor as a pandas DataFrame: ``area_factor``, ``estimate``,
+        ``low``, ``high`` (empty without a hardness)."""
+        import pandas as pd
+
+        if self.damage is None:
+            return pd.DataFrame(columns=["area_factor", "estimate", "low", "high"])
+        return pd.DataFrame({"area_factor": self.area_factor, "estimate": self.damage[0],
+                             "low": self.damage[1], "high": self.damage[2]})
+
+    def text(self) -> str:
+        """A few lines for a terminal."""
+        lvl = round(100 * self.confidence_level)
+        lines = [f"generalized Pareto tail on the {self.tail_size} largest values (above "
+                 f"{self.threshold_u:.6g}): shape xi = {self.xi:.3g}, scale sigma = "
+                 f"{self.sigma:.4g}, {self.n_resamples} bootstrap resamples",
+                 f"  maximum of {self.n:.6g} values: median {self.maximum[0]:.6g}, {lvl} % "
+                 f"interval [{self.maximum[1]:.6g}, {self.maximum[2]:.6g}]"]
+        if self.damage is not None:
+            for a, (e, lo, hi) in zip(self.area_factor, self.damage.T, strict=True):
+                lines.append(f"  damage P(max > {self.hardness:g}) on {a:g} area(s): {e:.4g} "
+                             f"[{lo:.4g}, {hi:.4g}]")
+        return "\n".join(lines)
+
+
+def _tail_size(n: int, tail_size) -> int:
+    if isinstance(tail_size, str):
+        if tail_size != "sqrt":
+            raise ValueError(f"tail_size must be 'sqrt', a fraction in (0, 1) or a count, got "
+                             f"{tail_size!r}")
+        k = max(20, math.ceil(math.sqrt(n)))
+    elif isinstance(tail_size, float) and 0 < tail_size < 1:
+        k = max(20, math.ceil(tail_size * n))
+    elif isinstance(tail_size, (int, np.integer)) and not isinstance(tail_size, bool):
+        k = int(tail_size)
+    else:
+        raise ValueError(f"tail_size must be 'sqrt', a fraction in (0, 1) or a count, got "
+                         f"{tail_size!r}")
+    if not 2 <= k <= n - 1:
+        raise ValueError(f"the tail needs between 2 and n - 1 = {n - 1} values, got k = {k} "
+                         f"(from tail_size={tail_size!r}); the sample has {n} values: "
+                         f"at least 21 are needed for the default tail")
+    return k
+
+
+def predict_maximum_pot(data, *, n: float, threshold: float | None = None, area_factor=1.0,
+                        tail_size: str | float | int = "sqrt", n_resamples: int = 1000,
+                        confidence_level: float = 0.9, interval_level: float | None = None,
+                        rng=None) -> TailPrediction:
+    """Maximum of n draws and damage probability from a generalized Pareto tail.
+
+    Parameters
+    ----------
+    data : array_like
+        The sample (units of the data, e.g. MPa; flattened; finite).
+    n : float
+        Number of draws of one analysed area (>= 1).
+    threshold : float, optional
+        Hardness of the damage probability ``P(max > threshold)``.
+    area_factor : array_like
+        Ratios k > 0 of the area of interest to the analysed one (``1 - F^(n k)``).
+    tail_size : "sqrt", float or int
+        The tail's values: ``ceil(sqrt(N))`` (at least 20; the default, the best calibrated in
+        docs/benchmarks.md "calibration"), a fraction of N, or a count.
+    n_resamples : int
+        Bootstrap resamples B (>= 10).
+    confidence_level : float
+        Nominal coverage of the intervals.
+    interval_level : float, optional
+        Level of the bootstrap percentile pair reported as the interval. Default: 0.95 for
+        ``confidence_level = 0.9`` (the calibrated widening, :data:`CALIBRATED_LEVELS`),
+        otherwise ``confidence_level``.
+    rng : int, numpy.random.Generator or None
+        Seed of the bootstrap.
+
+    Returns
+    -------
+    TailPrediction
+
+    Notes
+    -----
+    Measured on lognormal, Weibull, gamma, normal, Student-t and GLD parents (n = 200–5000,
+    maxima of 1e2–1e6 draws, true damage 0.01–0.9; docs/benchmarks.md "calibration"): the
+    interval of the damage probability covers 85–92 % on average per parent, against 37–63 %
+    for the GLD moment fit of :func:`glstat.predict_maximum`; single cells go down to 67 %
+    (the largest samples, where the tail is then fitted to a small fraction of the data).
+    A fixed number of draws only: the random counts and grouped bootstrap of
+    :func:`glstat.predict_maximum` are not supported here.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from glstat import predict_maximum_pot
+    >>> x = np.random.default_rng(1).lognormal(0.0, 0.5, 2000)
+    >>> p = predict_maximum_pot(x, n=1000, threshold=5.0, n_resamples=200, rng=2)
+    >>> p.tail_size, bool(p.damage[1, 0] <= p.damage[0, 0] <= p.damage[2, 0])
+    (45, True)
+    """
+    values, keep = real_values(data, "data")
+    x = np.sort(values if keep is None else values[keep])
+    if not np.all(np.isfinite(x)):
+        raise ValueError("data must be finite: remove NaN and inf first")
+    nn = x.size
+    if not (isinstance(n, (int, float, np.integer, np.floating)) and math.isfinite(n) and n >= 1):
+        raise ValueError(f"n (draws of one analysed area) must be a finite number >= 1, got {n!r}")
+    if int(n_resamples) != n_resamples or n_resamples < 10:
+        raise ValueError(f"n_resamples must be an integer >= 10, got {n_resamples!r}")
+    level = check_level(confidence_level, "confidence_level")
+    ilevel = check_level(interval_level if interval_level is not None
+                         else CALIBRATED_LEVELS.get(level, level), "interval_level")
+    factors = np.atleast_1d(np.asarray(area_factor, dtype=float)).ravel()
+    if factors.size == 0 or not np.all(np.isfinite(factors) & (factors > 0)):
+        raise ValueError(f"area_factor must be positive finite numbers, got {area_factor!r}")
+    k = _tail_size(nn, tail_size)
+    gen = np.random.default_rng(rng)
+    idx = gen.integers(0, nn, size=(int(n_resamples), nn))
+    rows = np.sort(np.vstack([x[None, :], x[idx]]), axis=1)
+    u = rows[:, nn - k - 1]
+    xi, sigma = fit_gpd(rows[:, nn - k:] - u[:, None])
+    ok = np.isfinite(xi) & np.isfinite(sigma) & (sigma > 0)
+    if not ok[0]:
+        raise ValueError("the generalized Pareto fit of the sample's tail failed (its largest "
+                         "values are all equal?): use another tail_size")
+    if ok[1:].sum() < 10:
+        raise ValueError(f"only {int(ok[1:].sum())} of {n_resamples} resamples have a tail fit")
+    tails = _Tails(rows[ok], u[ok], xi[ok], sigma[ok], k / nn)
+    lo_q, hi_q = (1 - ilevel) / 2, (1 + ilevel) / 2
+    # the maximum of n draws: the full fit's median and the pooled random maxima of the
+    # resamples (one per resample and 50 draws each)
+    r = tails.u.size
+    s_med = np.full((r, 1), -math.expm1(math.log(0.5) / n))
+    median = float(tails.isf(s_med)[0, 0])
+    v = gen.random((r - 1, 50))
+    draws = tails.isf(np.vstack([np.full((1, 50), s_med[0, 0]),
+                                 -np.expm1(np.log(v) / n)]))[1:]
+    lo_m, hi_m = np.quantile(draws, [lo_q, hi_q])
+    damage = None
+    if threshold is not None:
+        t = float(threshold)
+        if not math.isfinite(t):
+            raise ValueError(f"threshold must be finite, got {threshold!r}")
+        log_s = tails.log_sf(np.array([t]))[:, 0]
+        with np.errstate(divide="ignore"):
+            log_f = np.log1p(-np.exp(log_s))
+        d = -np.expm1(n * factors[None, :] * log_f[:, None])
+        est = d[0]
+        low, high = np.quantile(d[1:], [lo_q, hi_q], axis=0)
+        damage = np.vstack([est, low, high])
+    return TailPrediction(n=float(n), tail_size=k, threshold_u=float(u[0]), xi=float(xi[0]),
+                          sigma=float(sigma[0]), confidence_level=level, interval_level=ilevel,
+                          n_resamples=int(ok[1:].sum()), hardness=None if threshold is None
+                          else float(threshold), area_factor=factors, damage=damage,
+                          maximum=np.array([median, lo_m, hi_m]))

@@ -1,0 +1,453 @@
+"""The result of :func:`glstat.bootstrap`: :class:`BootstrapFit`, the GLD fits of the
+resamples, with their intervals, the maximum of n draws and the probabilities of integrity
+and damage across them."""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from _glstat_runtime.validation import check_level
+
+from ..distributions.gld import GLD
+from ..errors import FitError
+from ..extremes.counts import ObservedCounts, RowCounts, as_count
+from ..extremes.damage import damage_probability as _damage
+from ..extremes.damage import integrity_probability as _integrity
+from ..extremes.order_statistics import maximum as _maximum
+from ..fitting import GLDFit
+from ._arguments import stream_seed
+from ._diagnostics import BootstrapWarning, branch_note
+from ._driver import jackknife_lambdas
+from ._intervals import (
+    LAMBDA_NAMES,
+    BootstrapInterval,
+    ConfidenceIntervalAccess,
+    check_ci_method,
+    finite_rows,
+    make_interval,
+    statistic_values,
+)
+from ._lambda_rows import FAMILY, frozen_batch, max_quantiles
+from ._tables import summary_frame
+from .maxima import (
+    BootstrapMaximum,
+    BootstrapProbability,
+    resample_count_maximum,
+    resample_maximum,
+    resample_probability,
+)
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+
+__all__ = ["BootstrapFit"]
+
+
+@dataclass(frozen=True)
+class BootstrapFit:
+    """GLD fits of bootstrap resamples (result of :func:`bootstrap`).
+
+    Attributes
+    ----------
+    fit : GLDFit
+        Fit of the full sample (the point estimate).
+    lambdas : pandas.DataFrame
+        One row per resample (index ``resample``): ``lambda1..lambda4`` (NaN for a failed
+        resample); ``n_roots``, the number of valid roots or candidates found; ``region``,
+        the RS region (1-6) of the fit (0 for a failed resample and for FKML, which has no
+        regions); ``branch_jump``, True when the fit's lambda3 or lambda4 lies more than 12
+        robust standard deviations (1.4826 times the median absolute deviation of the
+        successful resamples' values) from the full-sample fit's: a root of another branch.
+        Resamples in several regions or on several branches make the percentile intervals
+        of the lambdas meaningless (see :attr:`branch_note`).
+    statistics : pandas.DataFrame or None
+        Per resample: the matched statistics (moments, rho or L-moments; not for the
+        data-based methods), the resample's ``min`` and ``max`` and, for the compiled
+        methods, ``covers`` (whether a root covering them exists). The support of every
+        fit covers its resample's range unless the full-sample fit does not cover the data
+        either (then a warning gives the count). None only for ``nan_policy="propagate"``
+        with non-finite data.
+    failed : pandas.DataFrame
+        The resamples without a fit: ``resample``, ``reason`` (``"statistics undefined"``,
+        ``"statistics out of range"``, ``"no root"``, ``"no root whose support covers the
+        resample"``, ``"fit error (...)"``) and ``detail`` (the full message).
+    n_resamples : int
+        Number of resamples B.
+    confidence_level : float
+        Default nominal coverage of the intervals.
+    kind : str
+        ``"nonparametric"`` or ``"parametric"``.
+    method, param : str
+        Fitting method and parameterisation.
+    options : dict
+        Fitting options (e.g. ``u``).
+    """
+
+    fit: GLDFit
+    lambdas: pd.DataFrame
+    statistics: pd.DataFrame | None
+    failed: pd.DataFrame
+    n_resamples: int
+    confidence_level: float
+    kind: str
+    method: str
+    param: str
+    options: dict[str, Any] = field(default_factory=dict)
+    _data: np.ndarray | None = field(default=None, repr=False, compare=False)
+    _entropy: tuple[int, ...] = field(default=(), repr=False, compare=False)
+    _cache: dict = field(default_factory=dict, repr=False, compare=False)
+    _grouping: tuple | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def counts(self) -> ObservedCounts | None:
+        """The number of values per group (a bootstrap with ``groups``), else None."""
+        return None if self._grouping is None else ObservedCounts(self._grouping[0])
+
+    def resampled_counts(self) -> RowCounts:
+        """Per successful resample, the numbers of values of its drawn groups (with ``groups``)."""
+        if self._grouping is None:
+            raise TypeError("the bootstrap has no groups: give n or count")
+        lam = self.lambdas[list(LAMBDA_NAMES)].to_numpy(dtype=float)
+        ok = np.all(np.isfinite(lam), axis=1)
+        sizes, choices = self._grouping
+        return RowCounts.from_choices(sizes, choices[ok])
+
+    def _draw_counts(self, n, count):
+        """(n, None, None) for a fixed n, or (None, full-sample count, RowCounts per resample)."""
+        if n is not None and count is not None:
+            raise TypeError("give either n (a fixed number of draws) or count (a random one), not both")
+        if count is not None:
+            c = as_count(count)
+            return None, c, RowCounts.common(c, self._lam().shape[0])
+        if n is not None:
+            return n, None, None
+        if self._grouping is None:
+            raise TypeError("n (the number of points of the analysed area) or count (a random "
+                            "number of them) is required; a bootstrap with groups defaults to "
+                            "its groups' sizes")
+        return None, self.counts, self.resampled_counts()
+
+    # -- basic views ----------------------------------------------------------------------
+    @property
+    def n_failed(self) -> int:
+        """Number of resamples without a fit."""
+        return len(self.failed)
+
+    @property
+    def n_successful(self) -> int:
+        """Number of resamples with a fit."""
+        return self.n_resamples - self.n_failed
+
+    @property
+    def _fam(self) -> int:
+        return FAMILY[self.param]
+
+    def _lam(self) -> np.ndarray:
+        """Lambdas of the successful resamples, shape (n_successful, 4)."""
+        if "lam" not in self._cache:
+            lam = self.lambdas[list(LAMBDA_NAMES)].to_numpy(dtype=float)
+            self._cache["lam"] = np.ascontiguousarray(lam[np.all(np.isfinite(lam), axis=1)])
+        return self._cache["lam"]
+
+    def _seed(self, key: int) -> np.random.SeedSequence:
+        return stream_seed(self._entropy, self.n_resamples, key)
+
+    def _level(self, confidence_level) -> float:
+        return self.confidence_level if confidence_level is None else check_level(confidence_level)
+
+    def dists(self) -> list[GLD]:
+        """The GLD of every successful resample, in resample order."""
+        if "dists" not in self._cache:
+            self._cache["dists"] = [GLD(l1, l2, l3, l4, param=self.param)
+                                    for l1, l2, l3, l4 in self._lam()]
+        return list(self._cache["dists"])
+
+    def __glstat_distributions__(self) -> list[GLD]:
+        """The bootstrap distributions, for :mod:`glstat.extremes.damage` and :mod:`glstat.extremes`."""
+        return self.dists()
+
+    def batch(self):
+        """All successful bootstrap GLDs as one frozen scipy distribution with array parameters.
+
+        Returns
+        -------
+        frozen ``gld_rs`` or ``gld_fkml``
+            Parameters of shape (n_successful, 1): ``batch().ppf([0.5, 0.9])`` has shape
+            (n_successful, 2).
+        """
+        return frozen_batch(self._lam(), self.param)
+
+    def _regions(self) -> np.ndarray:
+        """RS region of every successful resample (0 for FKML)."""
+        lam = self.lambdas[list(LAMBDA_NAMES)].to_numpy(dtype=float)
+        return self.lambdas["region"].to_numpy()[np.all(np.isfinite(lam), axis=1)]
+
+    @property
+    def branch_note(self) -> str:
+        """Why the percentile intervals of the lambdas are not meaningful; "" when they are.
+
+        Non-empty when the successful resample fits fall in more than one RS region (lambda2
+        changes sign and lambda3, lambda4 cross 0: e.g. near-logistic data, whose moment fits
+        have lambda3, lambda4 near 0) or when some jumped to another root branch
+        (``lambdas["branch_jump"]``). The distributions may then be nearly identical while
+        their lambdas are not comparable; intervals of quantiles, moments or probabilities
+        (:meth:`confidence_interval` with ``statistic``) are unaffected.
+        """
+        if "note" not in self._cache:
+            lam = self.lambdas[list(LAMBDA_NAMES)].to_numpy(dtype=float)
+            ok = np.all(np.isfinite(lam), axis=1)
+            self._cache["note"] = branch_note(self.lambdas["region"].to_numpy()[ok],
+                                              self.lambdas["branch_jump"].to_numpy()[ok],
+                                              self.param, self.fit.region)
+        return self._cache["note"]
+
+    def standard_error(self) -> pd.Series:
+        """Bootstrap standard errors of lambda1..lambda4 (divisor B - 1, successful resamples).
+
+        Warns
+        -----
+        BootstrapWarning
+            When :attr:`branch_note` is not empty (the note is also in the Series'
+            ``attrs["note"]``); :meth:`summary` then gives the standard errors per region.
+        """
+        import pandas as pd
+
+        se = pd.Series(np.std(self._lam(), axis=0, ddof=1), index=list(LAMBDA_NAMES),
+                       name="standard_error")
+        se.attrs["note"] = self.branch_note
+        if self.branch_note:
+            warnings.warn(f"standard errors of the lambdas: {self.branch_note}", BootstrapWarning,
+                          stacklevel=2)
+        return se
+
+    # -- statistics of the resamples --------------------------------------------------------
+    def _jackknife_lambdas(self) -> np.ndarray:
+        """Lambdas of the delete-a-group jackknife samples of the data (cached)."""
+        if "jack" not in self._cache:
+            if self._data is None:
+                raise ValueError("BCa needs the data, which this BootstrapFit does not hold")
+            self._cache["jack"] = jackknife_lambdas(self._data, self.method, self.param,
+                                                    self.options, self.fit.lambdas, self._seed(0))
+        return self._cache["jack"]
+
+    @property
+    def confidence_interval(self) -> ConfidenceIntervalAccess:
+        """Bootstrap confidence intervals: call it, or read it as scipy's attribute.
+
+        ``bf.confidence_interval(method="percentile", confidence_level=None, statistic=None,
+        *, vectorized=False, names=None)`` returns a :class:`BootstrapInterval` (see
+        :meth:`ConfidenceIntervalAccess.__call__`). Read as an attribute, as
+        ``scipy.stats.bootstrap(...).confidence_interval`` is, it is the default interval
+        (percentile, :attr:`confidence_level`, of the lambdas): ``.low``, ``.high`` (arrays
+        of shape (4,)), ``low, high = bf.confidence_interval`` and ``.standard_error``.
+        """
+        return ConfidenceIntervalAccess(self)
+
+    @property
+    def bootstrap_distribution(self) -> np.ndarray:
+        """The resampled lambdas in scipy's layout: shape (4, n_successful).
+
+        Row i holds lambda(i+1) of every resample with a fit, in resample order (the
+        successful rows of :attr:`lambdas`, transposed), as
+        ``scipy.stats.bootstrap(...).bootstrap_distribution`` holds a vector statistic with
+        its resamples along the last axis. Failed resamples are left out (they are the NaN
+        rows of :attr:`lambdas`), so the last axis is shorter than :attr:`n_resamples` when
+        some failed. A read-only view.
+        """
+        out = self._lam().T
+        out.flags.writeable = False
+        return out
+
+    def _confidence_interval(
+        self,
+        method: str = "percentile",
+        confidence_level: float | None = None,
+        statistic: Callable[[Any], Any] | None = None,
+        *,
+        vectorized: bool = False,
+        names: tuple[str, ...] | None = None,
+        stacklevel: int = 2,
+    ) -> BootstrapInterval:
+        """The interval of :class:`ConfidenceIntervalAccess` (its call documents the
+        arguments); warnings point to the frame ``stacklevel`` levels up from this one."""
+        note = self.branch_note if statistic is None else ""
+        if note:
+            warnings.warn(f"interval of the lambdas: {note}", BootstrapWarning, stacklevel=stacklevel)
+        return self._interval(method, confidence_level, statistic, vectorized, names, self._lam(), note,
+                              stacklevel + 1)
+
+    def _interval(self, method, confidence_level, statistic, vectorized, names, lam, note,
+                  stacklevel: int = 2):
+        m = check_ci_method(method)
+        level = self._level(confidence_level)
+        if lam.shape[0] < 2:
+            raise FitError(f"only {lam.shape[0]} of {self.n_resamples} resamples have a fit: no "
+                           "bootstrap interval")
+        theta = finite_rows(statistic_values(statistic, vectorized, lam, self.param),
+                            stacklevel=stacklevel)
+        full = np.array([self.fit.lambdas], dtype=float)
+        est = statistic_values(statistic, vectorized, full, self.param)[0]
+        jack = None
+        if m == "bca":
+            jack = statistic_values(statistic, vectorized, self._jackknife_lambdas(), self.param)
+            jack = jack[np.all(np.isfinite(jack), axis=1)]
+        return make_interval(m, level, theta, est, jack, statistic is not None, names, note)
+
+    # -- maximum and damage -----------------------------------------------------------------
+    def maximum_quantiles(self, n, v) -> np.ndarray:
+        """Quantiles ``Q_b(v^(1/n))`` of the maximum of n draws for every bootstrap GLD b.
+
+        Parameters
+        ----------
+        n : array_like
+            Numbers of draws (>= 1), broadcast against the columns of ``v``.
+        v : array_like, shape (n_successful, m)
+            Probabilities, one row per successful resample (e.g. uniform draws: one random
+            maximum of n draws per bootstrap GLD).
+
+        Returns
+        -------
+        ndarray, shape (n_successful, m)
+            In the units of the data; ``1 - v^(1/n)`` is formed as ``-expm1(log(v) / n)``.
+        """
+        with np.errstate(divide="ignore"):
+            logv = np.log(np.asarray(v, dtype=float))
+        return max_quantiles(self._lam(), self._fam, np.asarray(n, dtype=float), logv)
+
+    def maximum(self, n: float | None = None, confidence_level: float | None = None, *, rng=None,
+                count=None) -> BootstrapMaximum:
+        """The maximum of n draws for every bootstrap GLD (docs/method.md §6).
+
+        Parameters
+        ----------
+        n : float, optional
+            Number of draws (grid points), >= 1.
+        confidence_level : float, optional
+            Coverage of the intervals; default :attr:`confidence_level`.
+        rng : int, numpy.random.Generator or None
+            Source of the one random maximum drawn per bootstrap GLD. Default: a stream
+            derived from the bootstrap's own seed, so the draws are reproducible.
+        count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
+            A random number of draws instead of ``n`` (see :func:`glstat.maximum`). Without
+            ``n`` and ``count``, a bootstrap with ``groups`` uses each resample's own group
+            sizes, so the interval carries the uncertainty of the count too.
+
+        Returns
+        -------
+        BootstrapMaximum
+        """
+        n, cfull, rows = self._draw_counts(n, count)
+        if rows is not None:
+            return self._count_maximum(cfull, rows, confidence_level, rng)
+        full = _maximum(self.fit.dist, n)
+        level = self._level(confidence_level)
+        lam = self._enough_fits()
+        g = np.random.default_rng(self._seed(1) if rng is None else rng)
+        return resample_maximum(lam, self.param, full, level, g)
+
+    def _count_maximum(self, cfull, rows, confidence_level, rng) -> BootstrapMaximum:
+        full = _maximum(self.fit.dist, count=cfull)
+        level = self._level(confidence_level)
+        lam = self._enough_fits()
+        g = np.random.default_rng(self._seed(1) if rng is None else rng)
+        return resample_count_maximum(lam, self.param, full, cfull, rows.conditional(), level, g)
+
+    def _enough_fits(self) -> np.ndarray:
+        """The lambdas of the successful resamples; FitError with fewer than two."""
+        lam = self._lam()
+        if lam.shape[0] < 2:
+            raise FitError(f"only {lam.shape[0]} resamples have a fit")
+        return lam
+
+    def integrity_probability(self, threshold, n=None, area_factor=1.0,
+                              confidence_level: float | None = None, *, count=None
+                              ) -> BootstrapProbability:
+        """Integrity probability F(threshold)^(k n) with its bootstrap percentile interval.
+
+        Parameters
+        ----------
+        threshold : float
+            Pressure level (units of the data); outside the support of a fit, that fit gives
+            the limiting probabilities (integrity 0 below, 1 above).
+        n : float, optional
+            Number of points of the analysed area (>= 1).
+        area_factor : array_like
+            k, ratio of the area of interest to the analysed one (> 0); vectorised.
+        confidence_level : float, optional
+            Default :attr:`confidence_level`.
+        count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
+            A random number of points instead of ``n`` (``E[F^N]^k``, see
+            :func:`glstat.integrity_probability`). Without ``n`` and ``count``, a bootstrap
+            with ``groups`` uses each resample's own group sizes.
+
+        Returns
+        -------
+        BootstrapProbability
+            ``estimate`` from the full-sample fit, ``low``/``high`` the percentile interval,
+            ``values`` the per-resample probabilities (shape (n_successful, *area_factor.shape)).
+        """
+        return self._probability(_integrity, "integrity", threshold, n, area_factor, confidence_level,
+                                 count)
+
+    def damage_probability(self, threshold, n=None, area_factor=1.0,
+                           confidence_level: float | None = None, *, count=None
+                           ) -> BootstrapProbability:
+        """Damage probability 1 - F(threshold)^(k n) with its bootstrap percentile interval.
+
+        Parameters and returns as for :meth:`integrity_probability`.
+        """
+        return self._probability(_damage, "damage", threshold, n, area_factor, confidence_level,
+                                 count)
+
+    def _probability(self, func, what, threshold, n, area_factor, confidence_level, count=None):
+        level = self._level(confidence_level)
+        k = np.asarray(area_factor, dtype=float)
+        t = float(threshold)
+        n, cfull, rows = self._draw_counts(n, count)
+        # the full-sample value and the argument checks come from glstat.extremes.damage itself
+        est = np.asarray(func(self.fit.dist, t, n, k, count=cfull, outside_support="limit"),
+                         dtype=float)
+        return resample_probability(self._lam(), self.param, what, t, n, k, est, level, cfull, rows)
+
+    # -- tables -------------------------------------------------------------------------------
+    def to_frame(self) -> pd.DataFrame:
+        """The lambdas of every resample with their statistics (one row per resample)."""
+        df = self.lambdas.copy()
+        if self.statistics is not None:
+            df = df.join(self.statistics)
+        return df
+
+    def summary(self) -> pd.DataFrame:
+        """Full-sample estimate, bootstrap mean, standard error and percentile interval per lambda.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Index ``quantity``. Rows ``lambda1..lambda4`` over all successful resamples
+            (``region`` ``"all"``), with ``note`` = :attr:`branch_note`; when the resample
+            fits fall in several RS regions, four more rows per region holding at least two
+            of them, ``"lambda1 [region 4]"`` ..., over that region's resamples only
+            (``estimate`` is the full-sample value when the full-sample fit lies in that
+            region, NaN otherwise). Columns: ``estimate``, ``bootstrap_mean``, ``low``,
+            ``high``, ``standard_error``, ``note``, ``region``, ``n_used``, ``method``,
+            ``kind``, ``n_resamples``, ``n_failed``.
+        """
+        def interval(lam, note):
+            return self._interval("percentile", None, None, False, None, lam, note)
+
+        out = summary_frame(self._lam(), self._regions(), self.param, self.fit.region, interval,
+                            self.branch_note)
+        out["method"] = self.method
+        out["kind"] = self.kind
+        out["n_resamples"] = self.n_resamples
+        out["n_failed"] = self.n_failed
+        return out
+
+    def __repr__(self) -> str:
+        return (f"BootstrapFit(method={self.method!r}, param={self.param!r}, kind={self.kind!r}, "
+                f"n_resamples={self.n_resamples}, n_failed={self.n_failed}, fit={self.fit!r})")
