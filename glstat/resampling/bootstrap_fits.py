@@ -71,7 +71,7 @@ from ._tables import lambdas_frame, statistics_frame
 
 __all__ = ["bootstrap"]
 
-logger = logging.getLogger(__name__)
+logger = logging.getLogger("glstat.bootstrap")  # the name of the public function
 
 
 def bootstrap(
