@@ -32,8 +32,11 @@ def main(argv: list[str] | None = None) -> int:
     if args[:1] in (["-V"], ["--version"]):
         print(f"glstat {_version()}")
         return 0
-    from glstat.cli.commands import main as glstat_main
-
+    try:  # loading NumPy, SciPy and the kernels takes a moment: Ctrl-C then ends quietly
+        from glstat.cli.commands import main as glstat_main
+    except KeyboardInterrupt:
+        print("glstat: interrupted while starting; nothing was run", file=sys.stderr)
+        return 130
     return glstat_main(args)
 
 

@@ -49,3 +49,23 @@ def test_an_unrelated_contact_package_is_named(tmp_path):
     assert out.returncode != 0
     assert "is not the contact package glstat ships" in out.stderr
     assert "pip uninstall contact" in out.stderr
+
+
+def test_ctrl_c_while_the_command_starts_is_one_line(monkeypatch, capsys):
+    """Ctrl-C during the first second (NumPy, SciPy and the kernels loading) ends with exit 130
+    and one line, not a traceback of the import machinery."""
+    import importlib.abc
+
+    import _glstat_entry
+
+    class Interrupting(importlib.abc.MetaPathFinder):
+        def find_spec(self, name, path=None, target=None):
+            if name == "glstat.cli.commands":
+                raise KeyboardInterrupt
+            return None
+
+    monkeypatch.delitem(sys.modules, "glstat.cli.commands", raising=False)
+    monkeypatch.setattr(sys, "meta_path", [Interrupting(), *sys.meta_path])
+    assert _glstat_entry.main(["fit", "x.csv"]) == 130
+    err = capsys.readouterr().err
+    assert err.strip() == "glstat: interrupted while starting; nothing was run"
