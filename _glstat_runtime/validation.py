@@ -24,6 +24,7 @@ __all__ = [
     "check_method",
     "check_n_resamples",
     "check_param",
+    "draws_or_count",
     "elastic_constants",
     "finite_separation",
     "flag",
@@ -85,6 +86,47 @@ def check_method(method) -> str:
     if method not in FIT_METHODS:
         raise ValueError(f"method must be one of {FIT_METHODS}, got {method!r}")
     return method
+
+
+def draws_or_count(n, count, *, whole: bool = False) -> float | None:
+    """The number of draws of one analysed area, given as a fixed ``n`` or a random ``count``,
+    not both.
+
+    Parameters
+    ----------
+    n : object
+        The fixed number of draws (dimensionless), or None.
+    count : object
+        The random number of draws (a count distribution), or None.
+    whole : bool
+        Whether ``n`` counts draws one by one and must be a whole number >= 1 (a
+        prediction that draws values). Without it, ``n`` is returned as given, for the
+        caller to check: the maximum of a real n >= 1 is the distribution ``F^n``.
+
+    Returns
+    -------
+    float or object or None
+        ``float(n)`` with ``whole``; else ``n`` unchanged.
+
+    Raises
+    ------
+    TypeError
+        Both ``n`` and ``count`` are given.
+    ValueError
+        With ``whole``: ``n`` is not one finite real number >= 1 with an integral value.
+    """
+    if n is not None and count is not None:
+        raise TypeError("give either n (a fixed number of draws) or count (a random one), not both")
+    if not whole or n is None:
+        return n
+    x = real_scalar(n)
+    if x is None or not (math.isfinite(x) and x >= 1):
+        raise ValueError(f"n must be a number of draws, a whole number >= 1, got {n!r}")
+    if x != math.floor(x):
+        raise ValueError(f"n counts draws and must be a whole number, got {x:g}: give n = "
+                         f"{math.floor(x):g} or {math.ceil(x):g}, or a random count (count=...) "
+                         "for a number of draws that varies")
+    return x
 
 
 def real_values(data, name: str = "data") -> tuple[np.ndarray, np.ndarray | None]:

@@ -24,17 +24,23 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
-from _glstat_runtime.validation import real_values
+from _glstat_runtime.validation import draws_or_count, real_values
 
 from .errors import FitError
 
 if TYPE_CHECKING:
+    import pandas as pd
+
     from .resampling import BootstrapFit
     from .resampling.maxima import BootstrapMaximum, BootstrapProbability
 
 __all__ = ["MaximumPrediction", "collect_warnings", "predict_maximum"]
 
 T = TypeVar("T")
+
+#: The columns of :meth:`MaximumPrediction.to_frame`, in order.
+FRAME_COLUMNS = ("quantity", "threshold", "area_factor", "n", "count", "estimate", "low", "high",
+                 "confidence_level", "param", "method", "n_resamples")
 
 #: Methods that optimise a likelihood for every resample (costly: fewer resamples by default).
 LIKELIHOOD_METHODS = ("mle", "mps", "starship")
@@ -126,6 +132,136 @@ class MaximumPrediction:
             return {"count": self.count}
         return {} if self.n is None else {"n": self.n}
 
+    def _count_text(self) -> str | None:
+        """The random number of draws as text (None for a fixed ``n``)."""
+        if self.count is not None:
+            return repr(self.count)
+        return "group sizes" if self.n is None and self.grouped else None
+
+    def to_frame(self) -> pd.DataFrame:
+        """The predicted quantities as a tidy table: one row per quantity and area factor.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns (:data:`FRAME_COLUMNS`): ``quantity`` (``"maximum"``, ``"damage"``,
+            ``"integrity"``), ``threshold`` (the hardness, units of the data; NaN for the
+            maximum), ``area_factor`` (k, dimensionless; 1 for the maximum, which is over
+            one analysed area), ``n`` (the number of draws of one analysed area; the mean
+            count with a random one), ``count`` (the random count as text: its ``repr``, or
+            ``"group sizes"`` for a bootstrap over groups; None for a fixed ``n``),
+            ``estimate``, ``low``, ``high`` (units of the data for the maximum,
+            probabilities for the damage and the integrity), ``confidence_level``, ``param``,
+            ``method`` and ``n_resamples`` (B) of the fit used. The maximum's ``estimate`` is
+            the mean of one random maximum per bootstrap GLD and ``low``/``high`` their
+            equal-tailed interval (:meth:`glstat.BootstrapMaximum.interval`); a
+            probability's ``estimate`` is that of the full-sample fit and ``low``/``high``
+            its bootstrap percentile interval. No rows without a fit, and none for a quantity
+            that was not computed (``maximum=False``, no ``threshold``).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import glstat
+        >>> x = np.random.default_rng(1).gamma(4.0, 250.0, 2000)   # pressures, MPa
+        >>> p = glstat.predict_maximum(x, n=500, threshold=2500.0, area_factor=[1, 10],
+        ...                            n_resamples=50, rng=2)
+        >>> t = p.to_frame()
+        >>> t[["quantity", "area_factor"]].to_records(index=False).tolist()
+        [('maximum', 1.0), ('damage', 1.0), ('damage', 10.0), ('integrity', 1.0), ('integrity', 10.0)]
+        >>> bool(t.loc[t.quantity == "damage", "estimate"].iloc[0] == p.damage.estimate[0])
+        True
+        """
+        import pandas as pd
+
+        parts = []
+        if self.maximum is not None:
+            lo, hi = self.maximum.interval()
+            parts.append(pd.DataFrame({
+                "quantity": ["maximum"], "threshold": [np.nan], "area_factor": [1.0],
+                "n": [float(self.maximum.n)], "estimate": [self.maximum.mean], "low": [lo],
+                "high": [hi], "confidence_level": [self.maximum.confidence_level]}))
+        for prob in (self.damage, self.integrity):
+            if prob is not None:
+                parts.append(prob.to_frame().assign(
+                    quantity=prob.what, threshold=float(prob.threshold), n=float(prob.n),
+                    confidence_level=prob.confidence_level))
+        if not parts:
+            text = ("quantity", "count", "param", "method")
+            return pd.DataFrame({c: pd.Series(dtype=object if c in text else float)
+                                 for c in FRAME_COLUMNS})
+        out = pd.concat(parts, ignore_index=True)
+        out["count"] = self._count_text()
+        out["param"], out["method"] = self.param, self.method
+        out["n_resamples"] = None if self.boot is None else self.boot.n_resamples
+        return out[list(FRAME_COLUMNS)]
+
+    def summary(self, unit: str = "") -> str:
+        """The prediction in a few lines of text: the maximum with its interval and, with a
+        threshold, the damage probability with its interval on every area factor.
+
+        Parameters
+        ----------
+        unit : str, optional
+            The unit of the data (e.g. ``"MPa"``), written after the maximum and the
+            threshold; without it the text says the values are in the units of the data.
+
+        Returns
+        -------
+        str
+            One header line (the fit used, the sample size and the bootstrap), one line for
+            the maximum, one per area factor for the damage, then the reason a later fit was
+            used and how many warnings were recorded, if any. Numbers carry six significant
+            digits; the same numbers are in :meth:`to_frame`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import glstat
+        >>> x = np.random.default_rng(1).gamma(4.0, 250.0, 2000)   # pressures, MPa
+        >>> p = glstat.predict_maximum(x, n=500, threshold=2500.0, n_resamples=50, rng=2)
+        >>> print(p.summary("MPa").splitlines()[0])
+        RS moments GLD fit of 2000 values, 50 bootstrap resamples (50 fitted)
+        >>> f"{float(p.damage.estimate):.6g}" in p.summary("MPa")
+        True
+        """
+        if self.boot is None:
+            return f"no GLD fit of {self.data.size} values: {self.note or 'no fit was requested'}"
+        b = self.boot
+        lines = [f"{self.param.upper()} {self.method} GLD fit of {self.data.size} values, "
+                 f"{b.n_resamples} bootstrap resamples ({b.n_successful} fitted)"]
+        u = f" {unit}" if unit else ""
+        if not unit:
+            lines[0] += "; values in the units of the data"
+        m = self.maximum
+        if m is not None:
+            lo, hi = m.interval()
+            lines.append(f"maximum of {self._draws_text(m.n)}: {m.mean:.6g}{u}, "
+                         f"{100 * m.confidence_level:g} % interval [{lo:.6g}, {hi:.6g}]{u} "
+                         "(mean and interval of one random maximum per bootstrap GLD)")
+        d = self.damage
+        if d is not None:
+            lines.append(f"damage P(max > {d.threshold:.6g}{u}) over {self._draws_text(d.n)} "
+                         f"per analysed area (full-sample fit), {100 * d.confidence_level:g} % bootstrap "
+                         "interval:")
+            k = np.broadcast_to(d.area_factor, np.shape(d.estimate)).ravel()
+            for kj, e, lo, hi in zip(k, np.ravel(d.estimate), np.ravel(d.low), np.ravel(d.high),
+                                     strict=True):
+                lines.append(f"  area factor {kj:.6g}: {e:.6g} [{lo:.6g}, {hi:.6g}]")
+        if self.note:
+            lines.append(f"note: {self.note}")
+        if self.notes:
+            lines.append(f"{len(self.notes)} warning(s) recorded in .notes")
+        return "\n".join(lines)
+
+    def _draws_text(self, mean_n: float) -> str:
+        """How many draws one analysed area has, as text."""
+        if self.count is not None:
+            return f"a random number of draws, {self.count!r} (mean {mean_n:.6g})"
+        if self.n is None and self.grouped:
+            return f"a resampled group's size of draws (mean {mean_n:.6g})"
+        return f"{mean_n:.10g} draws"
+
 
 def _first_reason(exc: Exception) -> str:
     return str(exc).split(". ")[0].splitlines()[0][:120]
@@ -184,8 +320,9 @@ def predict_maximum(
     fits : sequence of (param, method)
         Fits to try in order (:func:`glstat.fit`'s ``param`` and ``method``); the first one
         whose full-sample fit and bootstrap succeed is used.
-    n : float, optional
-        Number of draws of one analysed area (>= 1).
+    n : int or float, optional
+        Number of draws of one analysed area: a whole number >= 1 (``glstat.maximum`` takes
+        a real n for the distribution ``F^n``).
     count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
         A random number of draws instead of ``n``.
     groups : array_like, optional
@@ -221,8 +358,11 @@ def predict_maximum(
 
     Raises
     ------
+    TypeError
+        When both ``n`` and ``count`` are given.
     ValueError
-        When both ``n`` and ``count`` are given, or neither and no ``groups``.
+        When ``n`` is not a whole number >= 1, or neither ``n``, ``count`` nor ``groups`` is
+        given.
 
     Notes
     -----
@@ -243,39 +383,59 @@ def predict_maximum(
     >>> bool(p.damage.low <= p.damage.estimate <= p.damage.high)
     True
     """
-    if n is not None and count is not None:
-        raise ValueError("give the number of draws as n or as count, not both")
-    if n is None and count is None and groups is None:
-        raise ValueError("give the number of draws of one analysed area: n, count, or groups "
-                         "(whose sizes are the counts)")
-    x, keep = real_values(data)
-    if keep is not None:  # masked entries are missing values, with their group labels
-        x = x[keep]
-        if groups is not None:
-            groups = np.asarray(groups).ravel()
-            if groups.size != keep.size:
-                raise ValueError(f"groups must give one label per data value: {groups.size} "
-                                 f"labels for {keep.size} values")
-            groups = groups[keep]
+    n = _draws_of_one_area(n, count, groups)
+    x, groups = _present_values(data, groups)
     k = np.asarray(area_factor, dtype=float)
     bf, p, m, note, caught = _bootstrap_first_fit(
         x, list(fits), n_resamples=n_resamples, likelihood_resamples=likelihood_resamples,
         confidence_level=confidence_level, rng=rng, groups=groups, progress=progress)
-    result = MaximumPrediction(
-        data=x, param=p, method=m, boot=bf, n=None if n is None else float(n), count=count,
-        grouped=groups is not None, threshold=threshold, area_factor=k,
-        confidence_level=confidence_level, note=note, notes=tuple(caught))
-    if bf is None:
-        return result
+    result = MaximumPrediction(x, p, m, bf, n=n, count=count, grouped=groups is not None,
+                               threshold=threshold, area_factor=k,
+                               confidence_level=confidence_level, note=note, notes=tuple(caught))
+    return result if bf is None else _maximum_and_damage(result, maximum, maximum_rng)
+
+
+def _draws_of_one_area(n, count, groups) -> float | None:
+    """``n`` as a float (None with a random count or the group sizes), after the checks of
+    the count: ``n`` or ``count``, not both; ``n`` a whole number >= 1; one of ``n``,
+    ``count`` and ``groups``."""
+    n = draws_or_count(n, count, whole=True)
+    if n is None and count is None and groups is None:
+        raise ValueError("give the number of draws of one analysed area: n, count, or groups "
+                         "(whose sizes are the counts)")
+    return n
+
+
+def _present_values(data, groups):
+    """The sample without its masked entries (missing values), and their group labels."""
+    x, keep = real_values(data)
+    if keep is None:
+        return x, groups
+    x = x[keep]
+    if groups is not None:
+        groups = np.asarray(groups).ravel()
+        if groups.size != keep.size:
+            raise ValueError(f"groups must give one label per data value: {groups.size} "
+                             f"labels for {keep.size} values")
+        groups = groups[keep]
+    return x, groups
+
+
+def _maximum_and_damage(result: MaximumPrediction, maximum: bool, maximum_rng) -> MaximumPrediction:
+    """``result`` (with a bootstrap) with the maximum (when asked) and, with a threshold, the
+    damage and integrity; their warnings are added to the notes."""
+    bf = result.boot
+    assert bf is not None
     kw = result.count_kwargs()
     found: dict[str, Any] = {}
-    notes = list(caught)
+    notes = list(result.notes)
     if maximum:
         found["maximum"], w = collect_warnings(bf.maximum, rng=maximum_rng, **kw)
         notes += w
-    if threshold is not None:
+    if result.threshold is not None:
         for what, method in (("damage", bf.damage_probability),
                              ("integrity", bf.integrity_probability)):
-            found[what], w = collect_warnings(method, threshold, area_factor=k, **kw)
+            found[what], w = collect_warnings(method, result.threshold,
+                                              area_factor=result.area_factor, **kw)
             notes += w
     return replace(result, notes=tuple(notes), **found)

@@ -30,6 +30,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from _glstat_runtime.validation import draws_or_count
+
 from .counts import as_count
 from .tails import TailAccess
 
@@ -68,9 +70,8 @@ def _positive(name, value, *, at_least_one=False):
 
 def _draws(n, count):
     """(n as an array, None) for a fixed number of draws, or (None, CountDistribution)."""
+    draws_or_count(n, count)
     if count is not None:
-        if n is not None:
-            raise TypeError("give either n (a fixed number of draws) or count (a random one), not both")
         return None, as_count(count)
     if n is None:
         raise TypeError("n (the number of points of the analysed area) or count (a random number "

@@ -42,6 +42,8 @@ import numbers
 import numpy as np
 from scipy import special
 
+from _glstat_runtime.validation import draws_or_count
+
 from .._core.incomplete_beta import betainccinv, betaincinv
 from ._rv_extreme import ExtremeFrozen, ExtremeGen, flat
 from .tails import SF_TINY as _TINY
@@ -261,7 +263,8 @@ def maximum(dist, n: float | None = None, *, count=None) -> MaximumDistribution:
     ValueError
         n < 1, non-finite or not a scalar.
     TypeError
-        ``dist`` is not a continuous distribution (or an unfrozen one with shapes).
+        ``dist`` is not a continuous distribution (or an unfrozen one with shapes); both
+        ``n`` and ``count`` given, or neither.
 
     Notes
     -----
@@ -278,9 +281,8 @@ def maximum(dist, n: float | None = None, *, count=None) -> MaximumDistribution:
     4.317
     """
     parent = TailAccess(dist)
+    draws_or_count(n, count)
     if count is not None:
-        if n is not None:
-            raise TypeError("give either n (a fixed number of draws) or count (a random one), not both")
         from .counts import as_count
 
         c = as_count(count)

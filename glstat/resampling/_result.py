@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from _glstat_runtime.validation import check_level
+from _glstat_runtime.validation import check_level, draws_or_count
 
 from ..distributions.gld import GLD
 from ..errors import FitError
@@ -119,8 +119,7 @@ class BootstrapFit:
 
     def _draw_counts(self, n, count):
         """(n, None, None) for a fixed n, or (None, full-sample count, RowCounts per resample)."""
-        if n is not None and count is not None:
-            raise TypeError("give either n (a fixed number of draws) or count (a random one), not both")
+        draws_or_count(n, count)
         if count is not None:
             c = as_count(count)
             return None, c, RowCounts.common(c, self._lam().shape[0])

@@ -60,7 +60,7 @@ def test_no_fit_at_all_is_a_result_with_the_reasons():
 
 
 def test_the_count_must_be_given_once(sample):
-    with pytest.raises(ValueError, match="not both"):
+    with pytest.raises(TypeError, match="not both"):
         predict_maximum(sample, n=3.0, count=glstat.PoissonCount(3.0))
     with pytest.raises(ValueError, match="number of draws"):
         predict_maximum(sample)
