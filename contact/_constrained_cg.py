@@ -514,15 +514,32 @@ def polonsky_keer(
     shape = h.shape
     hf = np.ascontiguousarray(h, dtype=np.float64).ravel()
     vf = np.ascontiguousarray(valid, dtype=np.bool_).ravel()
-    load_control = total_pressure is not None
     shift = 0.0 if separation is None else float(separation)
+    cap = _check_cap(pmax, total_pressure, vf)
+    p = _start(op, hf, vf, p0, overwrite_p0, total_pressure, shift, cap)
+    iterate = _iterate_accelerated if accelerate else _iterate_reference
+    p, g, state = iterate(op, shape, hf, vf, p, total_pressure, shift, float(tol), int(max_iter),
+                          cap)
+    return _outcome(op, shape, hf, vf, p, g, state, total_pressure is not None, shift, cap,
+                    accelerate)
+
+
+def _check_cap(pmax: float | None, total_pressure: float | None, vf: np.ndarray) -> float:
+    """The pressure cap (Pa; ``inf`` without one), checked against the load."""
     cap = np.inf if pmax is None else float(pmax)
     if pmax is not None:
         if not (np.isfinite(cap) and cap > 0):
             raise ValueError(f"pmax must be finite and > 0, got {pmax!r}")
         if total_pressure is not None and not total_pressure < cap * int(vf.sum()):
             raise ValueError("total_pressure must be below pmax times the number of valid points")
+    return cap
 
+
+def _start(op, hf, vf, p0, overwrite_p0: bool, total_pressure: float | None, shift: float,
+           cap: float) -> np.ndarray:
+    """The starting pressure (Pa, flattened): ``p0`` or the default of :func:`polonsky_keer`,
+    zero off the valid points, capped, and carrying the load under load control."""
+    load_control = total_pressure is not None
     if p0 is not None:
         if overwrite_p0:
             p = np.ascontiguousarray(p0, dtype=np.float64).ravel()
@@ -534,26 +551,27 @@ def polonsky_keer(
         p = np.where(vf, 1.0, 0.0)
     else:
         p = np.where(vf, np.maximum(hf - shift, 0.0), 0.0) / op.self_compliance
-    if pmax is not None:
+    if np.isfinite(cap):
         np.minimum(p, cap, out=p)
     if total_pressure is not None:
         s = p.sum()
         if not s > 0:
             p = np.where(vf, 1.0, 0.0)
             s = p.sum()
-        if pmax is None:
+        if not np.isfinite(cap):
             p *= total_pressure / s
         else:
             p /= s / total_pressure  # a first guess of the scale; the cap is enforced below
             np.minimum(p, cap, out=p)
             scale, every, _ = _load_scale(p, total_pressure, cap, -hf, vf)
             _rescale_capped(p, p.copy(), scale, cap, every, p, p, p, 0.0, 0.0, False)
+    return p
 
-    iterate = _iterate_accelerated if accelerate else _iterate_reference
-    p, g, state = iterate(op, shape, hf, vf, p, total_pressure, shift, float(tol), int(max_iter),
-                          cap)
 
-    # final state: displacement and gap of the returned pressure, computed afresh
+def _outcome(op, shape, hf, vf, p, g, state: dict, load_control: bool, shift: float, cap: float,
+             accelerate: bool) -> PKOutcome:
+    """The :class:`PKOutcome` of the final pressure: its displacement and gap computed
+    afresh, the separation from the mean gap on the contact set (load control)."""
     u = op.apply(p.reshape(shape)).ravel()
     s, c, s_sat, c_sat = _gap(u, hf, p, vf, g, shift, cap)
     d = state["d"]
@@ -771,6 +789,19 @@ def _stop(p: np.ndarray, change: float, entered: int, tol: float, state: dict) -
     return False
 
 
+def _conjugation(conj: bool, capped: bool, gz: float, gt: float, gz_old: float) -> float:
+    """``beta`` of the preconditioned conjugate direction: ``gz / gz_old``, or 0 (a restart
+    to steepest descent) when the direction is not to be kept (``conj`` False) or fails
+    Powell's test, or, with a cap, when the residual grew."""
+    if conj and abs(gt) > _POWELL * gz:
+        conj = False
+    if conj and capped and gz * _POWELL > gz_old:
+        # the free set changed so much that the residual grew (the old one may have
+        # been almost solved): the kept direction would swamp the new gradient
+        conj = False
+    return gz / gz_old if conj else 0.0
+
+
 def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_iter, pmax):
     """Preconditioned directions kept across contact-set growth; displacement carried along.
 
@@ -810,13 +841,7 @@ def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_i
         zs, gz, gt = _precondition(stencil, g, gbar, p, t, nx, ny, op.periodic, z, pmax)
         # the load constraint: directions of zero sum on the contact set
         zbar = zs / c if (load_control and c > 0) else 0.0
-        if conj and abs(gt) > _POWELL * gz:
-            conj = False
-        if conj and capped and gz * _POWELL > gz_old:
-            # the free set changed so much that the residual grew (the old one may have
-            # been almost solved): the kept direction would swamp the new gradient
-            conj = False
-        beta = gz / gz_old if conj else 0.0
+        beta = _conjugation(conj, capped, gz, gt, gz_old)
         gz_old = gz if gz > 0 else 1.0
         num = _direction_preconditioned(t, z, zbar, g, gbar, p, beta, pmax)
         if beta != 0.0 and not num > 0.0:

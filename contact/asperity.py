@@ -229,19 +229,103 @@ def _find_separation(model: _Model, target: float, tol: float, max_iter: int):
     return lo, hi, g_lo + target, g_hi + target, it, False
 
 
+def _check_options(jump, nominal_pressure, tol, max_iter, warn: bool) -> tuple[float, float, int]:
+    """``jump`` checked; ``(nominal_pressure, tol, max_iter)`` checked and converted."""
+    if jump not in ("nearest", "deeper", "blend"):
+        raise ValueError(f"jump must be 'nearest', 'deeper' or 'blend', got {jump!r}")
+    nominal_pressure = positive_pressure(nominal_pressure, warn=warn)
+    tol = tolerance(tol, "tol", 1e-3)
+    max_iter = positive_integer(max_iter, "max_iter", "iteration limit")
+    return nominal_pressure, tol, max_iter
+
+
+def _separation(model: _Model, target: float, tol: float, max_iter: int) -> tuple[float, float, int]:
+    """Plane heights ``(lo, hi)`` (m) that carry the load ``target`` (N), and the number of
+    force evaluations; ``lo == hi`` when the force matched, else the two bracket a jump.
+
+    Raises
+    ------
+    RuntimeError
+        The search did not converge in ``max_iter`` iterations.
+    """
+    lo, hi, f_lo, f_hi, it, ok = _find_separation(model, target, tol, max_iter)
+    logger.debug("separation search: %s after %d force evaluations, bracket [%.17g, %.17g] m, forces %.6g N "
+                 "and %.6g N for a target of %.6g N", "converged" if ok else "not converged", it, lo, hi,
+                 f_lo, f_hi, target)
+    if not ok:
+        raise RuntimeError(
+            f"the separation search did not converge in max_iter={max_iter} iterations "
+            f"(bracket [{lo:.17g}, {hi:.17g}] m, forces {f_lo:.6g} N and {f_hi:.6g} N for a "
+            f"target of {target:.6g} N); raise max_iter"
+        )
+    return lo, hi, it
+
+
+def _balanced_state(
+    model: _Model, d: float, target: float, nominal_pressure: float, it: int, jump: str
+) -> ContactResult:
+    """The result of the state with the plane at ``d`` (m), whose force matches the load."""
+    return model.result(
+        d, [model.table(d)], [1.0], target, float(nominal_pressure), "asperity",
+        n_iterations=it, jump=jump, in_jump=False, blend_weight=1.0, force_jump=0.0,
+        other_force=float("nan"), other_separation=float("nan"),
+    )
+
+
+def _jump_state(
+    model: _Model, lo: float, hi: float, target: float, nominal_pressure: float, it: int,
+    jump: str, warn: bool,
+) -> ContactResult:
+    """The result when the load falls inside a jump of F(d) between the planes at ``lo`` and
+    ``hi`` (m): one of the two states (warned when ``warn``), or their blend."""
+    # The deeper state (plane at lo) carries more than the load, the shallower one (plane at
+    # hi, a hair higher) less.
+    tab_lo, tab_hi = model.table(lo), model.table(hi)
+    f_lo, f_hi = float(tab_lo[:, 5].sum()), float(tab_hi[:, 5].sum())
+    force_jump = (f_lo - f_hi) / target
+    bracket = (lo, hi)
+    if jump == "blend":
+        theta = 1.0 if f_lo == f_hi else (target - f_hi) / (f_lo - f_hi)
+        theta = min(max(theta, 0.0), 1.0)
+        return model.result(
+            lo, [tab_lo, tab_hi], [theta, 1.0 - theta], target, float(nominal_pressure),
+            "asperity", n_iterations=it, jump=jump, in_jump=True, blend_weight=theta,
+            force_jump=force_jump, other_force=f_hi, other_separation=hi,
+            separation_bracket=bracket,
+        )
+    deeper = (
+        jump == "deeper"
+        or tab_hi.shape[0] == 0
+        or f_hi <= 0.0
+        or abs(f_lo - target) <= abs(f_hi - target)
+    )
+    d, tab, other_f, other_d = (lo, tab_lo, f_hi, hi) if deeper else (hi, tab_hi, f_lo, lo)
+    force = float(tab[:, 5].sum())
+    message = (
+        f"the requested load {target:.6g} N ({nominal_pressure:.6g} Pa nominal) falls inside "
+        f"a jump of the asperity model's force at separation {lo:.10g} m: F jumps from "
+        f"{f_hi:.6g} N to {f_lo:.6g} N ({force_jump:.3g} of the load) as the plane passes "
+        f"it, so no state of the model carries the load exactly; returned the "
+        f"{'deeper' if deeper else 'shallower'} state with F = {force:.6g} N "
+        f"(force_error = {(force - target) / target:+.3g}); pass jump='blend' for a "
+        "force-balanced mix of the two states that is not a state of the model"
+    )
+    if warn:
+        # stacklevel 4: the caller of solve, past solve and its renamed_keywords wrapper
+        warnings.warn(message, ContactWarning, stacklevel=4)
+    return model.result(
+        d, [tab], [1.0], target, float(nominal_pressure), "asperity", n_iterations=it,
+        jump=jump, in_jump=True, blend_weight=1.0, force_jump=force_jump,
+        other_force=other_f, other_separation=other_d, separation_bracket=bracket,
+        warning=message,
+    )
+
+
 @renamed_keywords(rtol="tol", maxiter="max_iter")
 def solve(
-    surface: Surface,
-    nominal_pressure: float,
-    E: float,
-    nu: float,
-    cone_factor: float = 0.2,
-    counter_face: Sequence[float] | None = None,
-    *,
-    tol: float = 1e-10,
-    max_iter: int = 200,
-    jump: str = "nearest",
-    warn: bool = True,
+    surface: Surface, nominal_pressure: float, E: float, nu: float, cone_factor: float = 0.2,
+    counter_face: Sequence[float] | None = None, *, tol: float = 1e-10, max_iter: int = 200,
+    jump: str = "nearest", warn: bool = True,
 ) -> ContactResult:
     """Press a flat onto a rough surface until it carries a given nominal pressure.
 
@@ -330,70 +414,13 @@ def solve(
     just touched) are not pressures of the model, and the table's geometry and ``p_m`` are
     those of the deeper state with the blended ``F``.
     """
-    if jump not in ("nearest", "deeper", "blend"):
-        raise ValueError(f"jump must be 'nearest', 'deeper' or 'blend', got {jump!r}")
-    nominal_pressure = positive_pressure(nominal_pressure, warn=warn)
-    tol = tolerance(tol, "tol", 1e-3)
-    max_iter = positive_integer(max_iter, "max_iter", "iteration limit")
+    nominal_pressure, tol, max_iter = _check_options(jump, nominal_pressure, tol, max_iter, warn)
     model = _Model(surface, E, nu, cone_factor, counter_face)
     target = float(nominal_pressure) * model.nominal_area
-    lo, hi, f_lo, f_hi, it, ok = _find_separation(model, target, tol, max_iter)
-    logger.debug("separation search: %s after %d force evaluations, bracket [%.17g, %.17g] m, forces %.6g N "
-                 "and %.6g N for a target of %.6g N", "converged" if ok else "not converged", it, lo, hi,
-                 f_lo, f_hi, target)
-    if not ok:
-        raise RuntimeError(
-            f"the separation search did not converge in max_iter={max_iter} iterations "
-            f"(bracket [{lo:.17g}, {hi:.17g}] m, forces {f_lo:.6g} N and {f_hi:.6g} N for a "
-            f"target of {target:.6g} N); raise max_iter"
-        )
+    lo, hi, it = _separation(model, target, tol, max_iter)
     if lo == hi:
-        return model.result(
-            lo, [model.table(lo)], [1.0], target, float(nominal_pressure), "asperity",
-            n_iterations=it, jump=jump, in_jump=False, blend_weight=1.0, force_jump=0.0,
-            other_force=float("nan"), other_separation=float("nan"),
-        )
-    # The load falls inside a jump of F(d): the deeper state (plane at lo) carries more than
-    # the load, the shallower one (plane at hi, a hair higher) less.
-    tab_lo, tab_hi = model.table(lo), model.table(hi)
-    f_lo, f_hi = float(tab_lo[:, 5].sum()), float(tab_hi[:, 5].sum())
-    force_jump = (f_lo - f_hi) / target
-    bracket = (lo, hi)
-    if jump == "blend":
-        theta = 1.0 if f_lo == f_hi else (target - f_hi) / (f_lo - f_hi)
-        theta = min(max(theta, 0.0), 1.0)
-        return model.result(
-            lo, [tab_lo, tab_hi], [theta, 1.0 - theta], target, float(nominal_pressure),
-            "asperity", n_iterations=it, jump=jump, in_jump=True, blend_weight=theta,
-            force_jump=force_jump, other_force=f_hi, other_separation=hi,
-            separation_bracket=bracket,
-        )
-    deeper = (
-        jump == "deeper"
-        or tab_hi.shape[0] == 0
-        or f_hi <= 0.0
-        or abs(f_lo - target) <= abs(f_hi - target)
-    )
-    d, tab, other_f, other_d = (lo, tab_lo, f_hi, hi) if deeper else (hi, tab_hi, f_lo, lo)
-    force = float(tab[:, 5].sum())
-    message = (
-        f"the requested load {target:.6g} N ({nominal_pressure:.6g} Pa nominal) falls inside "
-        f"a jump of the asperity model's force at separation {lo:.10g} m: F jumps from "
-        f"{f_hi:.6g} N to {f_lo:.6g} N ({force_jump:.3g} of the load) as the plane passes "
-        f"it, so no state of the model carries the load exactly; returned the "
-        f"{'deeper' if deeper else 'shallower'} state with F = {force:.6g} N "
-        f"(force_error = {(force - target) / target:+.3g}); pass jump='blend' for a "
-        "force-balanced mix of the two states that is not a state of the model"
-    )
-    if warn:
-        # stacklevel 3: the caller of solve, past the renamed_keywords wrapper
-        warnings.warn(message, ContactWarning, stacklevel=3)
-    return model.result(
-        d, [tab], [1.0], target, float(nominal_pressure), "asperity", n_iterations=it,
-        jump=jump, in_jump=True, blend_weight=1.0, force_jump=force_jump,
-        other_force=other_f, other_separation=other_d, separation_bracket=bracket,
-        warning=message,
-    )
+        return _balanced_state(model, lo, target, nominal_pressure, it, jump)
+    return _jump_state(model, lo, hi, target, nominal_pressure, it, jump, warn)
 
 
 def solve_displacement(

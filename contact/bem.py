@@ -15,6 +15,7 @@ import logging
 import numbers
 import warnings
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 
@@ -85,18 +86,69 @@ def _operator(surface: Surface, e_star: float, periodic: bool, workers: int | No
     return cls(surface.shape, surface.dx, surface.dy, e_star, workers=workers)
 
 
+class _Problem(NamedTuple):
+    """A checked boundary-element problem on the grid of one surface."""
+
+    h: np.ndarray  # heights (m), masked points set to 0
+    valid: np.ndarray  # measured points
+    tol: float
+    max_iter: int
+    accelerate: bool
+    hardness: float | None  # Pa
+    op: PeriodicOperator | NonPeriodicOperator  # compliance, Pa -> m
+    info: dict  # e_star (Pa), periodic, accelerate
+
+
+def _problem(
+    surface: Surface, E, nu, counter_face, tol, max_iter, workers: int | None, accelerate,
+    hardness, nominal_pressure: float | None, periodic,
+) -> _Problem:
+    """The surface, elastic constants and options checked, and the compliance operator.
+
+    ``nominal_pressure`` (Pa, already checked) is None under displacement control.
+    """
+    h, valid = _check_surface(surface)
+    e_star = effective_modulus(E, nu, counter_face)
+    tol, max_iter = _check_options(tol, max_iter, workers)
+    accelerate = flag(accelerate, "accelerate")
+    hardness = _check_hardness(hardness, nominal_pressure)
+    op = _operator(surface, e_star, periodic, workers)
+    info = {"e_star": e_star, "periodic": bool(periodic), "accelerate": accelerate}
+    return _Problem(h, valid, tol, max_iter, accelerate, hardness, op, info)
+
+
+def _load_controlled(problem: _Problem, surface: Surface, nominal_pressure: float) -> PKOutcome:
+    """The constrained conjugate gradient under the load of ``nominal_pressure`` (Pa),
+    started from :func:`~contact._constrained_cg.initial_pressure`."""
+    h, valid, hardness = problem.h, problem.valid, problem.hardness
+    e_star = problem.info["e_star"]
+    p0 = initial_pressure(h, valid, float(nominal_pressure), e_star, surface.dx, surface.dy,
+                          hardness=hardness)
+    return polonsky_keer(
+        problem.op,
+        h,
+        valid,
+        total_pressure=float(nominal_pressure) * int(valid.sum()),
+        tol=problem.tol,
+        max_iter=problem.max_iter,
+        p0=p0,
+        accelerate=problem.accelerate,
+        overwrite_p0=True,
+        pmax=hardness,
+    )
+
+
 def _result(
     out: PKOutcome,
     surface: Surface,
-    valid: np.ndarray,
+    problem: _Problem,
     nominal_pressure: float | None,
     method: str,
-    info: dict,
-    max_iter: int,
-    tol: float,
     warn: bool = True,
-    hardness: float | None = None,
 ) -> ContactResult:
+    """The :class:`~contact.result.ContactResult` of an iteration's outcome; warns (for the
+    caller of the public function) when it did not converge."""
+    valid, max_iter, tol, hardness = problem.valid, problem.max_iter, problem.tol, problem.hardness
     if not np.isfinite(out.pressure).all() or out.reason.startswith(("non-finite", "pressure")):
         raise FloatingPointError(
             f"the boundary-element iteration broke down after {out.n_iterations} "
@@ -128,7 +180,7 @@ def _result(
             f"tol={tol:g}. The result is marked converged=False; raise max_iter or loosen tol.")
         if warn:
             warnings.warn(message, BEMConvergenceWarning, stacklevel=3)
-    info = dict(info)
+    info = dict(problem.info)
     info.update(
         warning=message,
         reason=out.reason,
@@ -163,21 +215,10 @@ def _result(
     )
 
 
-def solve_bem(
-    surface: Surface,
-    nominal_pressure: float,
-    E: float,
-    nu: float,
-    *,
-    periodic: bool = False,
-    tol: float = 1e-8,
-    max_iter: int = 1000,
-    counter_face: Sequence[float] | None = None,
-    workers: int | None = None,
-    accelerate: bool = True,
-    warn: bool = True,
-    hardness: float | None = None,
-) -> ContactResult:
+def solve_bem(surface: Surface, nominal_pressure: float, E: float, nu: float, *, periodic: bool = False,
+              tol: float = 1e-8, max_iter: int = 1000, counter_face: Sequence[float] | None = None,
+              workers: int | None = None, accelerate: bool = True, warn: bool = True,
+              hardness: float | None = None) -> ContactResult:
     """Elastic contact of a flat with a rough surface under a given nominal pressure.
 
     Boundary-element solution of frictionless normal contact between a linear elastic
@@ -290,31 +331,10 @@ def solve_bem(
     A. Almqvist, F. Sahlin, R. Larsson, S. Glavatskih, Tribol. Int. 40 (2007) 574-579.
     """
     nominal_pressure = positive_pressure(nominal_pressure, warn=warn)
-    h, valid = _check_surface(surface)
-    e_star = effective_modulus(E, nu, counter_face)
-    tol, max_iter = _check_options(tol, max_iter, workers)
-    accelerate = flag(accelerate, "accelerate")
-    hardness = _check_hardness(hardness, nominal_pressure)
-    op = _operator(surface, e_star, periodic, workers)
-    p0 = initial_pressure(h, valid, float(nominal_pressure), e_star, surface.dx, surface.dy,
-                          hardness=hardness)
-    out = polonsky_keer(
-        op,
-        h,
-        valid,
-        total_pressure=float(nominal_pressure) * int(valid.sum()),
-        tol=tol,
-        max_iter=max_iter,
-        p0=p0,
-        accelerate=accelerate,
-        overwrite_p0=True,
-        pmax=hardness,
-    )
-    return _result(
-        out, surface, valid, nominal_pressure, "bem",
-        {"e_star": e_star, "periodic": bool(periodic), "accelerate": accelerate},
-        max_iter, tol, warn, hardness,
-    )
+    problem = _problem(surface, E, nu, counter_face, tol, max_iter, workers, accelerate, hardness,
+                       nominal_pressure, periodic)
+    out = _load_controlled(problem, surface, nominal_pressure)
+    return _result(out, surface, problem, nominal_pressure, "bem", warn)
 
 
 def solve_bem_displacement(
@@ -372,18 +392,10 @@ def solve_bem_displacement(
     mean pressure is unbounded, so a rigid-body approach has no absolute meaning there.
     """
     separation = finite_separation(separation)
-    h, valid = _check_surface(surface)
-    e_star = effective_modulus(E, nu, counter_face)
-    tol, max_iter = _check_options(tol, max_iter, workers)
-    accelerate = flag(accelerate, "accelerate")
-    hardness = _check_hardness(hardness, None)
-    op = _operator(surface, e_star, False, workers)
+    problem = _problem(surface, E, nu, counter_face, tol, max_iter, workers, accelerate, hardness,
+                       None, False)
     out = polonsky_keer(
-        op, h, valid, separation=float(separation), tol=tol, max_iter=max_iter,
-        accelerate=accelerate, pmax=hardness,
+        problem.op, problem.h, problem.valid, separation=float(separation), tol=problem.tol,
+        max_iter=problem.max_iter, accelerate=problem.accelerate, pmax=problem.hardness,
     )
-    return _result(
-        out, surface, valid, None, "bem-displacement",
-        {"e_star": e_star, "periodic": False, "accelerate": accelerate},
-        max_iter, tol, warn, hardness,
-    )
+    return _result(out, surface, problem, None, "bem-displacement", warn)

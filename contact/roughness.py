@@ -269,6 +269,82 @@ def hurst_exponent(
     return _physical_hurst(hurst_fit(h, dx, dy, valid, max_lag), min_r2)
 
 
+def _check_options(groups, stencil: str, acf_threshold: float) -> tuple[str, ...]:
+    """The parameter groups named by ``groups``; ``stencil`` and ``acf_threshold`` checked."""
+    chosen = parameter_groups(groups)
+    iso.check_stencil(stencil)
+    if "spatial" in chosen and not 0 < acf_threshold < 1:
+        raise ValueError(f"acf_threshold must be in (0, 1), got {acf_threshold!r}")
+    return chosen
+
+
+def _field_parameters(
+    z: np.ndarray, valid: np.ndarray, dx: float, dy: float, stencil: str
+) -> dict[str, float]:
+    """Height (Sa to Sz, m), gradient (Sdq, Sdr) and summit (Spd, Spc) parameters of the
+    levelled heights ``z`` (m).
+
+    Raises
+    ------
+    ValueError
+        A flat surface (Sq = 0).
+    """
+    zv = z[valid]
+    sq = math.sqrt(float(np.mean(zv * zv)))
+    if sq == 0:
+        raise ValueError(
+            "the surface is flat (Sq = 0): Ssk, Sku and the Hurst exponent are undefined"
+        )
+    sp, sv = float(zv.max()), float(-zv.min())
+    zx, zy = iso.gradient(z, valid, dx, dy, stencil)
+    grad2 = zx * zx + zy * zy
+    ii, jj = find_summits(np.ascontiguousarray(z), np.ascontiguousarray(valid))
+    if ii.size:
+        zxx = (z[ii + 1, jj] - 2 * z[ii, jj] + z[ii - 1, jj]) / dx**2
+        zyy = (z[ii, jj + 1] - 2 * z[ii, jj] + z[ii, jj - 1]) / dy**2
+        spc = float(-np.mean(0.5 * (zxx + zyy)))
+    else:
+        spc = float("nan")
+    area = valid.sum() * dx * dy
+    return {
+        "Sa": float(np.mean(np.abs(zv))),
+        "Sq": sq,
+        "Ssk": float(np.mean(zv**3)) / sq**3,
+        "Sku": float(np.mean(zv**4)) / sq**4,
+        "Sp": sp,
+        "Sv": sv,
+        "Sz": sp + sv,
+        "Sdq": math.sqrt(float(np.mean(grad2))) if grad2.size else float("nan"),
+        "Sdr": float(np.mean(np.sqrt(1.0 + grad2)) - 1.0) if grad2.size else float("nan"),
+        "Spd": ii.size / area,
+        "Spc": spc,
+    }
+
+
+def _hurst_parameters(fit: HurstFit, hurst: float) -> dict[str, float]:
+    """``hurst``, the fractal dimension and the quality of the structure-function ``fit``."""
+    return {
+        "hurst": hurst,
+        "fractal_dimension": 3.0 - hurst,
+        "hurst_r2": fit.r2,
+        "hurst_lag_min": fit.lag_min,
+        "hurst_lag_max": fit.lag_max,
+    }
+
+
+def _group_parameters(
+    chosen: tuple[str, ...], z: np.ndarray, valid: np.ndarray, dx: float, dy: float,
+    acf_threshold: float,
+) -> dict[str, float]:
+    """The parameters of the ``"material_ratio"`` and ``"spatial"`` groups among ``chosen``."""
+    values: dict[str, float] = {}
+    if "material_ratio" in chosen:
+        values.update(iso.sk_parameters(z[valid]))
+    if "spatial" in chosen:
+        values.update(iso.spatial_parameters(z, valid, dx, dy, acf_threshold))
+    return values
+
+
 def roughness_parameters(
     h: np.ndarray,
     dx: float,
@@ -359,52 +435,12 @@ def roughness_parameters(
     """
     import pandas as pd
 
-    chosen = parameter_groups(groups)
-    iso.check_stencil(stencil)
-    if "spatial" in chosen and not 0 < acf_threshold < 1:
-        raise ValueError(f"acf_threshold must be in (0, 1), got {acf_threshold!r}")
+    chosen = _check_options(groups, stencil, acf_threshold)
     if valid is None:
         valid = np.ones(h.shape, dtype=bool)
     z = level_heights(h, valid, dx, dy, level)
-    zv = z[valid]
-    sq = math.sqrt(float(np.mean(zv * zv)))
-    if sq == 0:
-        raise ValueError(
-            "the surface is flat (Sq = 0): Ssk, Sku and the Hurst exponent are undefined"
-        )
-    sp, sv = float(zv.max()), float(-zv.min())
-    zx, zy = iso.gradient(z, valid, dx, dy, stencil)
-    grad2 = zx * zx + zy * zy
-    ii, jj = find_summits(np.ascontiguousarray(z), np.ascontiguousarray(valid))
-    if ii.size:
-        zxx = (z[ii + 1, jj] - 2 * z[ii, jj] + z[ii - 1, jj]) / dx**2
-        zyy = (z[ii, jj + 1] - 2 * z[ii, jj] + z[ii, jj - 1]) / dy**2
-        spc = float(-np.mean(0.5 * (zxx + zyy)))
-    else:
-        spc = float("nan")
-    area = valid.sum() * dx * dy
+    values = _field_parameters(z, valid, dx, dy, stencil)
     fit = hurst_fit(z, dx, dy, valid)
-    hurst = _physical_hurst(fit, hurst_min_r2, warn)
-    values = {
-        "Sa": float(np.mean(np.abs(zv))),
-        "Sq": sq,
-        "Ssk": float(np.mean(zv**3)) / sq**3,
-        "Sku": float(np.mean(zv**4)) / sq**4,
-        "Sp": sp,
-        "Sv": sv,
-        "Sz": sp + sv,
-        "Sdq": math.sqrt(float(np.mean(grad2))) if grad2.size else float("nan"),
-        "Sdr": float(np.mean(np.sqrt(1.0 + grad2)) - 1.0) if grad2.size else float("nan"),
-        "Spd": ii.size / area,
-        "Spc": spc,
-        "hurst": hurst,
-        "fractal_dimension": 3.0 - hurst,
-        "hurst_r2": fit.r2,
-        "hurst_lag_min": fit.lag_min,
-        "hurst_lag_max": fit.lag_max,
-    }
-    if "material_ratio" in chosen:
-        values.update(iso.sk_parameters(zv))
-    if "spatial" in chosen:
-        values.update(iso.spatial_parameters(z, valid, dx, dy, acf_threshold))
+    values.update(_hurst_parameters(fit, _physical_hurst(fit, hurst_min_r2, warn)))
+    values.update(_group_parameters(chosen, z, valid, dx, dy, acf_threshold))
     return pd.Series(values, name="roughness", dtype=float)

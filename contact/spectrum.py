@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -389,6 +390,129 @@ def _knee(x: np.ndarray, y: np.ndarray, w: np.ndarray) -> int | None:
     return None
 
 
+def _check_grid(surface) -> Surface:
+    """``surface`` when it is a :class:`~contact.surface.Surface` with enough points per side
+    for a spectrum fit."""
+    surface = require_surface(surface)
+    nx, ny = surface.shape
+    if min(nx, ny) < MIN_POINTS:
+        raise ValueError(
+            f"fit_spectrum needs at least {MIN_POINTS} x {MIN_POINTS} points to resolve a "
+            f"power law over more than an octave, got {surface.shape}"
+        )
+    return surface
+
+
+def _plane_rq(surface: Surface) -> float:
+    """RMS (m) of the measured heights about their least-squares plane; a flat surface is
+    refused."""
+    h, valid = surface_arrays(surface)
+    z = level_heights(h, valid, surface.dx, surface.dy, "plane")[valid]
+    rq = math.sqrt(float(np.mean(z * z)))
+    if rq <= 1e-12 * float(np.max(np.abs(h[valid]))):
+        # zero up to rounding: a plane, or constant heights
+        raise ValueError("the surface is flat (Rq = 0 about its mean plane); it has no spectrum")
+    return rq
+
+
+def _rings(surface: Surface) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The rings with a positive mean PSD: their |q| (rad/m), their numbers of wavevectors
+    (as floats, the fit's weights), ``log q`` and ``log C``."""
+    q, c, counts = ring_means(*spectrum_2d(surface), ring_edges(surface))
+    positive = (counts > 0) & (c > 0)
+    q, c, counts = q[positive], c[positive], counts[positive].astype(float)
+    return q, counts, np.log(q), np.log(c)
+
+
+def _grid_limits(surface: Surface) -> tuple[float, float]:
+    """The lowest wavevector ``2π / max(Lx, Ly)`` and the Nyquist wavevector
+    ``π / max(dx, dy)`` of the surface's grid, rad/m."""
+    lx, ly = surface.size
+    return 2 * math.pi / max(lx, ly), math.pi / max(surface.dx, surface.dy)
+
+
+class _FitRange(NamedTuple):
+    """The rings entering the fit and the wavevectors that bound the self-affine range."""
+
+    sel: np.ndarray  # the rings fitted
+    lo: float  # rad/m, the range searched for rings
+    hi: float  # rad/m
+    q_r: float  # rad/m, roll-off
+    q_s: float  # rad/m, cut-off
+    rolloff: bool  # q_r detected (else the grid's lowest wavevector)
+    cutoff: bool  # q_s detected (else the Nyquist wavevector)
+
+
+def _given_range(surface: Surface, q_range, q: np.ndarray) -> _FitRange:
+    """The rings inside ``q_range`` (rad/m), its two ends checked; ``q_r`` and ``q_s`` are the
+    grid's limits."""
+    try:
+        lo, hi = (float(v) for v in q_range)
+    except (TypeError, ValueError):
+        raise ValueError(f"q_range must be a pair (q_min, q_max) in rad/m, got {q_range!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+        raise ValueError(f"q_range must be 0 < q_min < q_max in rad/m, got {q_range!r}")
+    return _FitRange((q >= lo) & (q <= hi), lo, hi, *_grid_limits(surface), False, False)
+
+
+def _detected_range(
+    surface: Surface, q: np.ndarray, counts: np.ndarray, x: np.ndarray, y: np.ndarray
+) -> _FitRange:
+    """The default fitted range (see :func:`fit_spectrum`, Notes), with a cut-off and a
+    roll-off knee detected in it."""
+    q_r, q_s = _grid_limits(surface)
+    rolloff, cutoff = False, False
+    lx, ly = surface.size
+    lo, hi = FIT_START * 2 * math.pi / min(lx, ly), FIT_END * q_s
+    # A cliff between neighbouring rings, far steeper than q^-4: a short-wavelength cut-off.
+    steepest = -4.0 * np.diff(x) - math.log(CUTOFF_DROP)
+    cliff = np.nonzero((np.diff(y) < steepest) & (q[:-1] >= lo))[0]
+    if cliff.size:
+        k = int(cliff[0])
+        q_s, cutoff = float(math.sqrt(q[k] * q[k + 1])), True
+        hi = min(hi, q[max(k - 2, 0)] * (1 + 1e-12))
+    sel = (q >= lo) & (q <= hi)
+    if sel.sum() >= 8:
+        knee = _knee(x[sel], y[sel], counts[sel])
+        if knee is not None:
+            q_r, rolloff = float(q[sel][knee]), True
+            sel &= q >= q_r * (1 - 1e-12)
+    return _FitRange(sel, lo, hi, q_r, q_s, rolloff, cutoff)
+
+
+def _spectrum_fit(
+    surface: Surface, rq: float, filled: float, q: np.ndarray, counts: np.ndarray,
+    x: np.ndarray, y: np.ndarray, fit_range: _FitRange,
+) -> SpectrumFit:
+    """The line fitted to the rings of ``fit_range``, as a :class:`SpectrumFit`; fewer than 4
+    rings are refused."""
+    sel, lo, hi = fit_range.sel, fit_range.lo, fit_range.hi
+    n = int(sel.sum())
+    if n < 4:
+        raise ValueError(
+            f"only {n} radial PSD rings lie in the fitted range {lo:.4g}–{hi:.4g} rad/m; at "
+            "least 4 are needed (use a larger surface or a wider q_range)"
+        )
+    slope, _, se, r2, _ = _line(x[sel], y[sel], counts[sel])
+    return SpectrumFit(
+        rq=rq,
+        hurst=float(-slope / 2 - 1),
+        hurst_se=float(se / 2),
+        q_r=float(fit_range.q_r),
+        q_s=float(fit_range.q_s),
+        q_fit_min=float(q[sel].min()),
+        q_fit_max=float(q[sel].max()),
+        r2=float(min(max(r2, 0.0), 1.0)),
+        n_bins=n,
+        rolloff_detected=fit_range.rolloff,
+        cutoff_detected=fit_range.cutoff,
+        shape=surface.shape,
+        dx=surface.dx,
+        dy=surface.dy,
+        filled_fraction=filled,
+    )
+
+
 def fit_spectrum(
     surface: Surface,
     *,
@@ -461,72 +585,12 @@ def fit_spectrum(
     >>> round(fit.hurst, 1), fit.rolloff_detected, fit.n_bins
     (0.5, False, 17)
     """
-    surface = require_surface(surface)
-    nx, ny = surface.shape
-    if min(nx, ny) < MIN_POINTS:
-        raise ValueError(
-            f"fit_spectrum needs at least {MIN_POINTS} x {MIN_POINTS} points to resolve a "
-            f"power law over more than an octave, got {surface.shape}"
-        )
-    h, valid = surface_arrays(surface)
-    z = level_heights(h, valid, surface.dx, surface.dy, "plane")[valid]
-    rq = math.sqrt(float(np.mean(z * z)))
-    if rq <= 1e-12 * float(np.max(np.abs(h[valid]))):
-        # zero up to rounding: a plane, or constant heights
-        raise ValueError("the surface is flat (Rq = 0 about its mean plane); it has no spectrum")
+    surface = _check_grid(surface)
+    rq = _plane_rq(surface)
     surface, filled = filled_surface(surface, "fit_spectrum", max_filled)
-    lx, ly = surface.size
-    q_low = 2 * math.pi / max(lx, ly)
-    q_nyq = math.pi / max(surface.dx, surface.dy)
-    q, c, counts = ring_means(*spectrum_2d(surface), ring_edges(surface))
-    positive = (counts > 0) & (c > 0)
-    q, c, counts = q[positive], c[positive], counts[positive].astype(float)
-    x, y = np.log(q), np.log(c)
-    q_r, q_s, rolloff, cutoff = q_low, q_nyq, False, False
+    q, counts, x, y = _rings(surface)
     if q_range is not None:
-        try:
-            lo, hi = (float(v) for v in q_range)
-        except (TypeError, ValueError):
-            raise ValueError(f"q_range must be a pair (q_min, q_max) in rad/m, got {q_range!r}") from None
-        if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
-            raise ValueError(f"q_range must be 0 < q_min < q_max in rad/m, got {q_range!r}")
-        sel = (q >= lo) & (q <= hi)
+        fit_range = _given_range(surface, q_range, q)
     else:
-        lo, hi = FIT_START * 2 * math.pi / min(lx, ly), FIT_END * q_nyq
-        # A cliff between neighbouring rings, far steeper than q^-4: a short-wavelength cut-off.
-        steepest = -4.0 * np.diff(x) - math.log(CUTOFF_DROP)
-        cliff = np.nonzero((np.diff(y) < steepest) & (q[:-1] >= lo))[0]
-        if cliff.size:
-            k = int(cliff[0])
-            q_s, cutoff = float(math.sqrt(q[k] * q[k + 1])), True
-            hi = min(hi, q[max(k - 2, 0)] * (1 + 1e-12))
-        sel = (q >= lo) & (q <= hi)
-        if sel.sum() >= 8:
-            knee = _knee(x[sel], y[sel], counts[sel])
-            if knee is not None:
-                q_r, rolloff = float(q[sel][knee]), True
-                sel &= q >= q_r * (1 - 1e-12)
-    n = int(sel.sum())
-    if n < 4:
-        raise ValueError(
-            f"only {n} radial PSD rings lie in the fitted range {lo:.4g}–{hi:.4g} rad/m; at "
-            "least 4 are needed (use a larger surface or a wider q_range)"
-        )
-    slope, _, se, r2, _ = _line(x[sel], y[sel], counts[sel])
-    return SpectrumFit(
-        rq=rq,
-        hurst=float(-slope / 2 - 1),
-        hurst_se=float(se / 2),
-        q_r=float(q_r),
-        q_s=float(q_s),
-        q_fit_min=float(q[sel].min()),
-        q_fit_max=float(q[sel].max()),
-        r2=float(min(max(r2, 0.0), 1.0)),
-        n_bins=n,
-        rolloff_detected=rolloff,
-        cutoff_detected=cutoff,
-        shape=(nx, ny),
-        dx=surface.dx,
-        dy=surface.dy,
-        filled_fraction=filled,
-    )
+        fit_range = _detected_range(surface, q, counts, x, y)
+    return _spectrum_fit(surface, rq, filled, q, counts, x, y, fit_range)
