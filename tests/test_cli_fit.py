@@ -609,19 +609,19 @@ def test_python_m_glstat_cli_fit(tmp_path):
 # large samples: the goodness-of-fit replicates adapt to n
 # ---------------------------------------------------------------------------------------------
 def test_gof_resamples_default_adapts_to_the_sample_size():
-    assert cli_fit.gof_resamples_for(1000, None) == (cli_fit.GOF_RESAMPLES, None)
-    b, note = cli_fit.gof_resamples_for(200_000, None)
-    assert b == cli_fit.GOF_BUDGET // 200_000 == 50
+    assert cli_fit_options.gof_resamples_for(1000, None) == (cli_fit_options.GOF_RESAMPLES, None)
+    b, note = cli_fit_options.gof_resamples_for(200_000, None)
+    assert b == cli_fit_options.GOF_BUDGET // 200_000 == 50
     assert "50 replicates instead of 99" in note and "--gof-resamples 99" in note
-    b, note = cli_fit.gof_resamples_for(10_000_000, None)
+    b, note = cli_fit_options.gof_resamples_for(10_000_000, None)
     assert b == 0 and "p-values not computed" in note and "--gof-resamples B" in note
     # an explicit value is kept whatever n
-    assert cli_fit.gof_resamples_for(10_000_000, 5) == (5, None)
-    assert cli_fit.gof_resamples_for(100, 0) == (0, None)
+    assert cli_fit_options.gof_resamples_for(10_000_000, 5) == (5, None)
+    assert cli_fit_options.gof_resamples_for(100, 0) == (0, None)
     for n in (1, 10**5, 2 * 10**5, 5 * 10**5, 10**6, 10**7):
-        b, _ = cli_fit.gof_resamples_for(n, None)
-        assert b * n <= cli_fit.GOF_BUDGET
-        assert b == 0 or cli_fit.GOF_MIN_RESAMPLES <= b <= cli_fit.GOF_RESAMPLES
+        b, _ = cli_fit_options.gof_resamples_for(n, None)
+        assert b * n <= cli_fit_options.GOF_BUDGET
+        assert b == 0 or cli_fit_options.GOF_MIN_RESAMPLES <= b <= cli_fit_options.GOF_RESAMPLES
     assert "B x n <= 1e+07" in cli_fit.build_parser().format_help().replace("\n", " ").replace("  ", " ")
 
 

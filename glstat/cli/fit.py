@@ -29,6 +29,8 @@ from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
+from _glstat_runtime.validation import draws_or_count
+
 from ..errors import FitError
 from .fit_options import (
     METHOD_NAMES,
@@ -98,6 +100,17 @@ def phase(label: str, delay: float = PHASE_NOTICE):
         if shown.is_set():
             print(f"glstat fit: {label}: done in {time.perf_counter() - t0:.1f} s", file=sys.stderr,
                   flush=True)
+
+
+def check_whole_points(args: argparse.Namespace) -> None:
+    """Refuse a fixed ``--n-max`` that is not a whole number of points (the bootstrap's
+    prediction counts draws)."""
+    try:
+        draws_or_count(args.n_max if args.count is None else None, args.count, whole=True)
+    except ValueError:
+        lo, hi = np.floor(args.n_max), np.ceil(args.n_max)
+        raise InputError(f"--n-max must be a whole number of points, got {args.n_max:g}; give "
+                         f"{lo:g} or {hi:g}") from None
 
 
 def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
@@ -225,6 +238,7 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
         No GLD of the requested kind can be fitted.
     """
     check_options(args)
+    check_whole_points(args)
     with phase(f"reading {args.file}"):
         sample = read_sample(args.file, args.column, args.nan_policy, sep=args.sep,
                              decimal=args.decimal)

@@ -16,7 +16,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..prediction import MaximumPrediction
     from ..resampling import BootstrapFit
 
-__all__ = ["FitResults", "collect_notes", "damage_summary", "maximum_summary", "support_reason"]
+__all__ = ["FitResults", "collect_notes", "damage_summary", "maximum_summary", "prediction_rows",
+           "support_reason"]
 
 
 @dataclass
@@ -42,12 +43,14 @@ class FitResults:
     prediction : glstat.prediction.MaximumPrediction or None
         The bootstrap's maximum and damage (None with ``--bootstrap 0``).
     maximum : dict or None
-        Maximum of ``--n-max`` values: ``n``, ``mean``, ``low``, ``high``, the full-sample
-        fit's median and interval, and (with a bootstrap) the mixture interval and table.
+        Maximum of ``--n-max`` values: ``n``, ``mean``, ``low``, ``high`` (with a bootstrap,
+        the ``maximum`` row of ``prediction.to_frame()``), the full-sample fit's median and
+        interval, and (with a bootstrap) the mixture interval and table.
     damage : dict or None
         Damage at ``--hardness``: ``hardness``, ``n``, ``area_factors``, ``points``,
         ``estimate`` (damage), ``integrity``, ``low``, ``high`` (the damage interval; None
-        without bootstrap), ``reason`` (why it is exactly
+        without bootstrap; with a bootstrap all four are the ``damage`` and ``integrity``
+        rows of ``prediction.to_frame()``), ``reason`` (why it is exactly
         0 or 1 when the hardness lies outside the fitted support, else None).
     notes : list of str
         Warnings raised while fitting (e.g. failed bootstrap resamples).
@@ -94,20 +97,38 @@ def collect_notes(caught, notes: list[str]) -> None:
             notes.append(msg)
 
 
+def prediction_rows(res: FitResults, quantity: str) -> Any:
+    """The rows of ``quantity`` (``"maximum"``, ``"damage"``, ``"integrity"``) in the
+    bootstrap prediction's table (:meth:`glstat.MaximumPrediction.to_frame`), or None without
+    a bootstrap or when the prediction has no such rows."""
+    if res.prediction is None:
+        return None
+    frame = res.prediction.to_frame()
+    rows = frame[frame["quantity"] == quantity]
+    return None if rows.empty else rows
+
+
 def maximum_summary(res: FitResults, n_max: float, level: float, count=None) -> dict[str, Any]:
+    """The maximum of ``--n-max`` values: with a bootstrap, the prediction's own numbers (mean
+    and interval of one random maximum per bootstrap GLD, the mixture and the full-sample
+    maximum); without, the full-sample fit's maximum alone."""
     from ..extremes.order_statistics import maximum
 
-    full = maximum(res.fit.dist, count=count) if count is not None else maximum(res.fit.dist, n_max)
+    bm = None if res.prediction is None else res.prediction.maximum
+    if bm is not None:
+        full = bm.full
+    else:
+        full = maximum(res.fit.dist, count=count) if count is not None else maximum(res.fit.dist, n_max)
     a = (1.0 - level) / 2.0
     out: dict[str, Any] = {"n": float(n_max), "count": count, "confidence_level": level,
                            "full_fit_median": float(full.median()),
                            "full_fit_low": float(full.ppf(a)), "full_fit_high": float(full.isf(a)),
                            "dist": full}
-    bm = None if res.prediction is None else res.prediction.maximum
-    if bm is not None:
-        lo, hi = bm.interval()
+    row = prediction_rows(res, "maximum")
+    if bm is not None and row is not None:
         mlo, mhi = bm.mixture_interval()
-        out.update(mean=bm.mean, low=lo, high=hi, mixture_low=mlo, mixture_high=mhi,
+        out.update(mean=float(row["estimate"].iloc[0]), low=float(row["low"].iloc[0]),
+                   high=float(row["high"].iloc[0]), mixture_low=mlo, mixture_high=mhi,
                    table=bm.summary(), dist=bm.mixture)
     else:
         mean = float(full.mean())
@@ -127,24 +148,32 @@ def support_reason(hardness: float, support: tuple[float, float]) -> str | None:
 
 
 def damage_summary(res: FitResults, hardness: float, n: float, factors: np.ndarray, level: float,
-            count=None) -> dict[str, Any]:
-    from ..extremes.damage import damage_probability, integrity_probability
-
+                   count=None) -> dict[str, Any]:
+    """The damage at ``--hardness``: with a bootstrap, the prediction's own estimate (its
+    full-sample fit) and interval, and its integrity; without, the full-sample fit's."""
     reason = support_reason(hardness, res.support)
-    nn = None if count is not None else n
-    est = np.asarray(damage_probability(res.fit.dist, hardness, nn, factors, count=count,
-                                        outside_support="limit"), dtype=float)
-    keep = np.asarray(integrity_probability(res.fit.dist, hardness, nn, factors, count=count,
-                                            outside_support="limit"), dtype=float)
+    damage, integrity = prediction_rows(res, "damage"), prediction_rows(res, "integrity")
     out: dict[str, Any] = {"hardness": hardness, "n": float(n), "count": count, "area_factors": factors,
-                           "points": factors * n, "estimate": est, "integrity": keep,
+                           "points": factors * n, "estimate": None, "integrity": None,
                            "low": None, "high": None,
                            "confidence_level": level, "reason": reason}
-    bp = None if res.prediction is None else res.prediction.damage
-    if bp is not None and res.boot is not None:
-        out["low"], out["high"] = np.asarray(bp.low, dtype=float), np.asarray(bp.high, dtype=float)
+    if damage is None or integrity is None or res.boot is None:
+        from ..extremes.damage import damage_probability, integrity_probability
+
+        nn = None if count is not None else n
+        out["estimate"] = np.asarray(damage_probability(res.fit.dist, hardness, nn, factors, count=count,
+                                                        outside_support="limit"), dtype=float)
+        out["integrity"] = np.asarray(integrity_probability(res.fit.dist, hardness, nn, factors,
+                                                            count=count, outside_support="limit"),
+                                      dtype=float)
+        return out
+    for key, rows, column in (("estimate", damage, "estimate"), ("integrity", integrity, "estimate"),
+                              ("low", damage, "low"), ("high", damage, "high")):
+        out[key] = rows[column].to_numpy(dtype=float)
+    bp = res.prediction.damage if res.prediction is not None else None
+    if bp is not None:
         out["boot_values"] = bp.values
-        sup = np.array([d.support() for d in res.boot.dists()], dtype=float)
-        out["n_boot_above_support"] = int(np.sum(hardness >= sup[:, 1]))
-        out["n_boot_below_support"] = int(np.sum(hardness <= sup[:, 0]))
+    sup = np.array([d.support() for d in res.boot.dists()], dtype=float)
+    out["n_boot_above_support"] = int(np.sum(hardness >= sup[:, 1]))
+    out["n_boot_below_support"] = int(np.sum(hardness <= sup[:, 0]))
     return out
