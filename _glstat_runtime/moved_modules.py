@@ -37,7 +37,7 @@ class MovedModule(types.ModuleType):
         return sorted(set(dir(importlib.import_module(self.__dict__["_moved_to"]))))
 
 
-def register(moves: dict[str, str]) -> dict[str, MovedModule]:
+def register(moves: dict[str, str]) -> dict[str, types.ModuleType]:
     """Place a stand-in in :data:`sys.modules` for each ``old: new`` module path not imported yet.
 
     Returns
@@ -45,7 +45,7 @@ def register(moves: dict[str, str]) -> dict[str, MovedModule]:
     dict
         The stand-ins by their last name (what the parent package's ``__getattr__`` returns).
     """
-    out = {}
+    out: dict[str, types.ModuleType] = {}
     for old, new in moves.items():
         module = sys.modules.get(old)
         if module is None:
