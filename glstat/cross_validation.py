@@ -293,16 +293,9 @@ def _check_fits(fits) -> list[tuple[str, str]]:
 
 
 def cross_validate_maximum(
-    data,
-    fits: Sequence[tuple[str, str]] = (("rs", "moments"),),
-    *,
-    n_blocks: int = 25,
-    block_size: int | None = None,
-    threshold: float | None = None,
-    confidence_level: float = 0.9,
-    n_resamples: int = 200,
-    shuffle: bool = True,
-    rng=None,
+    data, fits: Sequence[tuple[str, str]] = (("rs", "moments"),), *, n_blocks: int = 25,
+    block_size: int | None = None, threshold: float | None = None, confidence_level: float = 0.9,
+    n_resamples: int = 200, shuffle: bool = True, rng=None,
 ) -> MaximumCrossValidation:
     """Block cross-validation of the predicted maximum of m values.
 
@@ -391,44 +384,69 @@ def cross_validate_maximum(
     check by block cross-validation: passed (30 blocks of 50 values, each predicted from the
     other 1450 by RS moments, 50 resamples)
     """
-    from .prediction import predict_maximum
-
     x = _sample(data)
     k, m = _blocks(x.size, n_blocks, block_size)
-    pairs = _check_fits(fits)
-    level = check_level(confidence_level)
-    b_res = check_n_resamples(n_resamples)
+    pairs, level = _check_fits(fits), check_level(confidence_level)
+    b_res, threshold = check_n_resamples(n_resamples), _check_threshold(threshold)
+    blocks, seeds = _cut_into_blocks(x.size, k, m, shuffle, rng)
+    rows, notes = _predict_blocks(x, blocks, seeds, pairs, threshold, level, b_res)
+    return _result(rows, k, m, x.size, level, threshold, b_res, shuffle, notes)
+
+
+def _check_threshold(threshold) -> float | None:
+    """``threshold`` as a float (units of the data), or None without one."""
     if threshold is not None:
         if isinstance(threshold, (bool, np.bool_)) or not isinstance(threshold, numbers.Real) \
                 or not math.isfinite(float(threshold)):
             raise ValueError(f"threshold must be a finite number (units of the data), got {threshold!r}")
         threshold = float(threshold)
+    return threshold
+
+
+def _cut_into_blocks(n_values: int, k: int, m: int, shuffle: bool, rng) -> tuple[np.ndarray, np.ndarray]:
+    """The indices of the K blocks of m values (a K × m array; shuffled with ``rng`` or in
+    the data's order) and one bootstrap seed per block, both drawn from one generator."""
     g = np.random.default_rng(rng)
-    order = g.permutation(x.size) if shuffle else np.arange(x.size)
+    order = g.permutation(n_values) if shuffle else np.arange(n_values)
     seeds = g.integers(0, 2**63, size=k)
-    blocks = order[: k * m].reshape(k, m)
+    return order[: k * m].reshape(k, m), seeds
+
+
+def _predict_blocks(x, blocks, seeds, pairs, threshold, level, b_res) -> tuple[list[dict], list[str]]:
+    """One row of :data:`COLUMNS` per block, each predicted from the other blocks, and the
+    notes of the folds (each message once, in order of appearance)."""
     rows = []
     notes: list[str] = []
-    for b in range(k):
-        test = x[blocks[b]]
-        train = x[np.delete(blocks, b, axis=0).ravel()]
-        obs = float(test.max())
-        row = {"block": b, "size": m, "observed": obs, "low": math.nan, "high": math.nan,
-               "covered": None, "pit": math.nan, "predicted_damage": math.nan,
-               "damaged": None if threshold is None else bool(obs > threshold), "fit": ""}
-        p = predict_maximum(train, pairs, n=m, threshold=threshold, n_resamples=b_res,
-                            confidence_level=level, rng=int(seeds[b]))
-        for note in ((f"block {b}: no fit ({p.note})",) if not p.ok else ()) + p.notes:
+    for b in range(blocks.shape[0]):
+        row, fold_notes = _predict_block(x, blocks, b, int(seeds[b]), pairs, threshold, level, b_res)
+        for note in fold_notes:
             if note not in notes:
                 notes.append(note)
-        if p.ok and p.maximum is not None:
-            lo, hi = p.maximum.mixture_interval()
-            row.update(low=lo, high=hi, covered=bool(lo <= obs <= hi),
-                       pit=float(p.maximum.full.cdf(obs)), fit=f"{p.param} {p.method}")
-            if p.damage is not None:
-                row["predicted_damage"] = float(np.ravel(p.damage.estimate)[0])
         rows.append(row)
-    return _result(rows, k, m, x.size, level, threshold, b_res, shuffle, notes)
+    return rows, notes
+
+
+def _predict_block(x, blocks, b, seed, pairs, threshold, level, b_res) -> tuple[dict, tuple[str, ...]]:
+    """Block ``b``'s row: its observed maximum against the prediction from the other blocks,
+    and the fold's notes (no fit, warnings of its fits)."""
+    from .prediction import predict_maximum
+
+    m = blocks.shape[1]
+    test = x[blocks[b]]
+    train = x[np.delete(blocks, b, axis=0).ravel()]
+    obs = float(test.max())
+    row = {"block": b, "size": m, "observed": obs, "low": math.nan, "high": math.nan,
+           "covered": None, "pit": math.nan, "predicted_damage": math.nan,
+           "damaged": None if threshold is None else bool(obs > threshold), "fit": ""}
+    p = predict_maximum(train, pairs, n=m, threshold=threshold, n_resamples=b_res,
+                        confidence_level=level, rng=seed)
+    if p.ok and p.maximum is not None:
+        lo, hi = p.maximum.mixture_interval()
+        row.update(low=lo, high=hi, covered=bool(lo <= obs <= hi),
+                   pit=float(p.maximum.full.cdf(obs)), fit=f"{p.param} {p.method}")
+        if p.damage is not None:
+            row["predicted_damage"] = float(np.ravel(p.damage.estimate)[0])
+    return row, ((f"block {b}: no fit ({p.note})",) if not p.ok else ()) + p.notes
 
 
 def _result(rows, k, m, n_values, level, threshold, n_resamples, shuffle, notes):

@@ -107,16 +107,17 @@ def _number_in(low: float, high: float, *, low_open: bool = False, high_open: bo
     return parse
 
 
+class _DefaultsFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Adds "(default: ...)" only to options with a value whose help does not state it."""
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if "default" in text.lower() or action.default in (None, False, argparse.SUPPRESS):
+            return text
+        return super()._get_help_string(action)
+
+
 def _study_parser() -> argparse.ArgumentParser:
-    class _DefaultsFormatter(argparse.ArgumentDefaultsHelpFormatter):
-        """Adds "(default: ...)" only to options with a value whose help does not state it."""
-
-        def _get_help_string(self, action):
-            text = action.help or ""
-            if "default" in text.lower() or action.default in (None, False, argparse.SUPPRESS):
-                return text
-            return super()._get_help_string(action)
-
     p = argparse.ArgumentParser(
         prog="glstat study",
         description="Contact study of Bigerelle et al. (2019): Weierstrass surfaces pressed by a rigid "
@@ -125,6 +126,19 @@ def _study_parser() -> argparse.ArgumentParser:
                     "predicted maximum across surfaces. Writes report.html and report.md into --out. "
                     "An interrupted run resumes: rerun the same command.",
         formatter_class=_DefaultsFormatter)
+    _add_campaign_options(p)
+    _add_load_options(p)
+    _add_surface_options(p)
+    _add_run_options(p)
+    _add_model_options(p)
+    _add_measured_options(p)
+    _add_report_options(p)
+    return p
+
+
+def _add_campaign_options(p: argparse.ArgumentParser) -> None:
+    """``--quick``, ``--out``, ``--surfaces`` and ``--grid``: the campaign's size and
+    where it is written."""
     p.add_argument("--quick", action="store_true",
                    help=f"a version that finishes in about a minute ({QUICK['surfaces']} surfaces of "
                         f"{QUICK['grid']}² per H, {QUICK['bootstrap']} bootstrap resamples, out "
@@ -133,6 +147,11 @@ def _study_parser() -> argparse.ArgumentParser:
                                  f"{QUICK['out']} with --quick)")
     p.add_argument("--surfaces", type=_positive(int), help=f"surfaces per H (default {DEFAULTS['surfaces']})")
     p.add_argument("--grid", type=_positive(int), help=f"points per side (default {DEFAULTS['grid']})")
+
+
+def _add_load_options(p: argparse.ArgumentParser) -> None:
+    """The loads, the hardness, the areas and target damage of the answer, and the
+    bootstrap resamples."""
     p.add_argument("--hurst", type=_number_in(0, 1), nargs="+", default=[0.0, 0.5, 1.0],
                    help="Hurst exponents, in [0, 1]")
     p.add_argument("--pressure", type=_positive(float), nargs="+", default=[20.0],
@@ -148,6 +167,11 @@ def _study_parser() -> argparse.ArgumentParser:
                         "several --pressure values; default 1)")
     p.add_argument("--bootstrap", type=_positive(int),
                    help=f"bootstrap resamples B (default {DEFAULTS['bootstrap']})")
+
+
+def _add_surface_options(p: argparse.ArgumentParser) -> None:
+    """The simulated surfaces (Rq, size, Weierstrass truncation and frequency ratio)
+    and the material."""
     p.add_argument("--rq", type=_positive(float), nargs="+", default=[1.6], metavar="UM",
                    help="RMS roughness in µm, one value or one per --hurst (1.6 gives the paper's "
                         "mean pressures; 50 is the value it prints, see docs/method.md)")
@@ -166,6 +190,11 @@ def _study_parser() -> argparse.ArgumentParser:
                             "one per H): n_terms = floor(log(f L) / log γ) + 1")
     p.add_argument("--gamma", type=_number_in(1, math.inf, low_open=True, high_open=True), default=1.5,
                    help="Weierstrass frequency ratio γ (> 1)")
+
+
+def _add_run_options(p: argparse.ArgumentParser) -> None:
+    """Where and how the surfaces are computed: workers, Dask scheduler, seed and
+    ``--force``."""
     p.add_argument("--workers", type=_positive(int), help="local worker processes (default: all cores)")
     p.add_argument("--scheduler", help="address of a Dask scheduler (tcp://host:8786) to run the surfaces on")
     p.add_argument("--scheduler-timeout", type=_positive(float), default=10.0,
@@ -175,6 +204,11 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--force", action="store_true",
                    help="reuse an output directory holding a campaign with other settings "
                         "(its surfaces are discarded)")
+
+
+def _add_model_options(p: argparse.ArgumentParser) -> None:
+    """The contact model: the elastic BEM beside the asperity model, its grid and guard
+    band, and ``--target-pressure``."""
     p.add_argument("--compare-bem", type=_number_in(0, math.inf, high_open=True, kind=int), nargs="?",
                    const=DEFAULT_COMPARE_BEM, default=DEFAULT_COMPARE_BEM, metavar="K",
                    help=f"solve the first K surfaces of every H with the elastic boundary-element "
@@ -203,6 +237,11 @@ def _study_parser() -> argparse.ArgumentParser:
                    help="choose Rq so that the asperity model's mean contact pressure is MPA, "
                         "found on a few seeds (replaces --rq): one value gives one Rq for all H, "
                         "one value per --hurst one Rq per H, each at its own pressure")
+
+
+def _add_measured_options(p: argparse.ArgumentParser) -> None:
+    """Measured topographies: ``--topographies`` or ``--like``, tiling, spacing, unit
+    and form removal."""
     src = p.add_mutually_exclusive_group()
     src.add_argument("--topographies", nargs="+", metavar="PATH",
                      help="measured topographies instead of simulated surfaces: files, folders or "
@@ -231,6 +270,11 @@ def _study_parser() -> argparse.ArgumentParser:
                    help="form removed from each measured file (--topographies, --like), fitted by "
                         "least squares on its measured points: the plane, a polynomial of degree 2 "
                         "or 3 in x and y, the mean, or nothing")
+
+
+def _add_report_options(p: argparse.ArgumentParser) -> None:
+    """The paper's table for the report's consistency section, progress and waiting
+    for another campaign."""
     p.add_argument("--paper-table", metavar="CSV",
                    help="the paper's Table 1 with its printed values (columns hurst, mean_mpa, "
                         "sd_mpa, skewness, kurtosis, lambda1_mpa, lambda2_per_mpa, lambda3, "
@@ -241,7 +285,6 @@ def _study_parser() -> argparse.ArgumentParser:
     p.add_argument("--wait", action="store_true",
                    help="when another campaign runs in the output directory, wait for it to end "
                         "instead of refusing to start")
-    return p
 
 
 class StudyInputError(ValueError):

@@ -19,6 +19,7 @@ import sys
 import time
 from concurrent.futures import Executor
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -327,128 +328,241 @@ def run_study(
     """
     if model not in ("asperity", "bem", "both"):
         raise ValueError(f"model must be 'asperity', 'bem' or 'both', got {model!r}")
-    bsettings = None
+    bsettings = _bem_settings(settings, analysis, compare_bem, model)
+    t0 = time.perf_counter()
+    camp, bem_run, bem_wall = _run_solves(settings, bsettings, out, executor, workers, force, progress)
+    t1 = time.perf_counter()
+    say = _stage_printer(progress)
+    say("loading the surfaces' results")
+    results = _load_study_results(out, settings)
+    t2 = time.perf_counter()
+    an, bem_an, left_out = _analyse_models(results, out, settings, analysis, bsettings, model, say)
+    bem, bem_seconds = _compare_models(out, settings, bsettings, analysis, results, say)
+    t3 = time.perf_counter()
+    from .report import build_report
+
+    timings = _timings(camp, bem_run, t1 - t0, t2 - t1, t3 - t2, bem_wall, bem_seconds)
+    info = _report_info(settings, timings, an, results, say, command=command, executor=executor,
+                        workers=workers, workers_label=workers_label, paper_table=paper_table)
+    _add_bem_info(info, out, settings, bem_an, left_out, bem, bsettings)
+    rep = build_report(settings, analysis, results, an, info.as_dict(), progress=say)
+    timings["report"] = time.perf_counter() - t3
+    timings["total"] = time.perf_counter() - t0
+    from .errors import write_failure
+
+    try:
+        html, md = rep.write(out)
+        result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an, analysis)
+        _write_tables(out, settings, result)
+    except OSError as exc:  # disk full or read-only at the end: the computed results are kept
+        raise CampaignError(
+            write_failure(exc, exc.filename or out) + "; the surfaces' results are saved in "
+            f"{out}: rerun the same command to write the report") from exc
+    return result
+
+
+def _bem_settings(settings: CampaignSettings, analysis: AnalysisSettings,
+                  compare_bem: int | BEMSettings | None, model: str) -> BEMSettings | None:
+    """The settings of the elastic BEM solves of a study (None without them): every surface
+    for ``model`` "bem" or "both", else the first ``compare_bem`` of every (H, load); the grid,
+    guard band and hardness (Pa) resolved against the campaign's, the loads and K checked."""
     if model != "asperity":
         base = compare_bem if isinstance(compare_bem, BEMSettings) else BEMSettings()
         compare_bem = dataclasses.replace(base, n_compare=settings.n_surfaces)
-    if compare_bem is not None and not (isinstance(compare_bem, int) and compare_bem == 0):
-        bsettings = (compare_bem if isinstance(compare_bem, BEMSettings)
-                     else BEMSettings(n_compare=compare_bem))
-        # the grid and guard band these surfaces are solved with: a BEM grid equal to the
-        # campaign's, or one asked for measured or rectangular surfaces, is the campaign's own
-        bsettings = dataclasses.replace(bsettings, grid=bsettings.solve_grid(settings),
-                                        guard=bsettings.guard_points(settings))
-        if bsettings.hardness is None:  # the capped solve at the analysis' hardness
-            bsettings = dataclasses.replace(bsettings, hardness=analysis.hardness * 1e6)
-        cap = float(bsettings.hardness or analysis.hardness * 1e6)
-        if max(settings.pressures) >= cap:
-            raise ValueError(
-                f"nominal pressure {max(settings.pressures) / 1e6:g} MPa is not below the hardness "
-                f"{cap / 1e6:g} MPa: a surface that yields at the hardness carries "
-                f"at most the hardness times its area; lower the pressure or check the hardness")
-        if bsettings.n_compare > settings.n_surfaces:
-            raise ValueError(
-                f"compare_bem: K = {bsettings.n_compare} surfaces per H cannot exceed the campaign's "
-                f"{settings.n_surfaces} surfaces per H; lower K or raise the number of surfaces"
-            )
-    t0 = time.perf_counter()
+    if compare_bem is None or (isinstance(compare_bem, int) and compare_bem == 0):
+        return None
+    bsettings = (compare_bem if isinstance(compare_bem, BEMSettings)
+                 else BEMSettings(n_compare=compare_bem))
+    # the grid and guard band these surfaces are solved with: a BEM grid equal to the
+    # campaign's, or one asked for measured or rectangular surfaces, is the campaign's own
+    bsettings = dataclasses.replace(bsettings, grid=bsettings.solve_grid(settings),
+                                    guard=bsettings.guard_points(settings))
+    if bsettings.hardness is None:  # the capped solve at the analysis' hardness
+        bsettings = dataclasses.replace(bsettings, hardness=analysis.hardness * 1e6)
+    cap = float(bsettings.hardness or analysis.hardness * 1e6)
+    if max(settings.pressures) >= cap:
+        raise ValueError(
+            f"nominal pressure {max(settings.pressures) / 1e6:g} MPa is not below the hardness "
+            f"{cap / 1e6:g} MPa: a surface that yields at the hardness carries "
+            f"at most the hardness times its area; lower the pressure or check the hardness")
+    if bsettings.n_compare > settings.n_surfaces:
+        raise ValueError(
+            f"compare_bem: K = {bsettings.n_compare} surfaces per H cannot exceed the campaign's "
+            f"{settings.n_surfaces} surfaces per H; lower K or raise the number of surfaces"
+        )
+    return bsettings
+
+
+def _run_solves(settings, bsettings, out, executor, workers, force, progress):
+    """Run (or resume) the campaign, then the BEM solves with ``bsettings``: the campaign's
+    run, the BEM's run (None without) and the BEM's wall time in seconds."""
     camp = run_campaign(settings, out, executor=executor, workers=workers, force=force,
                         progress=progress)
-    bem_run = None
+    bem_run, bem_wall = None, math.nan
     if bsettings is not None:
         tb = time.perf_counter()
         bem_run = run_bem(settings, bsettings, out, executor=executor, workers=workers, force=force,
                           progress=progress)
         bem_wall = time.perf_counter() - tb
-    t1 = time.perf_counter()
+    return camp, bem_run, bem_wall
 
+
+def _stage_printer(progress: bool):
+    """``say(text)``: announce a stage of the analysis on stderr when ``progress``."""
     def say(text):
         if progress:
             print(f"{text} ...", file=sys.stderr, flush=True)
+    return say
 
-    say("loading the surfaces' results")
+
+def _load_study_results(out, settings: CampaignSettings) -> dict:
+    """The surfaces' results, with the pressure maps of the first example of every (H, load)."""
     results = load_results(out, settings)
     examples = [(ih, il, i) for ih in range(len(settings.hurst)) for il in range(len(settings.pressures))
                 for i in range(min(1, settings.n_examples))]
     results.update(load_results(out, settings, examples, maps=True))
-    t2 = time.perf_counter()
+    return results
+
+
+def _analyse_models(results, out, settings, analysis, bsettings, model, say):
+    """The analysis of the asperity model, and with ``model`` "bem" or "both" that of the
+    elastic model and the surfaces it leaves out (None and [] otherwise)."""
     an = analyse(results, settings, analysis, progress=say)
-    bem_an = None
-    if model != "asperity":
-        from .bem import elastic_results
+    if model == "asperity":
+        return an, None, []
+    from .bem import elastic_results
 
-        if bsettings is None:  # set above for every model but "asperity"
-            raise AssertionError(f"model {model!r} without BEM settings")
-        eres, left_out = elastic_results(out, settings, bsettings)
-        bem_an = analyse(eres, settings, analysis, progress=say, model="bem")
-    bem = None
-    if bsettings is not None:
-        tc = time.perf_counter()
-        say("BEM comparison: fits of both models")
-        bem = compare_study(out, settings, bsettings, analysis, campaign=results)
-        bem_analysis = time.perf_counter() - tc
-    t3 = time.perf_counter()
-    from .report import build_report
+    if bsettings is None:  # set for every model but "asperity"
+        raise AssertionError(f"model {model!r} without BEM settings")
+    eres, left_out = elastic_results(out, settings, bsettings)
+    return an, analyse(eres, settings, analysis, progress=say, model="bem"), left_out
 
-    timings = {"campaign (this run)": t1 - t0, "surfaces computed in this run": len(camp.computed),
+
+def _compare_models(out, settings, bsettings, analysis, results, say):
+    """The comparison of both models on the BEM's surfaces (None without BEM settings) and
+    its seconds."""
+    if bsettings is None:
+        return None, math.nan
+    tc = time.perf_counter()
+    say("BEM comparison: fits of both models")
+    bem = compare_study(out, settings, bsettings, analysis, campaign=results)
+    return bem, time.perf_counter() - tc
+
+
+def _timings(camp: CampaignRun, bem_run, campaign_s: float, loading_s: float, analysis_s: float,
+             bem_wall: float, bem_seconds: float) -> dict[str, float]:
+    """Seconds per stage and counts of the surfaces computed and reused, for the report; the
+    BEM's solves and fits are taken out of the campaign's and the analysis' time."""
+    timings = {"campaign (this run)": campaign_s, "surfaces computed in this run": len(camp.computed),
                "surfaces reused from the directory": camp.skipped,
                "mean seconds per computed surface (one worker)":
                    float(np.mean(list(camp.task_times.values()))) if camp.task_times else math.nan,
-               "loading results": t2 - t1, "analysis (fits, bootstrap, validation)": t3 - t2}
+               "loading results": loading_s, "analysis (fits, bootstrap, validation)": analysis_s}
     if bem_run is not None:
         timings["campaign (this run)"] -= bem_wall
-        timings["analysis (fits, bootstrap, validation)"] -= bem_analysis
+        timings["analysis (fits, bootstrap, validation)"] -= bem_seconds
         timings.update({
             "BEM comparison: both models on K surfaces per case (this run)": bem_wall,
             "BEM comparisons computed in this run": len(bem_run.computed),
             "BEM comparisons reused from the directory": bem_run.skipped,
             "mean seconds per computed BEM comparison (one worker)":
                 float(np.mean(list(bem_run.task_times.values()))) if bem_run.task_times else math.nan,
-            "BEM comparison: GLD fits and bootstrap": bem_analysis})
-    info = {"versions": _versions(), "timings": timings, "truncation": TRUNCATION_TABLE and [
-                [r[0], r[1], r[2], r[3], r[5], r[6]] for r in TRUNCATION_TABLE],
-            "truncation_reference": TRUNCATION_REFERENCE,
-            "command": command or " ".join(sys.argv),
-            "workers": workers_label or (type(executor).__name__ if executor is not None
-                                         else f"{workers or os.cpu_count()} local processes")}
-    info["paper_findings"] = []  # the paper's tables describe its simulated scene only
-    if not settings.topographies:
-        try:
-            from .paper import paper_findings
+            "BEM comparison: GLD fits and bootstrap": bem_seconds})
+    return timings
 
-            info["paper_findings"] = paper_findings(n_contact={
-                settings.hurst[ih]: r["summary"]["n_contact"] for (ih, il), r in an.items() if il == 0},
-                table=paper_table)
-        except Exception as exc:  # the paper's tables never stop a report
-            info["paper_findings"] = [f"the consistency check could not be computed: {exc}"]
+
+@dataclasses.dataclass
+class _ReportInfo:
+    """What the report shows besides the analysis; :meth:`as_dict` is the ``info`` of
+    :func:`glstat.study.report.build_report`."""
+
+    versions: dict[str, str]
+    timings: dict[str, float]
+    truncation: list[list[float]]
+    truncation_reference: dict[str, float]
+    command: str
+    workers: str
+    paper_findings: list[str]
+    like: dict[str, Any] | None = None
+    bem_analysis: dict | None = None
+    bem_left_out: list = dataclasses.field(default_factory=list)
+    bem: dict | None = None
+    bem_settings: BEMSettings | None = None
+    bem_maps: dict | None = None
+
+    def as_dict(self) -> dict[str, Any]:
+        """The entries by name (the same objects, not copies); ``like`` only with a measured
+        template, ``bem``, ``bem_settings`` and ``bem_maps`` only with a comparison."""
+        info: dict[str, Any] = {
+            "versions": self.versions, "timings": self.timings, "truncation": self.truncation,
+            "truncation_reference": self.truncation_reference, "command": self.command,
+            "workers": self.workers, "paper_findings": self.paper_findings}
+        if self.like is not None:
+            info["like"] = self.like
+        info["bem_analysis"] = self.bem_analysis
+        info["bem_left_out"] = self.bem_left_out
+        if self.bem is not None:
+            info.update(bem=self.bem, bem_settings=self.bem_settings, bem_maps=self.bem_maps)
+        return info
+
+
+def _report_info(settings: CampaignSettings, timings: dict[str, float], an: dict, results: dict,
+                 say, *, command: str, executor: Executor | None, workers: int | None,
+                 workers_label: str | None, paper_table) -> _ReportInfo:
+    """The report's versions, timings, truncation reference, command line and workers, the
+    paper's consistency findings and, with ``settings.like``, the measured template's
+    comparison."""
+    info = _ReportInfo(
+        versions=_versions(), timings=timings, truncation=TRUNCATION_TABLE and [
+            [r[0], r[1], r[2], r[3], r[5], r[6]] for r in TRUNCATION_TABLE],
+        truncation_reference=TRUNCATION_REFERENCE,
+        command=command or " ".join(sys.argv),
+        workers=workers_label or (type(executor).__name__ if executor is not None
+                                  else f"{workers or os.cpu_count()} local processes"),
+        paper_findings=_paper_findings(settings, an, paper_table))
     if settings.like:
         from .measured import like_comparison
 
         say("measured template against the simulated surfaces")
-        info["like"] = like_comparison(settings, results)
-    info["bem_analysis"] = bem_an
-    info["bem_left_out"] = left_out if model != "asperity" else []
-    if bem is not None:
-        info["bem"] = bem
-        info["bem_settings"] = bsettings
-        info["bem_maps"] = load_bem_maps(out, settings)
-    rep = build_report(settings, analysis, results, an, info, progress=say)
-    timings["report"] = time.perf_counter() - t3
-    timings["total"] = time.perf_counter() - t0
-    from .campaign import atomic_write
-    from .errors import CampaignError, write_failure
+        info.like = like_comparison(settings, results)
+    return info
 
+
+def _paper_findings(settings: CampaignSettings, an: dict, paper_table) -> list[str]:
+    """The consistency of the run with the paper's Table 1 (none for measured surfaces: the
+    paper's tables describe its simulated scene only)."""
+    if settings.topographies:
+        return []
     try:
-        html, md = rep.write(out)
-        result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an, analysis)
-        atomic_write(Path(out) / "summary.csv", result.summary().to_csv(index=False).encode())
-        if len(settings.pressures) > 1:
-            atomic_write(Path(out) / "allowable_load.csv",
-                         result.allowable_load().to_csv(index=False).encode())
-        atomic_write(Path(out) / "damage_calibration.csv",
-                     result.damage_calibration().to_csv(index=False).encode())
-    except OSError as exc:  # disk full or read-only at the end: the computed results are kept
-        raise CampaignError(
-            write_failure(exc, exc.filename or out) + "; the surfaces' results are saved in "
-            f"{out}: rerun the same command to write the report") from exc
-    return result
+        from .paper import paper_findings
+
+        return paper_findings(n_contact={
+            settings.hurst[ih]: r["summary"]["n_contact"] for (ih, il), r in an.items() if il == 0},
+            table=paper_table)
+    except Exception as exc:  # the paper's tables never stop a report
+        return [f"the consistency check could not be computed: {exc}"]
+
+
+def _add_bem_info(info: _ReportInfo, out, settings: CampaignSettings, bem_an, left_out, bem,
+                  bsettings: BEMSettings | None) -> None:
+    """Add the elastic model's analysis and the surfaces it leaves out, and with a comparison
+    of both models that comparison, its settings and its pressure maps."""
+    info.bem_analysis = bem_an
+    info.bem_left_out = left_out
+    if bem is not None:
+        info.bem = bem
+        info.bem_settings = bsettings
+        info.bem_maps = load_bem_maps(out, settings)
+
+
+def _write_tables(out, settings: CampaignSettings, result: StudyResult) -> None:
+    """Write ``summary.csv``, ``allowable_load.csv`` (with several loads) and
+    ``damage_calibration.csv`` into ``out``."""
+    from .campaign import atomic_write
+
+    atomic_write(Path(out) / "summary.csv", result.summary().to_csv(index=False).encode())
+    if len(settings.pressures) > 1:
+        atomic_write(Path(out) / "allowable_load.csv",
+                     result.allowable_load().to_csv(index=False).encode())
+    atomic_write(Path(out) / "damage_calibration.csv",
+                 result.damage_calibration().to_csv(index=False).encode())

@@ -132,17 +132,10 @@ def _as_targets(target, n_h: int) -> np.ndarray:
 
 
 def rq_for_pressure(
-    target_mean_pressure: float | Sequence[float],
-    hurst: float | Sequence[float] | None = None,
-    *,
-    settings: CampaignSettings | None = None,
-    n_seeds: int = 3,
-    per_hurst: bool = False,
-    rtol: float = 0.03,
-    rq_bounds: tuple[float, float] = RQ_BOUNDS,
-    coarse_grid: int | None = 256,
-    max_evaluations: int = 10,
-    full_output: bool = False,
+    target_mean_pressure: float | Sequence[float], hurst: float | Sequence[float] | None = None,
+    *, settings: CampaignSettings | None = None, n_seeds: int = 3, per_hurst: bool = False,
+    rtol: float = 0.03, rq_bounds: tuple[float, float] = RQ_BOUNDS, coarse_grid: int | None = 256,
+    max_evaluations: int = 10, full_output: bool = False,
 ) -> float | tuple[float, ...] | RqSearch:
     """The roughness Rq at which the asperity model gives a requested mean contact pressure.
 
@@ -219,9 +212,32 @@ def rq_for_pressure(
     >>> 0.5e-6 < rq < 5e-6
     True
     """
+    t0 = time.perf_counter()
+    s, idx, n_seeds, rtol, bounds, targets = _checked_search(
+        target_mean_pressure, hurst, settings, n_seeds, rtol, rq_bounds)
+    load = s.pressures[0]
+    record: list = []
+    rq_out, ach, na, nc, converged = _search_groups(
+        s, idx, targets, n_seeds, per_hurst, math.log1p(rtol), bounds,
+        _coarse_grid(s, idx, coarse_grid), max_evaluations, record)
+    hs = tuple(s.hurst[i] for i in idx)
+    if not converged:
+        _warn_not_converged(rtol, hs, ach, targets)
+    out = RqSearch(rq=tuple(rq_out), hurst=hs, target=tuple(float(v) for v in targets),
+                   achieved=tuple(ach), n_asperities=tuple(na), n_contact=tuple(nc),
+                   converged=bool(converged), rtol=float(rtol), grid=s.grid, n_seeds=n_seeds,
+                   nominal_pressure=load, evaluations=record, seconds=time.perf_counter() - t0)
+    if full_output:
+        return out
+    return out.rq if per_hurst else out.rq[0]
+
+
+def _checked_search(target_mean_pressure, hurst, settings, n_seeds, rtol, rq_bounds):
+    """The checked arguments of :func:`rq_for_pressure`: the settings, the indices of the
+    searched exponents in them, ``n_seeds``, ``rtol``, the Rq bounds (m) and one target per
+    exponent (Pa), each target above the nominal pressure."""
     from _glstat_runtime.validation import positive_integer, tolerance
 
-    t0 = time.perf_counter()
     s, idx = _settings_for(settings, hurst)
     n_seeds = positive_integer(n_seeds, "n_seeds", "surfaces per Hurst exponent")
     rtol = tolerance(rtol, "rtol", 0.5)
@@ -235,11 +251,18 @@ def rq_for_pressure(
             f"over the points in contact is at least the nominal pressure {load / 1e6:.6g} MPa "
             "(the contact area cannot exceed the nominal area)"
         )
-    tol = math.log1p(rtol)
-    record: list = []
+    return s, idx, n_seeds, rtol, bounds, targets
+
+
+def _search_groups(s, idx, targets, n_seeds, per_hurst, tol, bounds, coarse_n, max_evaluations,
+                   record):
+    """One root find per group of exponents (each H alone with ``per_hurst``, else all of them
+    at one Rq); every evaluation is appended to ``record``. Returns, per searched exponent,
+    Rq (m), the achieved mean pressure (Pa), the asperities and grid points in contact, and
+    whether every root met the tolerance."""
+    load = s.pressures[0]
     # groups of positions k in idx solved together (one Rq each)
     groups = [[k] for k in range(len(idx))] if per_hurst else [list(range(len(idx)))]
-    coarse_n = _coarse_grid(s, idx, coarse_grid)
     n = len(idx)
     rq_out, ach, na, nc = [math.nan] * n, [math.nan] * n, [math.nan] * n, [math.nan] * n
     converged = True
@@ -252,23 +275,20 @@ def rq_for_pressure(
         for j, k in enumerate(ks):
             rq_out[k] = math.exp(x)
             ach[k], na[k], nc[k] = p[j], a_[j], c_[j]
-    hs = tuple(s.hurst[i] for i in idx)
-    if not converged:
-        warnings.warn(
-            "rq_for_pressure: the mean contact pressure at the returned Rq differs from the "
-            "target by more than rtol = " + f"{rtol:g} (" + ", ".join(
-                f"H = {h:g}: {a / 1e6:.6g} vs {t / 1e6:.6g} MPa"
-                for h, a, t in zip(hs, ach, targets, strict=True))
-            + "); the mean pressure jumps when an asperity enters or leaves the contact: "
-            "average more surfaces (n_seeds) or loosen rtol",
-            _convergence_warning(), stacklevel=2)
-    out = RqSearch(rq=tuple(rq_out), hurst=hs, target=tuple(float(v) for v in targets),
-                   achieved=tuple(ach), n_asperities=tuple(na), n_contact=tuple(nc),
-                   converged=bool(converged), rtol=float(rtol), grid=s.grid, n_seeds=n_seeds,
-                   nominal_pressure=load, evaluations=record, seconds=time.perf_counter() - t0)
-    if full_output:
-        return out
-    return out.rq if per_hurst else out.rq[0]
+    return rq_out, ach, na, nc, converged
+
+
+def _warn_not_converged(rtol, hs, achieved, targets) -> None:
+    """The :class:`glstat.ConvergenceWarning` of :func:`rq_for_pressure`, attributed to its
+    caller."""
+    warnings.warn(
+        "rq_for_pressure: the mean contact pressure at the returned Rq differs from the "
+        "target by more than rtol = " + f"{rtol:g} (" + ", ".join(
+            f"H = {h:g}: {a / 1e6:.6g} vs {t / 1e6:.6g} MPa"
+            for h, a, t in zip(hs, achieved, targets, strict=True))
+        + "); the mean pressure jumps when an asperity enters or leaves the contact: "
+        "average more surfaces (n_seeds) or loosen rtol",
+        _convergence_warning(), stacklevel=3)
 
 
 def _as_bounds(rq_bounds) -> tuple[float, float]:
