@@ -17,6 +17,7 @@ capture runs in the calling thread only.
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
@@ -24,7 +25,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
-from _glstat_runtime.validation import draws_or_count, real_values
+from _glstat_runtime.validation import draws_or_count, real_scalar, real_values
 
 from .errors import FitError
 
@@ -321,8 +322,8 @@ def predict_maximum(
         Fits to try in order (:func:`glstat.fit`'s ``param`` and ``method``); the first one
         whose full-sample fit and bootstrap succeed is used.
     n : int or float, optional
-        Number of draws of one analysed area: a whole number >= 1 (``glstat.maximum`` takes
-        a real n for the distribution ``F^n``).
+        Number of draws of one analysed area: a real number >= 1 (a mean number of draws
+        may be fractional: the maximum's distribution is ``F^n``).
     count : glstat.PoissonCount, glstat.ObservedCounts or frozen scipy.stats discrete, optional
         A random number of draws instead of ``n``.
     groups : array_like, optional
@@ -361,8 +362,8 @@ def predict_maximum(
     TypeError
         When both ``n`` and ``count`` are given.
     ValueError
-        When ``n`` is not a whole number >= 1, or neither ``n``, ``count`` nor ``groups`` is
-        given.
+        When ``n`` is not a finite real number >= 1, or neither ``n``, ``count`` nor
+        ``groups`` is given.
 
     Notes
     -----
@@ -397,9 +398,16 @@ def predict_maximum(
 
 def _draws_of_one_area(n, count, groups) -> float | None:
     """``n`` as a float (None with a random count or the group sizes), after the checks of
-    the count: ``n`` or ``count``, not both; ``n`` a whole number >= 1; one of ``n``,
+    the count: ``n`` or ``count``, not both; ``n`` a finite real number >= 1; one of ``n``,
     ``count`` and ``groups``."""
-    n = draws_or_count(n, count, whole=True)
+    n = draws_or_count(n, count)
+    if n is not None:
+        x = real_scalar(n)
+        if x is None or not (math.isfinite(x) and x >= 1):
+            raise ValueError(f"n (the number of draws of one analysed area) must be a finite real "
+                             f"number >= 1, got {n!r}; for a number of draws that varies give "
+                             "count=... instead")
+        n = x
     if n is None and count is None and groups is None:
         raise ValueError("give the number of draws of one analysed area: n, count, or groups "
                          "(whose sizes are the counts)")

@@ -17,7 +17,7 @@ import contact
 import glstat
 
 PACKAGES = {name: Path(mod.__file__).resolve().parent for name, mod in
-            (("glstat", glstat), ("contact", contact), ("_glstat_runtime.numba_cache", _numba_cache))}
+            (("glstat", glstat), ("contact", contact), ("_glstat_runtime", _numba_cache))}
 
 CHILD = r"""
 import json, os, sys

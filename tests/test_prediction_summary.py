@@ -87,13 +87,17 @@ def test_without_threshold_or_fit_the_table_has_only_what_was_computed(sample):
 
 
 # -- the count of one analysed area: one rule ---------------------------------------------------
-@pytest.mark.parametrize("n, words", [(2.5, "whole number, got 2.5: give n = 2 or 3"),
-                                      (0.5, "whole number >= 1, got 0.5"),
-                                      (np.nan, "whole number >= 1"), (True, "whole number >= 1")])
-def test_the_prediction_counts_whole_draws(sample, n, words):
-    with pytest.raises(ValueError, match=r"^n ") as err:
+@pytest.mark.parametrize("n", [0.5, 0.0, -3.0, np.nan, np.inf, True])
+def test_the_prediction_refuses_a_count_below_one_or_not_a_number(sample, n):
+    with pytest.raises(ValueError, match=r"^n \(the number of draws of one analysed area\) must be "
+                                         r"a finite real number >= 1"):
         glstat.predict_maximum(sample, n=n, n_resamples=20, rng=1)
-    assert words in str(err.value)
+
+
+def test_a_mean_count_may_be_fractional(sample):
+    # a mean number of points per area (e.g. 216.667) is a legitimate n: F^n
+    p = glstat.predict_maximum(sample, n=2.5, n_resamples=20, rng=1, maximum=False)
+    assert p.n == 2.5
 
 
 def test_a_whole_n_of_any_numeric_type_is_accepted(sample):
