@@ -279,3 +279,15 @@ def test_only_init_modules_re_export():
                 defined.add(node.target.id)
         bad.extend(f"{path.relative_to(ROOT)}: {name}" for name in exported if name not in defined)
     assert not bad, bad
+
+
+def test_no_function_over_120_lines_outside_numerical_kernels():
+    long = []
+    for path in _modules():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                kernel = any("njit" in ast.unparse(d) for d in node.decorator_list)
+                lines = node.end_lineno - node.lineno + 1
+                if lines > 120 and not kernel:
+                    long.append(f"{path.relative_to(ROOT)}: {node.name} ({lines} lines)")
+    assert not long, long
