@@ -19,9 +19,13 @@ from __future__ import annotations
 
 import importlib
 import inspect
+import re
 from typing import Any
 
 import griffe
+
+#: A line holding only a placeholder of scipy's docstring templates (``%(before_notes)s``).
+PLACEHOLDER = re.compile(r"^[ \t]*%\(\w+\)s[ \t]*\n", re.M)
 
 
 def _comment_docstring(attr: griffe.Attribute) -> str | None:
@@ -48,8 +52,18 @@ def _runtime_docstring(attr: griffe.Attribute) -> str | None:
         value = getattr(importlib.import_module(module.path), attr.name)
     except Exception:
         return None
-    own = inspect.isclass(value) or "__doc__" in getattr(value, "__dict__", {})
-    doc = value.__doc__ if own else None
+    if inspect.isclass(value):
+        doc = value.__doc__
+    elif "__doc__" in getattr(value, "__dict__", {}):
+        # an object documented on its own, such as a scipy distribution: scipy fills the
+        # docstring written in its class with generic text (its methods, an example that
+        # imports the object from scipy.stats); the project's own text is the class's, less
+        # the template's placeholders
+        doc = type(value).__doc__
+        if isinstance(doc, str):
+            doc = PLACEHOLDER.sub("", doc)
+    else:
+        doc = None
     return inspect.cleandoc(doc) if isinstance(doc, str) and doc.strip() else None
 
 

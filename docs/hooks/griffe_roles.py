@@ -14,7 +14,8 @@ cross-reference that mkdocs-autorefs turns into a link to the object's entry:
   object of numpy or scipy) stays as code, with the full name as tooltip, and does not make
   the strict build fail.
 
-``~a.b.c`` shows ``c``; ``title <a.b.c>`` shows ``title``. ``:math:`...``` is shown as code.
+``~a.b.c`` shows ``c``; ``title <a.b.c>`` shows ``title``. ``:math:`...``` and the formula of a
+``.. math::`` directive are shown as code.
 Configured in mkdocs.yml under
 the python handler's ``extensions``.
 """
@@ -36,6 +37,8 @@ ROLE = re.compile(r":(?:py:)?(?P<role>func|meth|class|mod|data|attr|obj|exc|cons
                   r":`(?P<target>[^`]+)`")
 #: ``:math:`tex``` (shown as code: the site loads no script, so no math rendering).
 MATH = re.compile(r":math:`(?P<tex>[^`]+)`")
+#: The line of a ``.. math::`` directive: its indented formula then shows as a code block.
+MATH_DIRECTIVE = re.compile(r"^[ \t]*\.\. math::[ \t]*\n", re.M)
 #: ``title <target>`` inside a role.
 EXPLICIT_TITLE = re.compile(r"^(?P<title>.+?)\s*<(?P<target>[^<>]+)>$")
 
@@ -87,10 +90,11 @@ class RolesToCrossrefs(griffe.Extension):
         count = 0
         for obj in self._objects(pkg):
             docstring = obj.docstring
-            if docstring is None or ":`" not in docstring.value:
+            if docstring is None or (":`" not in docstring.value and ".. math::" not in docstring.value):
                 continue
             docstring.value, n = ROLE.subn(lambda m, o=obj: self._crossref(m, o, collection, root),
                                            docstring.value)
+            docstring.value = MATH_DIRECTIVE.sub("", docstring.value)
             docstring.value = MATH.sub(lambda m: f"<code>{html.escape(m['tex'])}</code>", docstring.value)
             count += n
             docstring.__dict__.pop("parsed", None)  # parsed again from the new text
