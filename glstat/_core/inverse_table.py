@@ -217,9 +217,10 @@ def _lookup2(y, y_lo, d_ys, d_pl, o_ys, o_pl, y0):
 @njit(cache=True, error_model="numpy")
 def invert_table_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
     """Same contract as ``quantile_function.invert_kernel`` for scalar shapes a, b and many points."""
-    if rs_tiny(fam, a, b) or (fam == RS and (a == 0.0 or b == 0.0)):
+    if rs_tiny(fam, a, b) or (fam == RS and (a == 0.0 or b == 0.0)) or (
+            fam == FKML and a == 0.0 and b == 0.0):
         # the linear regime of tiny RS shapes has its own per-point solver; RS with a shape
-        # exactly 0 is inverted in closed form
+        # exactly 0 is inverted in closed form, and so is FKML(0, 0), the logistic
         invert_kernel(y, np.array([a]), np.array([b]), fam, what, out, status, loc, inv_scale)
         return
     log_scale = math.log(inv_scale)

@@ -1152,6 +1152,48 @@ def rs_tiny_point(what, a, b, x, loc, inv_scale):
     return _scaled_exp(lq, r_hi, lr), st
 
 
+@njit(cache=True, error_model="numpy")
+def logistic_point(what, y, y_lo, inv_scale, log_scale):
+    """cdf-type quantity ``what`` of FKML(0, 0), the logistic Q(u) = log u - log(1 - u), in
+    closed form at the standardized point y + y_lo (a double-double, `standardize`).
+
+    With v = -|y| <= 0 and e = exp(v) <= 1, the smaller tail probability is p = e/(1 + e),
+    log p = v - log1p(e), the larger one 1/(1 + e) with log -log1p(e), and the standardized
+    density e/(1 + e)**2 with log v - 2 log1p(e): no subtraction of nearly equal terms in
+    either tail, and log p stays exact where p underflows. The low part y_lo enters to first
+    order through the derivatives of these logarithms (1/(1 + e), -e/(1 + e) and
+    (1 - e)/(1 + e) per unit of v); it is below half an ulp of y, so the neglected second
+    order is below eps**2.
+    """
+    if y != y:
+        return math.nan
+    upper = y > 0.0
+    v = -y if upper else y
+    v_lo = -y_lo if upper else y_lo
+    if v == -math.inf:
+        return emit(what, FKML, 0.0, 0.0, 0.0, -math.inf, upper, inv_scale, log_scale)
+    e = math.exp(v)
+    ope = 1.0 + e
+    if what <= 3:
+        want_small = (what == 0 or what == 2) != upper
+        if what < 2:
+            if want_small:
+                return e / ope * (1.0 + v_lo / ope)
+            return (1.0 - v_lo * (e / ope)) / ope
+        if want_small:
+            return (v - math.log1p(e)) + v_lo / ope
+        return -math.log1p(e) - v_lo * (e / ope)
+    corr = v_lo * ((1.0 - e) / ope)
+    if what == 4 and e > 2.2250738585072014e-308:
+        r = inv_scale * (e / (ope * ope)) * (1.0 + corr)
+        if r > 2.2250738585072014e-308 and r < 1.7976931348623157e308:
+            return r
+    lf = (v - 2.0 * math.log1p(e)) + corr
+    if what == 5:
+        return log_scale + lf
+    return _scaled_exp(-lf, inv_scale, log_scale)
+
+
 # what = 0 cdf, 1 sf, 2 logcdf, 3 logsf, 4 pdf, 5 logpdf
 @njit(cache=True, error_model="numpy")
 def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
@@ -1172,6 +1214,9 @@ def invert_kernel(y, a, b, fam, what, out, status, loc=0.0, inv_scale=1.0):
         yi, yi_lo = standardize(y[i], loc, inv_scale)
         if yi != yi or ai != ai or bi != bi:
             out[i] = math.nan
+            continue
+        if fam == FKML and ai == 0.0 and bi == 0.0:
+            out[i] = logistic_point(what, yi, yi_lo, inv_scale, log_scale)
             continue
         if rs_tiny(fam, ai, bi) and math.isfinite(y[i]):
             v, st = rs_tiny_point(what, ai, bi, y[i], loc, inv_scale)

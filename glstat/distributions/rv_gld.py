@@ -34,6 +34,11 @@ def _broadcast_flat(x, lam3, lam4):
     and the common shape."""
     x, lam3, lam4 = (np.asarray(v, dtype=float) for v in (x, lam3, lam4))
     shape = np.broadcast_shapes(x.shape, lam3.shape, lam4.shape)
+    if lam3.size == 1 and lam4.size == 1:
+        # one set of shapes (glstat.GLD): the kernels take length-1 shape arrays, so the
+        # shapes are not copied out to the size of x
+        return np.ascontiguousarray(np.broadcast_to(x, shape)).ravel(), lam3.ravel(), \
+            lam4.ravel(), shape
     flat = [np.ascontiguousarray(np.broadcast_to(v, shape)).ravel() for v in (x, lam3, lam4)]
     return *flat, shape
 
