@@ -30,7 +30,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests", "glsta
 from mp_reference import tail_probability
 
 import glstat
-from glstat._core import quantile_function
+from glstat._core import inverse_table, quantile_function
 
 N = 1_000_000
 N_BRENTQ = 2000
@@ -81,6 +81,74 @@ def first_call_seconds():
             "g=glstat.GLD(0,0.197451,0.134912,0.134912); g.cdf([0.1]); g.pdf([0.1]); g.ppf([0.1]); "
             "print(time.perf_counter()-t)")
     return [float(subprocess.check_output([sys.executable, "-c", code]).decode()) for _ in range(2)]
+
+
+SIZES = (500, 1000, 2000, 5000, 10_000, 19_999)
+
+
+def table_break_even(rng):
+    """cdf and pdf of n points with one set of shapes: per-point solver against the table
+    kernel (build included), best of 7, and the table's worst relative error against the
+    solver (smaller tail probability; pdf)."""
+    print("\n| distribution | what | " + " | ".join(f"n = {n}" for n in SIZES)
+          + " | table vs solver, max rel. err |")
+    print("|---|---|" + "---|" * len(SIZES) + "---|")
+    for label, param, lam in CASES:
+        g = glstat.GLD(*lam, param=param)
+        fam, a, b = g._family, np.array([lam[2]]), np.array([lam[3]])
+        for what, code in (("cdf", 0), ("pdf", 4)):
+            cells, worst = [], 0.0
+            for n in SIZES:
+                x = np.ascontiguousarray(g.ppf(rng.random(n)))
+                out, ref = np.empty(n), np.empty(n)
+                st = np.zeros(n, dtype=np.int64)
+                args = (lam[0], abs(lam[1]))
+                per_point = (x, a, b, fam, code, out, st, *args)
+                table = (x, lam[2], lam[3], fam, code, out, st, *args)
+                t_pp = best_of(lambda c=per_point: quantile_function.invert_kernel(*c), repeat=7)
+                t_tb = best_of(lambda c=table: inverse_table.invert_table_kernel(*c), repeat=7)
+                quantile_function.invert_kernel(x, a, b, fam, code, ref, st, *args)
+                ok = ref > 0
+                if code == 0:
+                    ref = np.where(ref <= 0.5, ref, 1.0 - ref)
+                    out = np.where(out <= 0.5, out, 1.0 - out)
+                    ok = ref > 1e-300
+                worst = max(worst, float(np.max(np.abs(out - ref)[ok] / ref[ok])))
+                cells.append(f"{t_pp * 1e3:.2f} / {t_tb * 1e3:.2f}")
+            print(f"| {label} | {what} (ms, solver / table) | " + " | ".join(cells)
+                  + f" | {worst:.1e} |")
+
+
+def logistic_rows(rng):
+    """FKML(0, 0) (closed form) against scipy.stats.logistic, 1e6 points, and the worst
+    relative error of each against the mpmath logistic on 200 points (absolute for a
+    logarithm below 1)."""
+    from scipy import stats
+
+    g = glstat.GLD(0.0, 1.0, 0.0, 0.0, param="fkml")
+    x = stats.logistic.ppf(rng.random(N))
+    idx = np.concatenate([rng.choice(N, 190, replace=False), np.argsort(np.abs(x))[-10:]])
+    print("\n| FKML(0, 0) | glstat.GLD | gld_fkml (generic API) | scipy.stats.logistic | "
+          "glstat max err (mpmath) | scipy max err (mpmath) |")
+    print("|---|---|---|---|---|---|")
+    for what in ("cdf", "sf", "logcdf", "logsf", "pdf", "logpdf"):
+        t_g = best_of(lambda w=what: getattr(g, w)(x))
+        t_f = best_of(lambda w=what: getattr(glstat.gld_fkml, w)(x, 0.0, 0.0))
+        t_s = best_of(lambda w=what: getattr(stats.logistic, w)(x))
+        errs = []
+        for vals in (getattr(g, what)(x[idx]), getattr(stats.logistic, what)(x[idx])):
+            worst = 0.0
+            for v, xi in zip(vals, x[idx], strict=True):
+                z = mp.mpf(float(xi))
+                ref = {"cdf": 1 / (1 + mp.exp(-z)), "sf": 1 / (1 + mp.exp(z)),
+                       "logcdf": -mp.log1p(mp.exp(-z)), "logsf": -mp.log1p(mp.exp(z)),
+                       "pdf": mp.exp(-abs(z)) / (1 + mp.exp(-abs(z))) ** 2,
+                       "logpdf": -abs(z) - 2 * mp.log1p(mp.exp(-abs(z)))}[what]
+                den = max(abs(ref), 1) if what.startswith("log") else abs(ref)
+                worst = max(worst, float(abs(mp.mpf(float(v)) - ref) / den))
+            errs.append(worst)
+        print(f"| {what} | {t_g * 1e3:.1f} ms | {t_f * 1e3:.1f} ms | {t_s * 1e3:.1f} ms | "
+              f"{errs[0]:.1e} | {errs[1]:.1e} |")
 
 
 def main():
@@ -136,6 +204,8 @@ def main():
     for r in rows:
         print(f"| {r[0]} | {r[1]*1e3:.0f} ms | {r[2]*1e3:.0f} ms | {r[3]*1e3:.0f} ms | {r[4]:.1e} | "
               f"{r[5]:.1e} | {r[6]:.2f} s | {r[7]:.1e} | {r[8]:.0f} s |")
+    table_break_even(rng)
+    logistic_rows(rng)
 
 
 if __name__ == "__main__":
