@@ -32,6 +32,9 @@ __all__ = [
     "grid_shape",
     "height_map",
     "implausible",
+    "implausible_modulus",
+    "implausible_pressure",
+    "implausible_roughness",
     "plausible_roughness",
     "positive_finite",
     "positive_integer",
@@ -245,13 +248,40 @@ PLAUSIBLE_MODULUS = 1e6
 PLAUSIBLE_ROUGHNESS = 1e-3
 
 
+def implausible_roughness(rq: float, length: float | None = None, name: str = "rq") -> str | None:
+    """Why ``rq`` (m) looks like micrometres given as metres (above a millimetre, or above a
+    tenth of the surface's side ``length`` in m), in words; None when it is plausible."""
+    if rq > PLAUSIBLE_ROUGHNESS or (length is not None and rq > 0.1 * length):
+        where = "" if length is None else f" on a {length:g} m long surface"
+        return (f"{name} = {rq:g} m{where} is implausible for an RMS roughness in metres; "
+                f"did you mean {rq:g}e-6 ({rq:g} µm)?")
+    return None
+
+
+def implausible_pressure(p: float, name: str = "nominal_pressure") -> str | None:
+    """Why a nominal pressure ``p`` (Pa) looks like MPa given as Pa (below 1 kPa), in words;
+    None when it is plausible."""
+    if p < PLAUSIBLE_PRESSURE:
+        return (f"{name} = {p:g} Pa is implausibly small for a contact pressure in pascals; "
+                f"did you mean {p:g}e6 ({p:g} MPa)?")
+    return None
+
+
+def implausible_modulus(e: float, name: str = "E") -> str | None:
+    """Why a Young's modulus ``e`` (Pa) looks like GPa given as Pa (below 1 MPa), in words;
+    None when it is plausible."""
+    if e < PLAUSIBLE_MODULUS:
+        return (f"{name} = {e:g} Pa is implausibly small for a Young's modulus in pascals; "
+                f"did you mean {e:g}e9 ({e:g} GPa)?")
+    return None
+
+
 def plausible_roughness(rq: float, length: float | None = None, name: str = "rq") -> float:
     """``rq`` (m), with a warning when it is more likely in µm than in metres: above a
     millimetre, or above a tenth of the surface's side ``length`` (m)."""
-    if rq > PLAUSIBLE_ROUGHNESS or (length is not None and rq > 0.1 * length):
-        where = "" if length is None else f" on a {length:g} m long surface"
-        implausible(f"{name} = {rq:g} m{where} is implausible for an RMS roughness in metres; "
-                    f"did you mean {rq:g}e-6 ({rq:g} µm)?")
+    note = implausible_roughness(rq, length, name)
+    if note:
+        implausible(note)
     return rq
 
 
@@ -279,9 +309,9 @@ def positive_pressure(value, warn: bool = True) -> float:
         p = positive_finite(value, "nominal_pressure", "pressure in pascals")
     except ValueError as exc:
         raise ValueError(f"{exc}; a compressive load is positive") from None
-    if warn and p < PLAUSIBLE_PRESSURE:
-        implausible(f"nominal_pressure = {p:g} Pa is implausibly small for a contact pressure in "
-                    f"pascals; did you mean {p:g}e6 ({p:g} MPa)?")
+    note = implausible_pressure(p) if warn else None
+    if note:
+        implausible(note)
     return p
 
 
@@ -337,9 +367,9 @@ def elastic_constants(E, nu, which: str = "") -> tuple[float, float]:
         Not one real number each (see :func:`real_scalar`), or outside the ranges.
     """
     e = positive_finite(E, f"E{which}", "Young's modulus in pascals")
-    if e < PLAUSIBLE_MODULUS:
-        implausible(f"E{which} = {e:g} Pa is implausibly small for a Young's modulus in pascals; "
-                    f"did you mean {e:g}e9 ({e:g} GPa)?")
+    note = implausible_modulus(e, f"E{which}")
+    if note:
+        implausible(note)
     n = real_scalar(nu)
     if n is None or not (-1.0 < n <= 0.5):
         raise ValueError(

@@ -359,7 +359,7 @@ def test_bad_settings():
         CampaignSettings(n_terms=(5, 6))
     with pytest.raises(ValueError, match=r"hurst must be one or more exponents in \[0, 1\]"):
         CampaignSettings(hurst=(1.5,))
-    with pytest.raises(ValueError, match="hardness must be a positive finite pressure in MPa"):
+    with pytest.raises(ValueError, match="hardness must be a positive finite pressure in Pa"):
         AnalysisSettings(hardness=-1.0)
     assert main(["study", "--hurst", "2", "--no-progress"]) == 2
     with pytest.raises(ValueError, match=r"nu \(Poisson ratio\) must be in \(-1, 0.5\]"):

@@ -105,8 +105,8 @@ def test_validate_sample_fails_when_the_observed_maxima_exceed_the_peaks():
 
     rng = np.random.default_rng(4)
     per = _surfaces(rng, 120, lambda r, k: r.lognormal(7.0, 0.3, k))
-    a = AnalysisSettings(hardness=float(np.median([m for _, _, m in per])), n_resamples=100)
-    levels = hardness_levels(np.array([m for _, _, m in per]), a.hardness, a.n_levels)
+    a = AnalysisSettings(hardness=1e6 * float(np.median([m for _, _, m in per])), n_resamples=100)
+    levels = hardness_levels(np.array([m for _, _, m in per]), a.hardness_mpa, a.n_levels)
     honest = validate_sample(per, "spot", a, 0, 0, "rs", "moments", levels)
     assert honest.damage_check.verdict != "failed"
     assert honest.damage_check.n == 120
@@ -146,3 +146,12 @@ def test_analysis_settings_refuse_bad_hardness():
             AnalysisSettings(hardness=bad)
     with pytest.raises(ValueError, match="n_levels"):
         AnalysisSettings(n_levels=3)
+
+
+def test_analysis_hardness_is_in_pascals_and_the_old_mpa_form_warns():
+    a = AnalysisSettings()
+    assert a.hardness == 2050e6 and a.hardness_mpa == 2050.0  # SI, and MPa for the tables
+    with pytest.warns(DeprecationWarning, match=r"hardness is in Pa; 2050 was read as 2050 MPa"):
+        old = AnalysisSettings(hardness=2050)
+    assert old.hardness == 2050e6
+    assert AnalysisSettings(hardness=1.2e6).hardness_mpa == pytest.approx(1.2)  # no warning

@@ -362,3 +362,20 @@ def test_bad_paper_table_is_a_usage_error(tmp_path, capsys):
     rc = main(["study", "--paper-table", str(good), "--topographies", str(tmp_path),
                "--out", str(tmp_path / "o")])
     assert rc == 2 and "does not apply to measured files" in capsys.readouterr().err
+
+
+def test_paper_table_rows_for_an_h_not_run_are_said_or_refused(tmp_path, capsys):
+    from glstat.cli.commands import _paper_rows_not_run, main
+    from glstat.study.paper_table import Table1Row
+
+    rows = [Table1Row(hurst=0.0, mean_mpa=1724.0), Table1Row(hurst=0.5, mean_mpa=1369.0)]
+    assert _paper_rows_not_run(rows, (0.0, 0.5, 1.0)) is None
+    note = _paper_rows_not_run(rows, (0.5,))
+    assert note.startswith("--paper-table rows for H = 0 are not in this run (H = 0.5)")
+    assert "paper's own contact counts" in note
+    odd = tmp_path / "odd.csv"
+    odd.write_text("hurst,mean_mpa\n0.3,1500\n")
+    rc = main(["study", "--paper-table", str(odd), "--out", str(tmp_path / "o")])
+    assert rc == 2
+    assert ("--paper-table has rows for H = 0.3, which this run does not simulate (H = 0, 0.5, 1) "
+            "and the paper's scene does not have; add --hurst 0.3" in capsys.readouterr().err)

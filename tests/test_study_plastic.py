@@ -53,7 +53,7 @@ def test_plastic_interval_covers_a_non_gld_parent_and_its_check_fails_when_halve
 def test_study_with_plasticity_writes_the_plastic_columns_and_the_allowable_load(tmp_path):
     settings = CampaignSettings(hurst=(0.5,), pressures=(2e6, 5e6, 10e6), n_surfaces=8, grid=64,
                                 rq=0.5e-6, n_examples=1)
-    a = AnalysisSettings(hardness=4000.0, n_resamples=20, grid_resamples=10,
+    a = AnalysisSettings(hardness=4000e6, n_resamples=20, grid_resamples=10,
                          damage_areas=(1e-6, 25e-6))
     res = run_study(settings, a, tmp_path, workers=1, progress=False, model="both")
     table = res.summary()
@@ -76,7 +76,7 @@ def test_study_with_plasticity_writes_the_plastic_columns_and_the_allowable_load
     assert "allowable nominal pressure for damage ≤ 1 %" in text
     assert "plastic area at 4000 MPa" in text
     with pytest.raises(ValueError, match="not below the hardness"):
-        run_study(settings, AnalysisSettings(hardness=5.0), tmp_path / "x", workers=1,
+        run_study(settings, AnalysisSettings(hardness=5e6), tmp_path / "x", workers=1,
                   progress=False, model="both")
 
 

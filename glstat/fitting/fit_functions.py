@@ -9,6 +9,8 @@ kernels of :mod:`glstat._fit_engine.kernels` (shape equations and Newton solver)
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from .._fit_engine import kernels as K
@@ -23,7 +25,7 @@ from .._fit_engine.equations import check_u as _check_u
 from .._fit_engine.equations import fit_from_stats
 from .._fit_engine.equations import seed_table as _table
 from .._fit_engine.sample_fit import fit_sample
-from ..errors import FitError
+from ..errors import FitError, FitWarning
 from .result import GLDFit, as_gldfit
 
 __all__ = ["fit", "fit_batch", "fit_lmoments", "fit_moments", "fit_percentiles"]
@@ -233,7 +235,8 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
     Parameters
     ----------
     data : array_like or scipy.stats.CensoredData
-        Sample (any shape; flattened, never modified). Units: those of the data. Censored
+        Sample (any shape; flattened, never modified; a table of several columns or rows is
+        fitted as one sample with a :class:`FitWarning`). Units: those of the data. Censored
         data are fitted by ``method="mle"`` only: the likelihood sums logpdf over the exact
         values, logcdf over the left-censored, logsf over the right-censored and
         log(F(high) - F(low)) over the intervals (Nelder–Mead from the uncensored ML fit;
@@ -313,5 +316,21 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
     """
     f = as_gldfit(fit_sample(data, param, method, nan_policy, **options))
     if warn:
+        _warn_if_table(data)
         _emit(f.issues, stacklevel=2)
     return f
+
+
+def _warn_if_table(data) -> None:
+    """Say so when ``data`` has more than one axis longer than 1 (a table of columns is more
+    likely several quantities than one sample)."""
+    from scipy.stats import CensoredData
+
+    if isinstance(data, CensoredData):
+        return
+    shape = np.shape(data)
+    if sum(n > 1 for n in shape) > 1:
+        warnings.warn(f"data of shape {shape} were fitted as one sample of {int(np.prod(shape))} "
+                      "values; pass one column (data[:, j]) if the columns are different "
+                      "quantities, or data.ravel() to fit them as one sample without this warning",
+                      FitWarning, stacklevel=3)

@@ -378,8 +378,8 @@ def _bem_settings(settings: CampaignSettings, analysis: AnalysisSettings,
     bsettings = dataclasses.replace(bsettings, grid=bsettings.solve_grid(settings),
                                     guard=bsettings.guard_points(settings))
     if bsettings.hardness is None:  # the capped solve at the analysis' hardness
-        bsettings = dataclasses.replace(bsettings, hardness=analysis.hardness * 1e6)
-    cap = float(bsettings.hardness or analysis.hardness * 1e6)
+        bsettings = dataclasses.replace(bsettings, hardness=analysis.hardness)
+    cap = float(bsettings.hardness or analysis.hardness)
     if max(settings.pressures) >= cap:
         raise ValueError(
             f"nominal pressure {max(settings.pressures) / 1e6:g} MPa is not below the hardness "

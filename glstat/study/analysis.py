@@ -218,14 +218,14 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
         data, a, sample_rng(a, ih, il, full_slot),
         fit_order(a, param, method, order), groups=labels if grouped else None,
         n=None if grouped else sa.n_ref,
-        n_resamples=a.grid_resamples if sample == "grid" else None, threshold=a.hardness,
+        n_resamples=a.grid_resamples if sample == "grid" else None, threshold=a.hardness_mpa,
         maximum=True, maximum_rng=sample_rng(a, ih, il, maximum_slot))
     bf, p, m = sa.prediction.boot, sa.prediction.param, sa.prediction.method
     sa.note = sa.prediction.note
     if bf is None:
         return sa
     count_kw = sa.prediction.count_kwargs()
-    sa.integrity = bf.integrity_probability(a.hardness, area_factor=np.asarray(a.area_factors),
+    sa.integrity = bf.integrity_probability(a.hardness_mpa, area_factor=np.asarray(a.area_factors),
                                             **count_kw)
     full_kw = {"count": bf.counts} if grouped else {"n": sa.n_ref}
     dist = sa.prediction.dist
@@ -234,15 +234,15 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
             dist, probability=a.integrity_level, area_factor=k, **full_kw))
     if area_m2 and sample == PRIMARY_SAMPLE:  # the answer's growth with the area
         factors = np.array(a.damage_areas) / area_m2
-        d = bf.damage_probability(a.hardness, area_factor=factors, **count_kw)
+        d = bf.damage_probability(a.hardness_mpa, area_factor=factors, **count_kw)
         sa.area_damage = pd.DataFrame({"area_mm2": np.array(a.damage_areas) * 1e6,
                                        "area_factor": factors,
                                        "estimate": np.ravel(d.estimate), "low": np.ravel(d.low),
                                        "high": np.ravel(d.high)})
     sa.upper_end = float(dist.support()[1])
-    sa.end_note = _end_note(sa, a.hardness)
+    sa.end_note = _end_note(sa, a.hardness_mpa)
     maxima = np.array([q[2] for q in per])
-    levels = hardness_levels(maxima, a.hardness, a.n_levels)
+    levels = hardness_levels(maxima, a.hardness_mpa, a.n_levels)
     curve = []
     for lv in np.unique(np.concatenate([levels, np.linspace(maxima.min(), maxima.max(), 25)])):
         d = bf.damage_probability(float(lv), **count_kw)
@@ -286,7 +286,7 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                 "n_asperities": float(np.mean([r["n_asperities"] for r in rs])),
                 "n_spots": float(np.mean([r["n_spots"] for r in rs])),
                 "max_pressure": float(np.mean([r["max_pressure"] for r in rs])) / 1e6,
-                "observed_damage": float(np.mean([float(r["max_pressure"]) / 1e6 > a.hardness
+                "observed_damage": float(np.mean([float(r["max_pressure"]) / 1e6 > a.hardness_mpa
                                                   for r in rs])),
                 "overlap_fraction": float(np.mean([overlap_sets_maximum(r) for r in rs])),
                 "force_error": float(np.max(np.abs([r["force_error"] for r in rs]))),

@@ -7,6 +7,7 @@ library's pipeline (:func:`glstat.predict_maximum`) with these settings.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -62,6 +63,11 @@ CHECK_MAX_MISS = 0.2
 MORE_SURFACES = "analyse more or larger surfaces (--surfaces, --size)"
 
 
+#: A hardness below this (Pa) is a value in MPa, the unit of earlier releases: no material's
+#: hardness is below 100 kPa.
+MPA_FORM_BELOW = 1e5
+
+
 @dataclass(frozen=True)
 class AnalysisSettings:
     """How a campaign's pressures are analysed.
@@ -69,7 +75,9 @@ class AnalysisSettings:
     Attributes
     ----------
     hardness : float
-        Hardness / first-yield pressure Pd in MPa.
+        Hardness / first-yield pressure Pd in Pa (SI, as every setting; the study's tables and
+        report give it in MPa, :attr:`hardness_mpa`). A value below 100 kPa is read as MPa,
+        the unit of earlier releases, with a :class:`DeprecationWarning`.
     n_resamples : int
         Bootstrap resamples B of the primary (per-asperity) sample.
     grid_resamples : int
@@ -97,7 +105,7 @@ class AnalysisSettings:
         ``damage_areas`` (campaigns of several loads; :mod:`glstat.study.allowable`).
     """
 
-    hardness: float = 2050.0
+    hardness: float = 2050e6
     n_resamples: int = 1000
     grid_resamples: int = 50
     param: str = "rs"
@@ -111,10 +119,21 @@ class AnalysisSettings:
     damage_areas: tuple[float, ...] = (1e-6, 1e-4, 1e-3)
     target_damage: float = 0.01
 
+    @property
+    def hardness_mpa(self) -> float:
+        """The hardness in MPa, the unit of the study's tables and report."""
+        return self.hardness / 1e6
+
     def __post_init__(self) -> None:
         from _glstat_runtime.validation import check_level, positive_finite
 
-        positive_finite(self.hardness, "hardness", "pressure in MPa")
+        hardness = positive_finite(self.hardness, "hardness", "pressure in Pa")
+        if hardness < MPA_FORM_BELOW:
+            warnings.warn(f"AnalysisSettings.hardness is in Pa; {hardness:g} was read as {hardness:g} "
+                          f"MPa, the unit of earlier releases: give hardness={hardness:g}e6",
+                          DeprecationWarning, stacklevel=3)
+            hardness *= 1e6
+        object.__setattr__(self, "hardness", float(hardness))
         for name in ("n_resamples", "grid_resamples"):
             v = getattr(self, name)
             if int(v) != v or v < 10:

@@ -286,14 +286,14 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
             *([plastic_text(r["summary"])] if plastic else []),
         ]
         if simulated:
-            row += [PAPER_VERDICTS.get(h, "—") if abs(asettings.hardness - 2050) < 1e-9 else "—",
+            row += [PAPER_VERDICTS.get(h, "—") if abs(asettings.hardness_mpa - 2050) < 1e-9 else "—",
                     fmt_mpa(PAPER_MEAN_MPA.get(h, math.nan)) if h in PAPER_MEAN_MPA else "—"]
         rows.append(row)
-    columns = ["case", f"damage probability at {asettings.hardness:g} MPa, one area "
+    columns = ["case", f"damage probability at {asettings.hardness_mpa:g} MPa, one area "
                        f"[{lvl} % interval]", "check on held-out surfaces",
                "observed fraction of surfaces damaged",
                *([] if bem_analysis else ["elastic BEM (first surfaces)"]), "mean contact pressure",
-               *([f"plastic area at {asettings.hardness:g} MPa, one area [{lvl} % interval]; "
+               *([f"plastic area at {asettings.hardness_mpa:g} MPa, one area [{lvl} % interval]; "
                   f"share of the load"] if plastic else [])]
     return rows, columns + (["paper: damage", "paper: mean pressure"] if simulated else [])
 
@@ -422,7 +422,7 @@ def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = 
                          f"{v.t_pvalue:.2g}", f"{v.theta:.2g}" if math.isfinite(v.theta) else "—",
                          v.verdict()])
     return rows, ["case", "sample", f"damaged held-out surfaces vs predicted at "
-                                    f"{asettings.hardness:g} MPa (exact binomial p)",
+                                    f"{asettings.hardness_mpa:g} MPa (exact binomial p)",
                   f"held-out maxima inside the {lvl} % interval (exact binomial p)",
                   "smallest miss detected (80 % power)", "centring test p", "extremal index θ",
                   "check"]

@@ -211,18 +211,18 @@ class CampaignSettings:
         """Values that are valid but implausible for their SI unit, in words (a unit mix-up is
         more likely than meant: MPa given as Pa, GPa as Pa, µm or mm as m); the report lists
         them on its first screen."""
-        from _glstat_runtime.validation import PLAUSIBLE_MODULUS, PLAUSIBLE_PRESSURE, PLAUSIBLE_ROUGHNESS
+        from _glstat_runtime.validation import (
+            implausible_modulus,
+            implausible_pressure,
+            implausible_roughness,
+        )
 
-        notes = [f"nominal pressure {v:g} Pa is implausibly small for pascals; did you mean "
-                 f"{v:g}e6 ({v:g} MPa)?" for v in self.pressures if v < PLAUSIBLE_PRESSURE]
-        if self.E < PLAUSIBLE_MODULUS:
-            notes.append(f"E = {self.E:g} Pa is implausibly small for a Young's modulus in "
-                         f"pascals; did you mean {self.E:g}e9 ({self.E:g} GPa)?")
         side = min(self.size)
-        for rq in (self.rq if isinstance(self.rq, tuple) else (self.rq,)):
-            if rq > PLAUSIBLE_ROUGHNESS or (not self.measured and rq > 0.1 * side):
-                notes.append(f"rq = {rq:g} m on a {side:g} m long surface is implausible for an "
-                             f"RMS roughness in metres; did you mean {rq:g}e-6 ({rq:g} µm)?")
+        rqs = self.rq if isinstance(self.rq, tuple) else (self.rq,)
+        found = [implausible_pressure(v, "nominal pressure") for v in self.pressures]
+        found.append(implausible_modulus(self.E))
+        found += [implausible_roughness(rq, None if self.measured else side) for rq in rqs]
+        notes = [n for n in found if n]
         if side > 0.1:
             notes.append(f"a surface of {side:g} m per side is implausible for a length in "
                          f"metres; did you mean {side:g}e-3 ({side:g} mm)?")

@@ -155,7 +155,7 @@ def compare_records(entries: Sequence[tuple[Any, Mapping[str, Mapping[str, np.nd
         labels = np.repeat(np.arange(len(peaks)), [p.size for p in peaks])
         n_ref = max(float(np.mean([p.size for p in peaks])), 1.0)
         if data.size < 5:
-            f = MaximumPrediction(data=data, param="", method="", boot=None, threshold=a.hardness,
+            f = MaximumPrediction(data=data, param="", method="", boot=None, threshold=a.hardness_mpa,
                                   note=f"only {data.size} spot peaks on {len(entries)} surfaces; "
                                        "at least 5 are needed")
         else:
@@ -164,9 +164,9 @@ def compare_records(entries: Sequence[tuple[Any, Mapping[str, Mapping[str, np.nd
             several = len(peaks) >= 2
             f = predict_sample(data, a, sample_rng(a, *key, SEED_SLOT + j), fit_order(a),
                                groups=labels if several else None,
-                               n=None if several else n_ref, threshold=a.hardness)
+                               n=None if several else n_ref, threshold=a.hardness_mpa)
         fits[m] = f
-    return BEMComparison(surfaces=surfaces, fits=fits, hardness=a.hardness,
+    return BEMComparison(surfaces=surfaces, fits=fits, hardness=a.hardness_mpa,
                          confidence_level=a.confidence_level)
 
 

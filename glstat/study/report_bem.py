@@ -41,7 +41,7 @@ def _method(settings, asettings, bsettings) -> str:
         f"the study's GLD fit ({asettings.param.upper()} {asettings.method}, fallbacks as above) "
         f"with B = "
         f"{asettings.n_resamples} bootstrap resamples of whole surfaces, and the damage "
-        f"probability at {asettings.hardness:g} MPa is 1 − E[F(Pd)^N] with N the number of "
+        f"probability at {asettings.hardness_mpa:g} MPa is 1 − E[F(Pd)^N] with N the number of "
         f"contact spots of a surface, a random count "
         f"({round(100 * asettings.confidence_level)} % bootstrap interval). "
         f"Ratios are asperity model / BEM (1: no error); ± is the "
@@ -87,7 +87,7 @@ def bem_section(settings, asettings, comps: dict, bsettings, maps: dict) -> Bloc
     from .both_models import MODEL_LABELS, MODELS
     from .comparison_text import findings
 
-    hard, lvl = asettings.hardness, round(100 * asettings.confidence_level)
+    hard, lvl = asettings.hardness_mpa, round(100 * asettings.confidence_level)
     k = bsettings.n_compare
     out = Blocks()
     out.heading("Asperity model vs elastic BEM")

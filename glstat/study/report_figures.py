@@ -112,10 +112,10 @@ def damage_curve_figure(settings, asettings, analysis: dict, suffix: str = ""):
         ax.fill_between(x, c["low"], c["high"], alpha=0.3, label="90 % band")
         ax.plot(x, c["damage"], label="predicted")
         ax.step(x, c["observed"], where="post", color="k", lw=1, label="observed fraction")
-        ax.axvline(asettings.hardness / 1e3, color="r", ls="--", lw=1, label="hardness")
+        ax.axvline(asettings.hardness_mpa / 1e3, color="r", ls="--", lw=1, label="hardness")
         table = r[PRIMARY_SAMPLE].validation.table
         top = float(np.quantile(table["observed"], 0.95)) / 1e3 if table is not None else float(x.max())
-        ax.set_xlim(float(x.min()), max(top * 1.15, asettings.hardness / 1e3 * 1.1))
+        ax.set_xlim(float(x.min()), max(top * 1.15, asettings.hardness_mpa / 1e3 * 1.1))
         ax.set_xlabel("hardness Pd (GPa)")
         ax.set_ylabel("P(max > Pd), one area")
         ax.set_title(case_label(settings, ih, il) + suffix, fontsize=9)
@@ -249,7 +249,8 @@ def maximum_figure(settings, asettings, records: list):
         if math.isfinite(observed):
             ax.axvline(observed, color="0.4", ls="--", lw=1,
                        label=f"largest observed {observed:.4g} MPa (beyond: extrapolated)")
-        ax.axvline(asettings.hardness, color="k", ls=":", label=f"hardness {asettings.hardness:g} MPa")
+        ax.axvline(asettings.hardness_mpa, color="k", ls=":",
+                   label=f"hardness {asettings.hardness_mpa:g} MPa")
         ax.set_xlabel("maximal pressure (MPa)")
         ax.set_ylabel("density (1/MPa)")
         ax.set_title(SAMPLE_LABELS[sample])
@@ -317,7 +318,7 @@ def integrity_figure(settings, asettings, analysis: dict):
             line, = ax.semilogx(it.area_factor, it.estimate, label=case_label(settings, ih, il))
             ax.fill_between(it.area_factor, it.low, it.high, color=line.get_color(), alpha=0.15)
         ax.set_xlabel("area factor k (area / analysed area)")
-        ax.set_ylabel(f"integrity probability at {asettings.hardness:g} MPa")
+        ax.set_ylabel(f"integrity probability at {asettings.hardness_mpa:g} MPa")
         ax.set_ylim(-0.02, 1.02)
         ax.set_title(SAMPLE_LABELS[sample])
         if ax.get_legend_handles_labels()[0]:
@@ -427,7 +428,7 @@ def allowable_figure(settings, asettings, analysis: dict, model: str):
         ax.set_xlabel("nominal pressure (MPa)")
         ax.set_ylim(-0.02, 1.02)
         if ia == 0:
-            ax.set_ylabel(f"P(max > {asettings.hardness:g} MPa) ({model})")
+            ax.set_ylabel(f"P(max > {asettings.hardness_mpa:g} MPa) ({model})")
             ax.legend(fontsize=7)
     fig.tight_layout()
     return fig

@@ -145,7 +145,7 @@ def _guaranteed_cell(value: float, observed_max: float, e_star: float) -> str:
 def damage_section(settings, asettings, analysis: dict) -> Blocks:
     """"Damage probability at the hardness" per case and sample, and "Integrity against
     area" with the guaranteed pressures."""
-    hard, lvl = asettings.hardness, round(100 * asettings.confidence_level)
+    hard, lvl = asettings.hardness_mpa, round(100 * asettings.confidence_level)
     out = Blocks()
     out.heading("Damage probability at the hardness")
     rows = [[case_label(settings, ih, il), SAMPLE_LABELS[sample], n,

@@ -48,7 +48,7 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     observed fraction, the elastic model and the paper, the model error of the asperity
     model, and how the peak pressures were fitted."""
     out = Blocks()
-    hard, lvl = asettings.hardness, _level(asettings)
+    hard, lvl = asettings.hardness_mpa, _level(asettings)
     out.heading("The answer")
     bem = info.get("bem")
     odd: list[str] = getattr(settings, "implausible_values", list)()
@@ -121,7 +121,7 @@ def _allowable_block(out: Blocks, settings, asettings, analysis: dict, bem_analy
     out.table(["case", "area", f"allowable nominal pressure for damage ≤ {target} [{lvl} % interval]",
                "between the loads (MPa)", "held-out checks at those loads"], rows,
               f"The allowable load ({model}): the nominal pressure at which the probability that "
-              f"the pressure exceeds {asettings.hardness:g} MPa somewhere on the area reaches "
+              f"the pressure exceeds {asettings.hardness_mpa:g} MPa somewhere on the area reaches "
               f"{target}, interpolated between the two loads run that bracket it (linear in the "
               f"logit of the probability); its interval where the ends of the probability's "
               f"interval cross the target (— when they do not between the loads). Nothing is "
@@ -218,7 +218,7 @@ def main_results_section(settings, asettings, analysis: dict) -> Blocks:
     """"Main results": the scene, one row per case with its contact, damage probabilities and
     coverages, the damage verdict, load-control jumps and the calibration of the maximum."""
     out = Blocks()
-    hard, lvl = asettings.hardness, _level(asettings)
+    hard, lvl = asettings.hardness_mpa, _level(asettings)
     out.heading("Main results")
     out.paragraph(
         scene_sentence(settings) + f" Per-asperity peaks: the GLD chosen per H "
@@ -271,7 +271,7 @@ def settings_section(settings, asettings, info: dict) -> Blocks:
     rows = [*surface_rows(settings),
             ["E (GPa), ν, cone factor c",
              f"{settings.E / 1e9:g}, {settings.nu:g}, {settings.cone_factor:g}"],
-            ["seed", settings.seed], ["hardness Pd (MPa)", asettings.hardness],
+            ["seed", settings.seed], ["hardness Pd (MPa)", asettings.hardness_mpa],
             ["GLD fit", f"{asettings.param.upper()} by {asettings.method}"],
             ["bootstrap resamples B", asettings.n_resamples],
             ["interval level", asettings.confidence_level],

@@ -280,7 +280,7 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
         checks = [held_out_check(pr, h, n) for pr, h, n in
                   zip(g["predicted"], g["hits"], g["n_surfaces"], strict=True)]
         g["p_value"] = [c_.p_value for c_ in checks]
-        at = np.flatnonzero(np.isclose(g["hardness_mpa"], a.hardness, rtol=1e-12)
+        at = np.flatnonzero(np.isclose(g["hardness_mpa"], a.hardness_mpa, rtol=1e-12)
                             & (g["area_factor"] == 1))
         if at.size:
             val.damage_check = checks[int(at[0])]
