@@ -23,7 +23,7 @@ FAMILY = {"rs": quantile_function.RS, "fkml": quantile_function.FKML}
 _WHAT = {"cdf": 0, "sf": 1, "logcdf": 2, "logsf": 3, "pdf": 4, "logpdf": 5}
 # from this many points on, the interpolation table is cheaper than the per-point solver
 # (the threshold glstat.distributions uses)
-_TABLE_MIN_POINTS = 20_000
+_TABLE_MIN_POINTS = 2_000
 
 
 def gld_evaluate(param: str, what: str, x, lambdas) -> tuple[np.ndarray, int]:
