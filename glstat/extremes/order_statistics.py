@@ -332,7 +332,8 @@ class _OrderStatisticGen(ExtremeGen):
         ``log S`` as ``log(S)`` where S is near 1, which loses ``|log S|`` relative; there it
         is ``log1p(-F)``."""
         f, logf, s, logs = self._parent.tail(x)
-        logs = np.where(s >= 0.5, np.log1p(-f), logs)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            logs = np.where(s >= 0.5, np.log1p(-f), logs)
         return f, logf, s, logs
 
     def _small(self, x):
