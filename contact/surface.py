@@ -62,11 +62,12 @@ class Surface:
                 mask |= hidden
         elif hidden is not None:
             mask = hidden
-        height_map(h, mask)
+        h, valid = height_map(h, mask)
         self.heights = h
         self.dx = dx
         self.dy = dy
         self.mask = mask
+        _warn_if_implausible(h if mask is None else h[valid], (h.shape[0] * dx, h.shape[1] * dy))
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -376,3 +377,15 @@ def require_surface(obj) -> Surface:
             "wrap a height array with contact.Surface(heights, dx)"
         )
     return obj
+
+
+def _warn_if_implausible(heights: np.ndarray, size: tuple[float, float]) -> None:
+    """Warn when the heights' RMS exceeds the surface's shorter side: taller than wide in any
+    unit system, so heights and spacing are most likely in different units (µm given as m)."""
+    from _glstat_runtime.validation import implausible
+
+    rq, side = float(np.std(heights)), min(size)
+    if rq > side:
+        implausible(f"the RMS of the heights ({rq:g}) exceeds the surface's side ({side:g}): heights "
+                    "and spacing are probably in different units; both are in metres (did you "
+                    f"give micrometres as metres? then heights * 1e-6, RMS {rq:g}e-6 m)")

@@ -189,6 +189,7 @@ def test_same_files_whatever_the_executor(tmp_path):
     assert abs(float(r["rq"]) - SMALL.rq) < 1e-9 * SMALL.rq
 
 
+@pytest.mark.slow
 def test_one_and_two_workers_through_the_command(tmp_path):
     args = ["study", "--surfaces", "3", "--grid", "48", "--bootstrap", "20", "--hurst", "0", "1",
             "--n-terms", "5", "--no-progress"]

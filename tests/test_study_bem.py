@@ -126,6 +126,7 @@ def test_report_section(study):
         == "1, isolated patch, 1e-08, 1000"
 
 
+@pytest.mark.slow
 def test_resume_reuses_the_bem_solves(study, tmp_path, capsys, monkeypatch):
     out = tmp_path / "run"
     shutil.copytree(study, out)

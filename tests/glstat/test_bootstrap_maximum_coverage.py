@@ -32,6 +32,9 @@ import pytest
 
 import glstat
 
+#: Coverage measured by simulation: seconds per test, run by CI with the slow checks.
+pytestmark = pytest.mark.slow
+
 TRUE = glstat.GLD(10.7621, 0.014452, 0.0251988, 0.093884)
 N_DATA = 500
 B = 200

@@ -287,7 +287,8 @@ def _fkml_ml_reference(x):
     return -res.fun - n * np.log(iqr)
 
 
-@pytest.mark.parametrize("name", sorted(_HEAVY_DATA))
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n == "lognormal" else n
+                                  for n in sorted(_HEAVY_DATA)])  # lognormal: a 20 s reference
 def test_fkml_ml_on_heavy_tailed_data_reaches_the_optimum(name):
     x = _HEAVY_DATA[name]()
     f = fit(x, "fkml", "mle")

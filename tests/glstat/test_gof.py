@@ -191,6 +191,7 @@ def test_estimated_scipy_distribution_counts_its_parameters():
 # ---------------------------------------------------------------------------------------------
 # parametric bootstrap
 # ---------------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_bootstrap_pvalues_uniform_under_the_null():
     # 100 samples of n = 100 from the RS normal approximation, each fitted by RS moments and
     # tested with B = 49: under the null P(p <= a) = a for a on the grid k/50. The fraction of

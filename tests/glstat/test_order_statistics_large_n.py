@@ -189,8 +189,8 @@ def test_audit_case_fifth_smallest_of_1e9():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("parent", ["gld", "norm"])
-@pytest.mark.parametrize("n", [1e3, 1e6, 1e9, 1e12])
-@pytest.mark.parametrize("r", [1, 2, 5, 10])
+@pytest.mark.parametrize("n", [1e6, 1e12])  # 1e3 and 1e9 and the other ranks: the fast tests
+@pytest.mark.parametrize("r", [2, 10])
 @pytest.mark.parametrize("end", ["lower", "upper"])
 def test_sweep_all_ranks_and_sizes(parent, n, r, end):
     k = r if end == "lower" else int(n) - r + 1
