@@ -432,7 +432,7 @@ def residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         h = -math.expm1(b * l1) if b != 0.0 else 0.0
         if a * t < -LN2 and b * l1 < -LN2:
             # both powers below 1/2: difference of the powers themselves, no cancellation
-            return _pow_residual(RS, a, b, y, y_lo, t, p, l1)
+            return _pow_residual(np.int64(RS), a, b, y, y_lo, t, p, l1)
         r = ((ema + h) - y) - y_lo
         pa = ema + 1.0
         dh = b * p * math.exp((b - 1.0) * l1)
@@ -440,7 +440,7 @@ def residual(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         k = min(dh / da, da / dh)
         return r, da + dh, EPS * (abs(ema) + h + abs(y)), k
     if (case == FPD or case == FPOS) and _fkml_both_small(a, b, t, l1):
-        return _pow_residual(FKML, a, b, y, y_lo, t, p, l1)
+        return _pow_residual(np.int64(FKML), a, b, y, y_lo, t, p, l1)
     if case == FPD:
         g = _em(a, t)
         h = -_em(b, l1)
@@ -554,7 +554,7 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
         return dd_root(b_hi, b_e + w_lo, a)
     if (case == FPOS or case == FPD) and _fkml_both_small(a, b, t, l1):
         # both powers below 1/2: p^a/a - (1-p)^b/b = w = y - (1/b - 1/a), no 1/a offsets
-        w_hi, w_lo = _pow_target(FKML, a, b, y, y_lo)
+        w_hi, w_lo = _pow_target(np.int64(FKML), a, b, y, y_lo)
         if abs(w_hi) < _TINY_TARGET:
             return p, t  # the logarithmic residual has no closed-form step
         pa = math.exp(a * t)
@@ -627,7 +627,8 @@ def _fixed_point(case, a, b, y, z_hi, z_lo, t, y_lo=0.0):
 
 @njit(cache=True, error_model="numpy")
 def _initial_guess(case, a, b, y, z_hi, z_lo):
-    t = _fixed_point(case, a, b, y, z_hi, z_lo, -math.inf)[1]
+    # y_lo = 0.0 passed (the default): one compiled signature with the call of `solve_lower`
+    t = _fixed_point(case, a, b, y, z_hi, z_lo, -math.inf, 0.0)[1]
     if case == R3A and b > 0.0:
         # both terms of D are increasing: each alone gives an upper bound for p
         w = min(z_hi + z_lo, 1.0)
@@ -1171,7 +1172,8 @@ def logistic_point(what, y, y_lo, inv_scale, log_scale):
     v = -y if upper else y
     v_lo = -y_lo if upper else y_lo
     if v == -math.inf:
-        return emit(what, FKML, 0.0, 0.0, 0.0, -math.inf, upper, inv_scale, log_scale)
+        # the family as an int64 value: a literal would compile the callees once more
+        return emit(what, np.int64(FKML), 0.0, 0.0, 0.0, -math.inf, upper, inv_scale, log_scale)
     e = math.exp(v)
     ope = 1.0 + e
     if what <= 3:

@@ -214,7 +214,6 @@ def _row(kind, x, c, m, u, loc, scale, out, ext):
         _lmoments(x, c, m, out)
 
 
-@njit(cache=True, error_model="numpy")
 def stats_from_indices(kind, x, idx, u, loc, scale, out, ext):
     """Statistics of the resamples ``x[idx[r]]`` of the sorted sample ``x``.
 
@@ -239,33 +238,48 @@ def stats_from_indices(kind, x, idx, u, loc, scale, out, ext):
         Receives the smallest and the largest value of each resample (a fit must have a
         support covering them).
     """
-    m = idx.shape[1]
+    # one compiled kernel per branch: a moments bootstrap does not compile the percentile
+    # and L-moment code (nor the other way round)
     if kind == MOMENTS:
-        inv = 1.0 / scale
-        z = np.empty(x.size)
-        for i in range(x.size):
-            z[i] = (x[i] - loc) * inv
-        for r in range(idx.shape[0]):
-            s1 = 0.0
-            s2 = 0.0
-            s3 = 0.0
-            s4 = 0.0
-            imin = x.size
-            imax = -1
-            for j in range(m):
-                k = idx[r, j]
-                imin = min(imin, k)
-                imax = max(imax, k)
-                d = z[k]
-                d2 = d * d
-                s1 += d
-                s2 += d2
-                s3 += d2 * d
-                s4 += d2 * d2
-            _finish_moments(s1, s2, s3, s4, m, loc, scale, out[r])
-            ext[r, 0] = x[imin] if m > 0 else math.nan
-            ext[r, 1] = x[imax] if m > 0 else math.nan
-        return
+        _moments_from_indices(x, idx, float(loc), float(scale), out, ext)
+    else:
+        _counts_from_indices(int(kind), x, idx, float(u), float(loc), float(scale), out, ext)
+
+
+@njit(cache=True, error_model="numpy")
+def _moments_from_indices(x, idx, loc, scale, out, ext):
+    """The MOMENTS branch of :func:`stats_from_indices`."""
+    m = idx.shape[1]
+    inv = 1.0 / scale
+    z = np.empty(x.size)
+    for i in range(x.size):
+        z[i] = (x[i] - loc) * inv
+    for r in range(idx.shape[0]):
+        s1 = 0.0
+        s2 = 0.0
+        s3 = 0.0
+        s4 = 0.0
+        imin = x.size
+        imax = -1
+        for j in range(m):
+            k = idx[r, j]
+            imin = min(imin, k)
+            imax = max(imax, k)
+            d = z[k]
+            d2 = d * d
+            s1 += d
+            s2 += d2
+            s3 += d2 * d
+            s4 += d2 * d2
+        _finish_moments(s1, s2, s3, s4, m, loc, scale, out[r])
+        ext[r, 0] = x[imin] if m > 0 else math.nan
+        ext[r, 1] = x[imax] if m > 0 else math.nan
+
+
+@njit(cache=True, error_model="numpy")
+def _counts_from_indices(kind, x, idx, u, loc, scale, out, ext):
+    """The PERCENTILES and LMOMENTS branches of :func:`stats_from_indices` (through counts)."""
+    m = idx.shape[1]
     c = np.zeros(x.size, dtype=np.int32)
     for r in range(idx.shape[0]):
         c[:] = 0

@@ -51,6 +51,8 @@ def gld_evaluate(param: str, what: str, x, lambdas) -> tuple[np.ndarray, int]:
     l1, l2, l3, l4 = (float(v) for v in lambdas)
     arr = np.asarray(x, dtype=float)
     y = np.ascontiguousarray(arr.ravel())
+    if not y.flags.writeable:  # one array type for the kernels (numba compiles per type)
+        y = y.copy()
     out = np.empty(y.shape)
     status = np.zeros(y.shape, dtype=np.int64)
     fam = FAMILY[param]

@@ -220,9 +220,12 @@ def _quad_central(fam, a, b, mu, dmu_a, dmu_b):
 @njit(cache=True)
 def _accurate_sk(fam, a, b):
     """Skewness and kurtosis from the accurate (quadrature-backed) central moments."""
-    mu2 = central_moment(fam, a, b, 2)
-    mu3 = central_moment(fam, a, b, 3)
-    mu4 = central_moment(fam, a, b, 4)
+    # the orders as int64 values, not literals: numba would compile central_moment once per
+    # literal order (the arithmetic is the same for a literal and a variable integer)
+    k = np.int64(2)
+    mu2 = central_moment(fam, a, b, k)
+    mu3 = central_moment(fam, a, b, k + 1)
+    mu4 = central_moment(fam, a, b, k + 2)
     return mu3 / mu2**1.5, mu4 / (mu2 * mu2)
 
 
@@ -307,7 +310,7 @@ def moment_equations(fam, a, b, f, jac):
 @njit(cache=True)
 def std_mean_var(fam, a, b):
     """Mean and variance of the standardized GLD (accurate)."""
-    return mean_std(fam, a, b), central_moment(fam, a, b, 2)
+    return mean_std(fam, a, b), central_moment(fam, a, b, np.int64(2))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -402,7 +405,7 @@ def lmoment_equations(fam, a, b, f, jac):
     """(tau3, tau4) and the Jacobian in (a, b); L-moments need min(a, b) > -1."""
     if not (min(a, b) > -1.0):
         return False
-    l2, l2a, l2b = std_lmoment(fam, a, b, 2)
+    l2, l2a, l2b = std_lmoment(fam, a, b, np.int64(2))  # int64: one compiled signature
     if not (l2 > 0.0):
         return False
     for row in range(2):
@@ -715,8 +718,12 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out):
         Number of rows written (converged roots first is not guaranteed; see R_CONV).
     """
     lo = lower_bound(kind)
+    # Newton iteration limits from seeds and from the nearest node, as int64 values: literal
+    # arguments would compile `_newton` once per limit
+    maxit_seed = np.int64(60)
+    maxit_best = np.int64(100)
     n = nodes.shape[0]
-    nroots = 0
+    nroots = np.int64(0)  # int64, not a literal 0: one signature of `_add_root`
     best = math.inf
     bi = -1
     bj = -1
@@ -761,7 +768,7 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out):
                     continue
                 a = l0 * nodes[i0] + l1 * nodes[i1] + l2 * nodes[i2]
                 b = l0 * nodes[j0] + l1 * nodes[j1] + l2 * nodes[j2]
-                ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, lo, 60)
+                ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, lo, maxit_seed)
                 if res <= _ACCEPT:
                     nroots = _add_root(out, nroots, ra, rb, res, it)
     if fam == RS:
@@ -772,11 +779,11 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out):
         if not seen:
             a, b, ok = _limit_seed(kind, fam, u, lim, s1, s2)
             if ok:
-                ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, lo, 60)
+                ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, lo, maxit_seed)
                 if res <= _ACCEPT:
                     nroots = _add_root(out, nroots, ra, rb, res, it)
     if bi >= 0 and nroots == 0:
-        ra, rb, res, it = _newton(kind, fam, u, s1, s2, nodes[bi], nodes[bj], lo, 100)
+        ra, rb, res, it = _newton(kind, fam, u, s1, s2, nodes[bi], nodes[bj], lo, maxit_best)
         if res <= _ACCEPT or nroots == 0:
             nroots = _add_root(out, nroots, ra, rb, res, it)
     return nroots
@@ -797,7 +804,7 @@ def location_scale(kind, fam, a, b, loc_stat, scale_stat, u):
         scale = scale_stat / (std_quantile(fam, a, b, 1.0 - u) - std_quantile(fam, a, b, u))
         l1 = loc_stat - scale * std_quantile(fam, a, b, 0.5)
     else:
-        scale = scale_stat / std_lmoment(fam, a, b, 2)[0]
+        scale = scale_stat / std_lmoment(fam, a, b, np.int64(2))[0]
         l1 = loc_stat - scale * mean_std(fam, a, b)
     s = rs_sign(a, b) if fam == RS else 1.0
     return l1, s / scale
