@@ -177,10 +177,12 @@ def central_moment(fam, a, b, k):
 @njit(cache=True, error_model="numpy")
 def mvsk_kernel(fam, a, b, out):
     """Mean, variance, skewness and excess kurtosis of the standardized GLD."""
+    # the orders as int64 values: numba compiles a callee once per literal argument
+    k1, k2, k3, k4 = np.int64(1), np.int64(2), np.int64(3), np.int64(4)
     for i in range(a.shape[0]):
         ai = a[i]
         bi = b[i]
-        if not moment_exists(ai, bi, 1):
+        if not moment_exists(ai, bi, k1):
             # lambda3 <= -1 makes the lower tail heavy, lambda4 <= -1 the upper one
             lo_heavy = ai <= -1.0
             hi_heavy = bi <= -1.0
@@ -193,27 +195,27 @@ def mvsk_kernel(fam, a, b, out):
             out[i, 3] = math.nan
             continue
         out[i, 0] = mean_std(fam, ai, bi)
-        if not moment_exists(ai, bi, 2):
+        if not moment_exists(ai, bi, k2):
             out[i, 1] = math.inf
             out[i, 2] = math.nan
             out[i, 3] = math.nan
             continue
         # skewness and kurtosis from the scaled moments: finite also where the variance
         # of the standardized distribution is below the double range (tiny RS shapes)
-        c, v = scaled_central_moment(fam, ai, bi, 2)
+        c, v = scaled_central_moment(fam, ai, bi, k2)
         out[i, 1] = c * c * v
         if not v > 0.0:
             out[i, 2] = math.nan
             out[i, 3] = math.nan
             continue
-        if moment_exists(ai, bi, 3):
-            out[i, 2] = scaled_central_moment(fam, ai, bi, 3)[1] / v**1.5
+        if moment_exists(ai, bi, k3):
+            out[i, 2] = scaled_central_moment(fam, ai, bi, k3)[1] / v**1.5
         else:
             out[i, 2] = math.nan
-        if moment_exists(ai, bi, 4):
-            out[i, 3] = scaled_central_moment(fam, ai, bi, 4)[1] / (v * v) - 3.0
+        if moment_exists(ai, bi, k4):
+            out[i, 3] = scaled_central_moment(fam, ai, bi, k4)[1] / (v * v) - 3.0
         else:
-            out[i, 3] = math.inf if moment_exists(ai, bi, 3) else math.nan
+            out[i, 3] = math.inf if moment_exists(ai, bi, k3) else math.nan
 
 
 @njit(cache=True, error_model="numpy")
