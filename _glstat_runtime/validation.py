@@ -32,6 +32,7 @@ __all__ = [
     "grid_shape",
     "height_map",
     "implausible",
+    "implausible_height_scale",
     "implausible_modulus",
     "implausible_pressure",
     "implausible_roughness",
@@ -255,6 +256,17 @@ def implausible_roughness(rq: float, length: float | None = None, name: str = "r
         where = "" if length is None else f" on a {length:g} m long surface"
         return (f"{name} = {rq:g} m{where} is implausible for an RMS roughness in metres; "
                 f"did you mean {rq:g}e-6 ({rq:g} µm)?")
+    return None
+
+
+def implausible_height_scale(rq: float, side: float) -> str | None:
+    """Why heights of RMS ``rq`` on a surface of shorter side ``side`` (same unit) look like
+    heights and spacing in different units: taller than wide, in any unit system; in words,
+    None when plausible."""
+    if rq > side:
+        return (f"the RMS of the heights ({rq:g}) exceeds the surface's side ({side:g}): heights "
+                "and spacing are probably in different units; both are in metres (did you "
+                f"give micrometres as metres? then heights * 1e-6, RMS {rq:g}e-6 m)")
     return None
 
 

@@ -380,12 +380,10 @@ def require_surface(obj) -> Surface:
 
 
 def _warn_if_implausible(heights: np.ndarray, size: tuple[float, float]) -> None:
-    """Warn when the heights' RMS exceeds the surface's shorter side: taller than wide in any
-    unit system, so heights and spacing are most likely in different units (µm given as m)."""
-    from _glstat_runtime.validation import implausible
+    """Warn when the heights' RMS exceeds the surface's shorter side (heights and spacing in
+    different units)."""
+    from _glstat_runtime.validation import implausible, implausible_height_scale
 
-    rq, side = float(np.std(heights)), min(size)
-    if rq > side:
-        implausible(f"the RMS of the heights ({rq:g}) exceeds the surface's side ({side:g}): heights "
-                    "and spacing are probably in different units; both are in metres (did you "
-                    f"give micrometres as metres? then heights * 1e-6, RMS {rq:g}e-6 m)")
+    note = implausible_height_scale(float(np.std(heights)), min(size))
+    if note:
+        implausible(note)

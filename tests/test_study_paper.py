@@ -365,8 +365,9 @@ def test_bad_paper_table_is_a_usage_error(tmp_path, capsys):
 
 
 def test_paper_table_rows_for_an_h_not_run_are_said_or_refused(tmp_path, capsys):
-    from glstat.cli.commands import _paper_rows_not_run, main
+    from glstat.cli.commands import main
     from glstat.study.paper_table import Table1Row
+    from glstat.study.paper_table import rows_not_run as _paper_rows_not_run
 
     rows = [Table1Row(hurst=0.0, mean_mpa=1724.0), Table1Row(hurst=0.5, mean_mpa=1369.0)]
     assert _paper_rows_not_run(rows, (0.0, 0.5, 1.0)) is None
@@ -379,3 +380,13 @@ def test_paper_table_rows_for_an_h_not_run_are_said_or_refused(tmp_path, capsys)
     assert rc == 2
     assert ("--paper-table has rows for H = 0.3, which this run does not simulate (H = 0, 0.5, 1) "
             "and the paper's scene does not have; add --hurst 0.3" in capsys.readouterr().err)
+
+
+def test_run_study_refuses_paper_rows_for_an_unknown_h_before_solving(tmp_path):
+    from glstat.study import AnalysisSettings, CampaignSettings, run_study
+
+    with pytest.raises(ValueError, match=r"paper_table has rows for H = 0\.3, .*add 0\.3 to "
+                                         r"CampaignSettings\.hurst"):
+        run_study(CampaignSettings(hurst=(0.5,)), AnalysisSettings(), tmp_path / "o",
+                  paper_table=[{"hurst": 0.3, "mean_mpa": 1500.0}])
+    assert not (tmp_path / "o").exists()  # nothing was solved or written

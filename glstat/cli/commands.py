@@ -351,10 +351,13 @@ def _study_settings(args, argv: list[str]):
                                                *(a * 1e-6 for a in args.area or ())),
                                  target_damage=args.target_damage / 100)
     if args.paper_table is not None:
-        from ..study.paper_table import read_table1
+        from ..study.paper_table import read_table1, rows_not_run
 
         args.paper_table = read_table1(args.paper_table)
-        note = _paper_rows_not_run(args.paper_table, settings.hurst)
+        try:
+            note = rows_not_run(args.paper_table, settings.hurst)
+        except ValueError as exc:
+            raise StudyInputError(str(exc)) from None
         if note:
             print(f"glstat study: {note}", file=sys.stderr, flush=True)
     if args.compare_bem > surfaces and not any(a.startswith("--compare-bem") for a in argv):
@@ -491,27 +494,6 @@ def _phases(timings: dict) -> list[tuple[str, float]]:
              "BEM comparison: both models on K surfaces per case (this run)": "BEM solves",
              "BEM comparison: GLD fits and bootstrap": "BEM fits", "report": "report"}
     return [(short, float(timings[key])) for key, short in names.items() if key in timings]
-
-
-def _paper_rows_not_run(rows, hursts) -> str | None:
-    """What becomes of the ``--paper-table`` rows whose H this run does not simulate: checked
-    with the paper's own contact counts (a note), or refused when the paper's scene has no
-    such H either."""
-    from ..study.paper_table import SCENE_N_CONTACT
-
-    run = {float(h) for h in hursts}
-    extra = sorted(float(r.hurst) for r in rows if float(r.hurst) not in run)
-    if not extra:
-        return None
-    unknown = [h for h in extra if h not in SCENE_N_CONTACT]
-    listed = ", ".join(f"{h:g}" for h in (unknown or extra))
-    ran = ", ".join(f"{h:g}" for h in sorted(run))
-    if unknown:
-        raise StudyInputError(f"--paper-table has rows for H = {listed}, which this run does not "
-                              f"simulate (H = {ran}) and the paper's scene does not have; add "
-                              f"--hurst {listed} or remove those rows")
-    return (f"--paper-table rows for H = {listed} are not in this run (H = {ran}): they are "
-            "checked with the paper's own contact counts, not with this run's")
 
 
 def _print_answer(res, settings, asettings, hardness: float) -> None:

@@ -328,6 +328,11 @@ def run_study(
     """
     if model not in ("asperity", "bem", "both"):
         raise ValueError(f"model must be 'asperity', 'bem' or 'both', got {model!r}")
+    if paper_table is not None and not settings.topographies:  # before any solve
+        from .paper_table import rows_not_run, table_rows
+
+        rows_not_run(table_rows(paper_table), settings.hurst, "paper_table",
+                     "add {h} to CampaignSettings.hurst")
     bsettings = _bem_settings(settings, analysis, compare_bem, model)
     t0 = time.perf_counter()
     camp, bem_run, bem_wall = _run_solves(settings, bsettings, out, executor, workers, force, progress)

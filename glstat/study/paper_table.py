@@ -29,6 +29,7 @@ __all__ = [
     "TABLE1_SOURCE",
     "Table1Row",
     "read_table1",
+    "rows_not_run",
     "table1",
     "table_rows",
 ]
@@ -267,3 +268,24 @@ def read_table1(path) -> list[Table1Row]:
         return table_rows(frame)
     except ValueError as exc:
         raise ValueError(f"--paper-table {path}: {exc}") from None
+
+
+def rows_not_run(rows, hursts, option: str = "--paper-table",
+                 add: str = "add --hurst {h}") -> str | None:
+    """What becomes of the Table 1 ``rows`` whose H the run (exponents ``hursts``) does not
+    simulate: a note when the paper's own contact counts check them (None when every row is
+    run); a :class:`ValueError` naming ``option`` and the fix ``add`` (``{h}``: the exponents)
+    when the paper's scene has no such H either."""
+    run = {float(h) for h in hursts}
+    extra = sorted(float(r.hurst) for r in rows if float(r.hurst) not in run)
+    if not extra:
+        return None
+    unknown = [h for h in extra if h not in SCENE_N_CONTACT]
+    listed = ", ".join(f"{h:g}" for h in (unknown or extra))
+    ran = ", ".join(f"{h:g}" for h in sorted(run))
+    if unknown:
+        raise ValueError(f"{option} has rows for H = {listed}, which this run does not simulate "
+                         f"(H = {ran}) and the paper's scene does not have; "
+                         f"{add.format(h=listed)} or remove those rows")
+    return (f"{option} rows for H = {listed} are not in this run (H = {ran}): they are checked "
+            "with the paper's own contact counts, not with this run's")
