@@ -24,6 +24,7 @@ from .extremes.order_statistics import (
     order_statistic,
 )
 from .extremes.peaks_over_threshold import TailPrediction, predict_maximum_pot
+from .extremes.spliced_tail import ParetoTailGLD
 from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
 from .gof import compare_families, edf_statistics, gof_report
 from .gof.binomial_check import BinomialCheck, binomial_check
@@ -61,6 +62,7 @@ __all__ = [
     "MaximumPrediction",
     "ObservedCounts",
     "OrderStatisticDistribution",
+    "ParetoTailGLD",
     "PoissonCount",
     "TailPrediction",
     "binomial_check",

@@ -3,7 +3,8 @@
 One pipeline, used by ``glstat fit``, the study and its comparison of contact models:
 
 1. **fit and bootstrap** the GLD (:func:`glstat.bootstrap`), trying the requested fits in
-   order until one has a solution;
+   order until one has a solution, and put a generalized Pareto tail on every fit
+   (:meth:`BootstrapFit.with_pareto_tail`; the default, ``tail="pareto"``);
 2. **maximum** of the number of draws of one analysed area (:meth:`BootstrapFit.maximum`):
    a fixed ``n``, a random ``count``, or, for a bootstrap over ``groups``, the group sizes of
    each resample;
@@ -41,7 +42,10 @@ T = TypeVar("T")
 
 #: The columns of :meth:`MaximumPrediction.to_frame`, in order.
 FRAME_COLUMNS = ("quantity", "threshold", "area_factor", "n", "count", "estimate", "low", "high",
-                 "confidence_level", "param", "method", "n_resamples")
+                 "confidence_level", "param", "method", "n_resamples", "tail_size")
+
+#: The tail models of :func:`predict_maximum`.
+TAILS = ("pareto", None)
 
 #: Methods that optimise a likelihood for every resample (costly: fewer resamples by default).
 LIKELIHOOD_METHODS = ("mle", "mps", "starship")
@@ -95,9 +99,13 @@ class MaximumPrediction:
     damage, integrity : glstat.BootstrapProbability or None
         ``P(max > threshold)`` and ``P(max <= threshold)`` on every area factor.
     note : str
-        Why a later fit than the first was used, or why none could be.
+        Why a later fit than the first was used, why none could be, or why the requested
+        Pareto tail could not be fitted.
     notes : tuple of str
         Messages of the warnings raised by the fit and bootstrap of the fit used.
+    tail_size : int or None
+        k, the number of largest values of every generalized Pareto tail (None when the GLDs
+        are used alone).
     """
 
     data: np.ndarray
@@ -115,6 +123,7 @@ class MaximumPrediction:
     integrity: BootstrapProbability | None = None
     note: str = ""
     notes: tuple[str, ...] = ()
+    tail_size: int | None = None
 
     @property
     def ok(self) -> bool:
@@ -123,8 +132,9 @@ class MaximumPrediction:
 
     @property
     def dist(self) -> Any:
-        """The full-sample GLD (None without a fit)."""
-        return None if self.boot is None else self.boot.fit.dist
+        """The full-sample model (None without a fit): the GLD, or with a Pareto tail a
+        :class:`glstat.ParetoTailGLD`."""
+        return None if self.boot is None else self.boot._full_dist()
 
     def count_kwargs(self) -> dict[str, Any]:
         """The count of one analysed area as keyword arguments of the :class:`BootstrapFit`
@@ -153,7 +163,8 @@ class MaximumPrediction:
             ``"group sizes"`` for a bootstrap over groups; None for a fixed ``n``),
             ``estimate``, ``low``, ``high`` (units of the data for the maximum,
             probabilities for the damage and the integrity), ``confidence_level``, ``param``,
-            ``method`` and ``n_resamples`` (B) of the fit used. The maximum's ``estimate`` is
+            ``method`` and ``n_resamples`` (B) of the fit used, ``tail_size`` (k of the
+            Pareto tails; NaN for the GLDs alone). The maximum's ``estimate`` is
             the mean of one random maximum per bootstrap GLD and ``low``/``high`` their
             equal-tailed interval (:meth:`glstat.BootstrapMaximum.interval`); a
             probability's ``estimate`` is that of the full-sample fit and ``low``/``high``
@@ -195,6 +206,7 @@ class MaximumPrediction:
         out["count"] = self._count_text()
         out["param"], out["method"] = self.param, self.method
         out["n_resamples"] = None if self.boot is None else self.boot.n_resamples
+        out["tail_size"] = np.nan if self.tail_size is None else float(self.tail_size)
         return out[list(FRAME_COLUMNS)]
 
     def summary(self, unit: str = "") -> str:
@@ -222,14 +234,16 @@ class MaximumPrediction:
         >>> x = np.random.default_rng(1).gamma(4.0, 250.0, 2000)   # pressures, MPa
         >>> p = glstat.predict_maximum(x, n=500, threshold=2500.0, n_resamples=50, rng=2)
         >>> print(p.summary("MPa").splitlines()[0])
-        RS moments GLD fit of 2000 values, 50 bootstrap resamples (50 fitted)
+        RS moments GLD fit of 2000 values with a generalized Pareto tail on its 45 largest, 50 bootstrap resamples (50 fitted)
         >>> f"{float(p.damage.estimate):.6g}" in p.summary("MPa")
         True
         """
         if self.boot is None:
             return f"no GLD fit of {self.data.size} values: {self.note or 'no fit was requested'}"
         b = self.boot
-        lines = [f"{self.param.upper()} {self.method} GLD fit of {self.data.size} values, "
+        tail = ("" if self.tail_size is None else
+                f" with a generalized Pareto tail on its {self.tail_size} largest")
+        lines = [f"{self.param.upper()} {self.method} GLD fit of {self.data.size} values{tail}, "
                  f"{b.n_resamples} bootstrap resamples ({b.n_successful} fitted)"]
         u = f" {unit}" if unit else ""
         if not unit:
@@ -311,6 +325,8 @@ def predict_maximum(
     maximum: bool = True,
     maximum_rng=None,
     progress: bool | None = False,
+    tail: str | None = "pareto",
+    tail_size: str | float | int = "sqrt",
 ) -> MaximumPrediction:
     """Fit, bootstrap, maximum and damage of a sample, in one call.
 
@@ -351,6 +367,16 @@ def predict_maximum(
         bootstrap's seed).
     progress : bool, optional
         Show the bootstrap's progress bar (None: only for long runs).
+    tail : {"pareto", None}
+        ``"pareto"`` (the default): above its ``tail_size`` largest values every GLD (of the
+        full sample and of each resample) is replaced by a generalized Pareto tail fitted to
+        them (:meth:`glstat.BootstrapFit.with_pareto_tail`), and the intervals read the
+        calibrated percentile pair (2.5 % and 97.5 % for a nominal 90 %). None: the GLDs
+        alone, with the plain percentile interval (the paper's method). A sample too small
+        for the tail falls back to the GLDs alone, with the reason in ``note``.
+    tail_size : "sqrt", float or int
+        The tail's values: ``ceil(sqrt(N))`` (at least 20; the default), a fraction of N, or
+        a count.
 
     Returns
     -------
@@ -367,6 +393,13 @@ def predict_maximum(
 
     Notes
     -----
+    Why a tail: on data whose parent is not a GLD, the GLD fitted to the whole sample often
+    has too light an upper tail, and the maximum of many draws is then underestimated. On
+    lognormal, Weibull, gamma, normal, Student-t and GLD parents (n = 200–5000 values,
+    maxima of 1e2–1e6 draws, true damage 0.01–0.9; docs/benchmarks.md "calibration") the
+    default's nominal 90 % interval of the damage probability covers the truth 91–95 % of the
+    time on average per parent, the GLD moment fit alone 37–63 %.
+
     The warnings of the fits and of the bootstrap are recorded in ``notes`` with
     :func:`warnings.catch_warnings`, which changes the process's warning filters while it
     runs: call it from the main thread, not from worker threads. In worker threads use
@@ -379,20 +412,33 @@ def predict_maximum(
     >>> import glstat
     >>> x = np.random.default_rng(1).gamma(4.0, 250.0, 2000)   # pressures, MPa
     >>> p = glstat.predict_maximum(x, n=500, threshold=2500.0, n_resamples=50, rng=2)
-    >>> p.param, p.method
-    ('rs', 'moments')
+    >>> p.param, p.method, p.tail_size
+    ('rs', 'moments', 45)
     >>> bool(p.damage.low <= p.damage.estimate <= p.damage.high)
     True
     """
     n = _draws_of_one_area(n, count, groups)
+    if tail == "none":
+        tail = None
+    if tail not in TAILS:
+        raise ValueError(f"tail must be 'pareto' or None, got {tail!r}")
     x, groups = _present_values(data, groups)
     k = np.asarray(area_factor, dtype=float)
     bf, p, m, note, caught = _bootstrap_first_fit(
         x, list(fits), n_resamples=n_resamples, likelihood_resamples=likelihood_resamples,
         confidence_level=confidence_level, rng=rng, groups=groups, progress=progress)
+    k_tail = None
+    if bf is not None and tail == "pareto":
+        try:
+            bf = bf.with_pareto_tail(tail_size)
+            k_tail = bf.tail_size
+        except ValueError as exc:
+            note = "; ".join(t for t in (note, f"no Pareto tail ({_first_reason(exc)}): the GLD "
+                                         "alone, whose interval may miss high") if t)
     result = MaximumPrediction(x, p, m, bf, n=n, count=count, grouped=groups is not None,
                                threshold=threshold, area_factor=k,
-                               confidence_level=confidence_level, note=note, notes=tuple(caught))
+                               confidence_level=confidence_level, note=note, notes=tuple(caught),
+                               tail_size=k_tail)
     return result if bf is None else _maximum_and_damage(result, maximum, maximum_rng)
 
 

@@ -17,6 +17,7 @@ from .order_statistics import (
     order_statistic,
 )
 from .peaks_over_threshold import TailPrediction, predict_maximum_pot
+from .spliced_tail import ParetoTailGLD
 
 __all__ = [
     "CountDistribution",
@@ -24,6 +25,7 @@ __all__ = [
     "MaximumDistribution",
     "ObservedCounts",
     "OrderStatisticDistribution",
+    "ParetoTailGLD",
     "PoissonCount",
     "TailPrediction",
     "damage_probability",

@@ -1,7 +1,9 @@
 """GLD functions evaluated for many parameter rows at once (the bootstrap's fits).
 
 ``lam`` is an array of shape (B, 4) of lambda1..lambda4 rows of one parameterisation
-(``FAMILY[param]``); every function returns one row of results per row of ``lam``.
+(``FAMILY[param]``); every function returns one row of results per row of ``lam``. With
+``tails`` (shape (B, 4): ``u, q, xi, sigma`` per row) a row is the GLD body with a generalized
+Pareto tail above ``u`` (:mod:`glstat.extremes.spliced_tail`).
 """
 
 from __future__ import annotations
@@ -11,9 +13,11 @@ import numpy as np
 from .._core import quantile_function
 from ..distributions.rv_gld import evaluate, gld_fkml, gld_rs, quantile
 from ..extremes.counts import RowCounts
+from ..extremes.spliced_tail import spliced_log_tails, spliced_quantiles, tail_upper_end
 
 __all__ = [
     "FAMILY",
+    "body_at_tail_start",
     "col",
     "count_max_moments",
     "frozen_batch",
@@ -32,11 +36,31 @@ def col(a):
     return np.asarray(a, dtype=float)[:, None]
 
 
-def quantiles(lam: np.ndarray, fam: int, v, q) -> np.ndarray:
+def quantiles(lam: np.ndarray, fam: int, v, q, tails: np.ndarray | None = None) -> np.ndarray:
     """Q_b at probability v (complement q, both accurate) for every row b of ``lam``.
 
     ``lam`` has shape (k, 4); v and q broadcast against (k, m). Returns shape (k, m).
     """
+    if tails is not None:
+        fu, su, _ = body_at_tail_start(lam, fam, tails)
+        return spliced_quantiles(v, q, tails, lambda vb, sb: _gld_quantiles(lam, fam, vb, sb),
+                                 fu, su)
+    return _gld_quantiles(lam, fam, v, q)
+
+
+def body_at_tail_start(lam: np.ndarray, fam: int, tails: np.ndarray):
+    """(F, S, log F) of every row's GLD at its own tail start ``u``: arrays (k,)."""
+    l1, l2, l3, l4 = (lam[:, i] for i in range(4))
+    y = (tails[:, 0] - l1) * np.abs(l2)
+    s = evaluate(fam, "sf", y, l3, l4)
+    logc = evaluate(fam, "logcdf", y, l3, l4)
+    with np.errstate(divide="ignore"):
+        logf = np.where(s < 0.5, np.log1p(-s), logc)
+    return np.exp(logf), s, logf
+
+
+def _gld_quantiles(lam: np.ndarray, fam: int, v, q) -> np.ndarray:
+    """:func:`quantiles` of the GLD rows."""
     l1, l2, l3, l4 = (col(lam[:, i]) for i in range(4))
     v, q = np.broadcast_arrays(np.asarray(v, dtype=float), np.asarray(q, dtype=float))
     shape = np.broadcast_shapes(v.shape, (lam.shape[0], 1))
@@ -53,14 +77,25 @@ def quantiles(lam: np.ndarray, fam: int, v, q) -> np.ndarray:
     return np.broadcast_to(l1, shape) + out / np.broadcast_to(np.abs(l2), shape)
 
 
-def max_quantiles(lam: np.ndarray, fam: int, n: float | np.ndarray, logv) -> np.ndarray:
+def max_quantiles(lam: np.ndarray, fam: int, n: float | np.ndarray, logv,
+                  tails: np.ndarray | None = None) -> np.ndarray:
     """Quantiles of the maximum of n draws at probabilities exp(logv), Q(v^(1/n)) per row."""
     t = np.asarray(logv, dtype=float) / n
-    return quantiles(lam, fam, np.exp(t), -np.expm1(t))
+    return quantiles(lam, fam, np.exp(t), -np.expm1(t), tails)
 
 
-def log_tails(lam: np.ndarray, fam: int, x) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def log_tails(lam: np.ndarray, fam: int, x, tails: np.ndarray | None = None
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(log F, log S, log f) of every row of ``lam`` at the points x: arrays (k, len(x))."""
+    body = _gld_log_tails(lam, fam, x)
+    if tails is None:
+        return body
+    logfu = body_at_tail_start(lam, fam, tails)[2]
+    return spliced_log_tails(x, tails, body, logfu)
+
+
+def _gld_log_tails(lam: np.ndarray, fam: int, x) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`log_tails` of the GLD rows."""
     l1, l2, l3, l4 = (col(lam[:, i]) for i in range(4))
     y = (np.asarray(x, dtype=float)[None, :] - l1) * np.abs(l2)
     # an inversion that reaches its iteration limit is reported (ConvergenceWarning, once per call)
@@ -73,7 +108,16 @@ def log_tails(lam: np.ndarray, fam: int, x) -> tuple[np.ndarray, np.ndarray, np.
     return logf, logs, logp
 
 
-def support(lam: np.ndarray, fam: int) -> tuple[np.ndarray, np.ndarray]:
+def support(lam: np.ndarray, fam: int, tails: np.ndarray | None = None
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """(lower, upper) end of every row's support."""
+    lo, hi = _gld_support(lam, fam)
+    if tails is not None:
+        hi = tail_upper_end(tails)
+    return lo, hi
+
+
+def _gld_support(lam: np.ndarray, fam: int) -> tuple[np.ndarray, np.ndarray]:
     a = np.ascontiguousarray(lam[:, 2], dtype=float)
     b = np.ascontiguousarray(lam[:, 3], dtype=float)
     lo = np.empty(a.size)
@@ -89,29 +133,35 @@ _QLOGV = -np.logaddexp(0.0, -_QZ)
 _QW = np.exp(_QLOGV - np.logaddexp(0.0, _QZ)) * 0.25
 
 
-def max_raw_moments(lam: np.ndarray, fam: int, n: float, k: int) -> np.ndarray:
+def max_raw_moments(lam: np.ndarray, fam: int, n: float, k: int,
+                    tails: np.ndarray | None = None) -> np.ndarray:
     """E[M^k] of the maximum M of n draws for every row; NaN where it does not exist."""
     out = np.full(lam.shape[0], np.nan)
-    ok = np.minimum(lam[:, 2], lam[:, 3]) > -1.0 / k
+    if tails is None:
+        ok = np.minimum(lam[:, 2], lam[:, 3]) > -1.0 / k
+    else:  # the GLD's lower tail (lambda3 in both parameterisations) and the Pareto tail
+        ok = (lam[:, 2] > -1.0 / k) & (tails[:, 2] < 1.0 / k)
     idx = np.flatnonzero(ok)
     for s in range(0, idx.size, 64):
         rows = idx[s:s + 64]
         with np.errstate(all="ignore"):
-            qv = max_quantiles(lam[rows], fam, n, _QLOGV[None, :])
+            qv = max_quantiles(lam[rows], fam, n, _QLOGV[None, :],
+                               None if tails is None else tails[rows])
             out[rows] = np.sum(qv**k * _QW, axis=1)
     return out
 
 
-def count_max_moments(lam: np.ndarray, fam: int, counts: RowCounts, k: int) -> np.ndarray:
+def count_max_moments(lam: np.ndarray, fam: int, counts: RowCounts, k: int,
+                      tails: np.ndarray | None = None) -> np.ndarray:
     """E[M^k] per row for a random count per row: the count-weighted fixed-n moments."""
     out = np.zeros(lam.shape[0])
     for j, v in enumerate(counts.values):
         w = counts.weights[:, j]
         rows = np.flatnonzero(w > 0)
         if rows.size:
-            out[rows] += w[rows] * max_raw_moments(lam[rows], fam, float(v), k)
+            out[rows] += w[rows] * max_raw_moments(lam[rows], fam, float(v), k,
+                                                   None if tails is None else tails[rows])
     return out
-
 
 
 def frozen_batch(lam: np.ndarray, param: str):

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -102,6 +102,30 @@ class BootstrapFit:
     _entropy: tuple[int, ...] = field(default=(), repr=False, compare=False)
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
     _grouping: tuple | None = field(default=None, repr=False, compare=False)
+    _tails: np.ndarray | None = field(default=None, repr=False, compare=False)
+    _full_tail: np.ndarray | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def tail(self) -> pd.DataFrame | None:
+        """The generalized Pareto tails (:meth:`with_pareto_tail`), else None.
+
+        One row per resample (index ``resample``, NaN where the resample has no fit) and a
+        first row ``"full"`` for the full sample: ``u`` (start of the tail, units of the data),
+        ``q`` (its probability, k / N), ``xi`` (shape) and ``sigma`` (scale, units of the
+        data).
+        """
+        if self._tails is None or self._full_tail is None:
+            return None
+        import pandas as pd
+
+        rows = np.vstack([self._full_tail[None, :], self._tails])
+        index = pd.Index(["full", *range(self.n_resamples)], name="resample")
+        return pd.DataFrame(rows, index=index, columns=["u", "q", "xi", "sigma"])
+
+    @property
+    def tail_size(self) -> int | None:
+        """k, the number of largest values each Pareto tail is fitted to (None without tails)."""
+        return self.options.get("tail_size") if self._tails is not None else None
 
     @property
     def counts(self) -> ObservedCounts | None:
@@ -112,10 +136,99 @@ class BootstrapFit:
         """Per successful resample, the numbers of values of its drawn groups (with ``groups``)."""
         if self._grouping is None:
             raise TypeError("the bootstrap has no groups: give n or count")
+        sizes, choices = self._grouping[:2]
+        return RowCounts.from_choices(sizes, choices[self._ok()])
+
+    def _ok(self) -> np.ndarray:
+        """Which resamples have a fit (and, with tails, a tail fit): shape (B,)."""
         lam = self.lambdas[list(LAMBDA_NAMES)].to_numpy(dtype=float)
         ok = np.all(np.isfinite(lam), axis=1)
-        sizes, choices = self._grouping
-        return RowCounts.from_choices(sizes, choices[ok])
+        if self._tails is not None:
+            ok &= np.all(np.isfinite(self._tails), axis=1)
+        return ok
+
+    def _tail_rows(self) -> np.ndarray | None:
+        """The Pareto tails of the resamples of :meth:`_lam` (None without tails)."""
+        return None if self._tails is None else self._tails[self._ok()]
+
+    def _full_dist(self):
+        """The full-sample model: the GLD fit, with its Pareto tail when there is one."""
+        if self._full_tail is None:
+            return self.fit.dist
+        from ..extremes.spliced_tail import ParetoTailGLD
+
+        return ParetoTailGLD(self.fit.dist, *self._full_tail, tail_size=self.tail_size)
+
+    def with_pareto_tail(self, tail_size: str | float | int = "sqrt") -> BootstrapFit:
+        """The same bootstrap with a generalized Pareto tail on every fit.
+
+        Each resample's (and the full sample's) GLD is kept below ``u``, the (k+1)-th largest
+        of its values, and a generalized Pareto tail fitted to its k largest values
+        (Zhang–Stephens) replaces it above (:class:`glstat.ParetoTailGLD`, docs/method.md
+        §6). :meth:`maximum`, :meth:`damage_probability` and :meth:`integrity_probability`
+        then use these spliced models, and their intervals read the calibrated percentile
+        pair (the 2.5 % and 97.5 % percentiles for a nominal 90 %,
+        :func:`glstat.resampling.maxima.interval_level`). The lambdas, their intervals and
+        :meth:`dists` stay those of the GLD fits.
+
+        Parameters
+        ----------
+        tail_size : "sqrt", float or int
+            k: ``ceil(sqrt(N))`` (at least 20; the default, the best calibrated in
+            docs/benchmarks.md "calibration"), a fraction of N, or a count. With groups, k is
+            set from the full sample and each resample's tail probability is k over its own
+            size.
+
+        Returns
+        -------
+        BootstrapFit
+
+        Raises
+        ------
+        ValueError
+            Without the data (``nan_policy="propagate"``), with fewer than 21 values for the
+            default ``tail_size``, or when the full sample's tail cannot be fitted.
+
+        Examples
+        --------
+        >>> import numpy as np, glstat
+        >>> x = np.random.default_rng(0).gamma(4.0, 250.0, 1000)   # pressures, MPa
+        >>> bt = glstat.bootstrap(x, n_resamples=100, rng=1).with_pareto_tail()
+        >>> bt.tail_size, bt.tail.shape
+        (32, (101, 4))
+        """
+        from ..extremes.peaks_over_threshold import _tail_size
+        from ..extremes.spliced_tail import pareto_tail_rows
+        from ._arguments import resample_seeds
+        from ._driver import draw
+
+        x = self._data
+        if x is None:
+            raise ValueError("the bootstrap holds no data (nan_policy='propagate'): no tail")
+        k = _tail_size(x.size, tail_size)
+        full = pareto_tail_rows(x[None, x.size - k - 1:], x.size, k)[0]
+        if not np.all(np.isfinite(full)):
+            raise ValueError("the generalized Pareto fit of the sample's tail failed (its "
+                             "largest values are all equal?): use another tail_size")
+        groups = None if self._grouping is None else self._grouping[2]
+        seeds = resample_seeds(self._entropy, self.n_resamples)
+        tops = np.empty((self.n_resamples, k + 1))
+        sizes = np.empty(self.n_resamples)
+        fam = FAMILY[self.param]
+        for r, seed in enumerate(seeds):
+            sample = draw(x, np.random.default_rng(seed), self.kind, self.fit.lambdas, fam, groups)
+            sizes[r] = sample.size
+            if sample.size <= k:
+                tops[r] = np.nan
+                continue
+            tops[r] = np.sort(np.partition(sample, sample.size - k - 1)[sample.size - k - 1:])
+        tails = np.full((self.n_resamples, 4), np.nan)
+        good = np.all(np.isfinite(tops), axis=1)
+        if good.any():
+            tails[good] = pareto_tail_rows(tops[good], sizes[good], k)
+        options = dict(self.options, tail_size=k)
+        return replace(self, options=options, _tails=tails, _full_tail=full, _cache={})
+
 
     def _draw_counts(self, n, count):
         """(n, None, None) for a fixed n, or (None, full-sample count, RowCounts per resample)."""
@@ -150,7 +263,7 @@ class BootstrapFit:
         """Lambdas of the successful resamples, shape (n_successful, 4)."""
         if "lam" not in self._cache:
             lam = self.lambdas[list(LAMBDA_NAMES)].to_numpy(dtype=float)
-            self._cache["lam"] = np.ascontiguousarray(lam[np.all(np.isfinite(lam), axis=1)])
+            self._cache["lam"] = np.ascontiguousarray(lam[self._ok()])
         return self._cache["lam"]
 
     def _seed(self, key: int) -> np.random.SeedSequence:
@@ -183,8 +296,7 @@ class BootstrapFit:
 
     def _regions(self) -> np.ndarray:
         """RS region of every successful resample (0 for FKML)."""
-        lam = self.lambdas[list(LAMBDA_NAMES)].to_numpy(dtype=float)
-        return self.lambdas["region"].to_numpy()[np.all(np.isfinite(lam), axis=1)]
+        return self.lambdas["region"].to_numpy()[self._ok()]
 
     @property
     def branch_note(self) -> str:
@@ -343,18 +455,19 @@ class BootstrapFit:
         n, cfull, rows = self._draw_counts(n, count)
         if rows is not None:
             return self._count_maximum(cfull, rows, confidence_level, rng)
-        full = _maximum(self.fit.dist, n)
+        full = _maximum(self._full_dist(), n)
         level = self._level(confidence_level)
         lam = self._enough_fits()
         g = np.random.default_rng(self._seed(1) if rng is None else rng)
-        return resample_maximum(lam, self.param, full, level, g)
+        return resample_maximum(lam, self.param, full, level, g, self._tail_rows())
 
     def _count_maximum(self, cfull, rows, confidence_level, rng) -> BootstrapMaximum:
-        full = _maximum(self.fit.dist, count=cfull)
+        full = _maximum(self._full_dist(), count=cfull)
         level = self._level(confidence_level)
         lam = self._enough_fits()
         g = np.random.default_rng(self._seed(1) if rng is None else rng)
-        return resample_count_maximum(lam, self.param, full, cfull, rows.conditional(), level, g)
+        return resample_count_maximum(lam, self.param, full, cfull, rows.conditional(), level, g,
+                                      self._tail_rows())
 
     def _enough_fits(self) -> np.ndarray:
         """The lambdas of the successful resamples; FitError with fewer than two."""
@@ -409,9 +522,10 @@ class BootstrapFit:
         t = float(threshold)
         n, cfull, rows = self._draw_counts(n, count)
         # the full-sample value and the argument checks come from glstat.extremes.damage itself
-        est = np.asarray(func(self.fit.dist, t, n, k, count=cfull, outside_support="limit"),
+        est = np.asarray(func(self._full_dist(), t, n, k, count=cfull, outside_support="limit"),
                          dtype=float)
-        return resample_probability(self._lam(), self.param, what, t, n, k, est, level, cfull, rows)
+        return resample_probability(self._lam(), self.param, what, t, n, k, est, level, cfull, rows,
+                                    self._tail_rows())
 
     # -- tables -------------------------------------------------------------------------------
     def to_frame(self) -> pd.DataFrame:

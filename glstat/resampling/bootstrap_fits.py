@@ -169,7 +169,7 @@ def bootstrap(
                          options)
     grouping = None
     if args.groups is not None:
-        grouping = (args.groups.sizes, group_choices(seeds, args.groups.sizes.size))
+        grouping = (args.groups.sizes, group_choices(seeds, args.groups.sizes.size), args.groups)
     return _result(full, fits, args, kind, method, options, x, entropy, grouping)
 
 
