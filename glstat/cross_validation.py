@@ -53,7 +53,7 @@ class MaximumCrossValidation:
         full-sample fit, in [0, 1]),
         ``predicted_damage`` (the fold's P(max of m > threshold); NaN without threshold),
         ``damaged`` (observed > threshold; missing without threshold) and ``fit`` (the fit
-        used, e.g. ``"rs moments"``; empty when no requested fit had a solution, and then
+        used, e.g. ``"rs moments pareto"``, ``"rs moments"`` without a tail; empty when no requested fit had a solution, and then
         the prediction columns are missing and the block is left out of the checks).
     coverage_check : glstat.BinomialCheck
         The number of covered blocks against the confidence level.
@@ -168,7 +168,7 @@ class MaximumCrossValidation:
         then each check's :meth:`glstat.BinomialCheck.text`, and what the result means.
         """
         fits = sorted({f for f in self.table["fit"] if f})
-        how = " / ".join(f"{f.split()[0].upper()} {f.split()[1]}" for f in fits) or "no fit"
+        how = " / ".join(_fit_text(f) for f in fits) or "no fit"
         lines = [f"check by block cross-validation: {self.verdict} ({self.n_blocks} blocks of "
                  f"{self.block_size} values, each predicted from the other {self.n_train} by "
                  f"{how}, {self.n_resamples} resamples)"]
@@ -193,6 +193,13 @@ class MaximumCrossValidation:
     def to_frame(self) -> pd.DataFrame:
         """A copy of :attr:`table`, one row per block."""
         return self.table.copy()
+
+
+def _fit_text(fit: str) -> str:
+    """``"rs moments pareto"`` as ``"RS moments with a Pareto tail"``."""
+    parts = fit.split()
+    tail = " with a Pareto tail" if parts[2:] == ["pareto"] else ""
+    return f"{parts[0].upper()} {parts[1]}{tail}"
 
 
 def _pct(p: float) -> str:
@@ -295,7 +302,7 @@ def _check_fits(fits) -> list[tuple[str, str]]:
 def cross_validate_maximum(
     data, fits: Sequence[tuple[str, str]] = (("rs", "moments"),), *, n_blocks: int = 25,
     block_size: int | None = None, threshold: float | None = None, confidence_level: float = 0.9,
-    n_resamples: int = 200, shuffle: bool = True, rng=None,
+    n_resamples: int = 200, shuffle: bool = True, rng=None, tail: str | None = "pareto",
 ) -> MaximumCrossValidation:
     """Block cross-validation of the predicted maximum of m values.
 
@@ -341,6 +348,9 @@ def cross_validate_maximum(
     rng : int, numpy.random.Generator or None
         Seed of the shuffle and of the folds' bootstraps; the same seed gives identical
         results.
+    tail : {"pareto", None}
+        The tail model of every fold's prediction, as for :func:`glstat.predict_maximum`
+        (default: a generalized Pareto tail on every fit).
 
     Returns
     -------
@@ -382,14 +392,14 @@ def cross_validate_maximum(
     'passed'
     >>> print(cv.text().splitlines()[0])  # doctest: +NORMALIZE_WHITESPACE
     check by block cross-validation: passed (30 blocks of 50 values, each predicted from the
-    other 1450 by RS moments, 50 resamples)
+    other 1450 by RS moments with a Pareto tail, 50 resamples)
     """
     x = _sample(data)
     k, m = _blocks(x.size, n_blocks, block_size)
     pairs, level = _check_fits(fits), check_level(confidence_level)
     b_res, threshold = check_n_resamples(n_resamples), _check_threshold(threshold)
     blocks, seeds = _cut_into_blocks(x.size, k, m, shuffle, rng)
-    rows, notes = _predict_blocks(x, blocks, seeds, pairs, threshold, level, b_res)
+    rows, notes = _predict_blocks(x, blocks, seeds, pairs, threshold, level, b_res, tail)
     return _result(rows, k, m, x.size, level, threshold, b_res, shuffle, notes)
 
 
@@ -412,13 +422,15 @@ def _cut_into_blocks(n_values: int, k: int, m: int, shuffle: bool, rng) -> tuple
     return order[: k * m].reshape(k, m), seeds
 
 
-def _predict_blocks(x, blocks, seeds, pairs, threshold, level, b_res) -> tuple[list[dict], list[str]]:
+def _predict_blocks(x, blocks, seeds, pairs, threshold, level, b_res, tail
+                    ) -> tuple[list[dict], list[str]]:
     """One row of :data:`COLUMNS` per block, each predicted from the other blocks, and the
     notes of the folds (each message once, in order of appearance)."""
     rows = []
     notes: list[str] = []
     for b in range(blocks.shape[0]):
-        row, fold_notes = _predict_block(x, blocks, b, int(seeds[b]), pairs, threshold, level, b_res)
+        row, fold_notes = _predict_block(x, blocks, b, int(seeds[b]), pairs, threshold, level,
+                                         b_res, tail)
         for note in fold_notes:
             if note not in notes:
                 notes.append(note)
@@ -426,7 +438,8 @@ def _predict_blocks(x, blocks, seeds, pairs, threshold, level, b_res) -> tuple[l
     return rows, notes
 
 
-def _predict_block(x, blocks, b, seed, pairs, threshold, level, b_res) -> tuple[dict, tuple[str, ...]]:
+def _predict_block(x, blocks, b, seed, pairs, threshold, level, b_res, tail
+                   ) -> tuple[dict, tuple[str, ...]]:
     """Block ``b``'s row: its observed maximum against the prediction from the other blocks,
     and the fold's notes (no fit, warnings of its fits)."""
     from .prediction import predict_maximum
@@ -439,11 +452,12 @@ def _predict_block(x, blocks, b, seed, pairs, threshold, level, b_res) -> tuple[
            "covered": None, "pit": math.nan, "predicted_damage": math.nan,
            "damaged": None if threshold is None else bool(obs > threshold), "fit": ""}
     p = predict_maximum(train, pairs, n=m, threshold=threshold, n_resamples=b_res,
-                        confidence_level=level, rng=seed)
+                        confidence_level=level, rng=seed, tail=tail)
     if p.ok and p.maximum is not None:
         lo, hi = p.maximum.mixture_interval()
         row.update(low=lo, high=hi, covered=bool(lo <= obs <= hi),
-                   pit=float(p.maximum.full.cdf(obs)), fit=f"{p.param} {p.method}")
+                   pit=float(p.maximum.full.cdf(obs)),
+                   fit=f"{p.param} {p.method}" + (" pareto" if p.tail_size else ""))
         if p.damage is not None:
             row["predicted_damage"] = float(np.ravel(p.damage.estimate)[0])
     return row, ((f"block {b}: no fit ({p.note})",) if not p.ok else ()) + p.notes

@@ -393,13 +393,7 @@ def predict_maximum(
 
     Notes
     -----
-    Why a tail: on data whose parent is not a GLD, the GLD fitted to the whole sample often
-    has too light an upper tail, and the maximum of many draws is then underestimated. On
-    lognormal, Weibull, gamma, normal, Student-t and GLD parents (n = 200–5000 values,
-    maxima of 1e2–1e6 draws, true damage 0.01–0.9; docs/benchmarks.md "calibration") the
-    default's nominal 90 % interval of the damage probability covers the truth 91–95 % of the
-    time on average per parent, the GLD moment fit alone 37–63 %.
-
+    Why a tail: see :func:`_with_tail` and docs/benchmarks.md "calibration".
     The warnings of the fits and of the bootstrap are recorded in ``notes`` with
     :func:`warnings.catch_warnings`, which changes the process's warning filters while it
     runs: call it from the main thread, not from worker threads. In worker threads use
@@ -427,19 +421,31 @@ def predict_maximum(
     bf, p, m, note, caught = _bootstrap_first_fit(
         x, list(fits), n_resamples=n_resamples, likelihood_resamples=likelihood_resamples,
         confidence_level=confidence_level, rng=rng, groups=groups, progress=progress)
-    k_tail = None
     if bf is not None and tail == "pareto":
-        try:
-            bf = bf.with_pareto_tail(tail_size)
-            k_tail = bf.tail_size
-        except ValueError as exc:
-            note = "; ".join(t for t in (note, f"no Pareto tail ({_first_reason(exc)}): the GLD "
-                                         "alone, whose interval may miss high") if t)
+        bf, note = _with_tail(bf, tail_size, note)
     result = MaximumPrediction(x, p, m, bf, n=n, count=count, grouped=groups is not None,
                                threshold=threshold, area_factor=k,
                                confidence_level=confidence_level, note=note, notes=tuple(caught),
-                               tail_size=k_tail)
+                               tail_size=None if bf is None else bf.tail_size)
     return result if bf is None else _maximum_and_damage(result, maximum, maximum_rng)
+
+
+def _with_tail(bf: BootstrapFit, tail_size, note: str) -> tuple[BootstrapFit, str]:
+    """The bootstrap with its Pareto tails, and the note (with the reason when the tail
+    could not be fitted: then the bootstrap without them).
+
+    Why a tail: on data whose parent is not a GLD, the GLD fitted to the whole sample often
+    has too light an upper tail, and the maximum of many draws is then underestimated. On
+    lognormal, Weibull, gamma, normal, Student-t and GLD parents (n = 200–5000 values,
+    maxima of 1e2–1e6 draws, true damage 0.01–0.9; docs/benchmarks.md "calibration") the
+    nominal 90 % interval of the damage probability with the tail covers the truth 91–95 % of
+    the time on average per parent, the GLD moment fit alone 37–63 %.
+    """
+    try:
+        return bf.with_pareto_tail(tail_size), note
+    except ValueError as exc:
+        why = f"no Pareto tail ({exc}): the GLD alone, whose interval may miss high"
+        return bf, "; ".join(t for t in (note, why) if t)
 
 
 def _draws_of_one_area(n, count, groups) -> float | None:

@@ -83,7 +83,7 @@ def fit_gpd(exceedances) -> tuple[np.ndarray, np.ndarray]:
     return xi, sigma
 
 
-def _log_tail_sf(z: np.ndarray, xi: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+def log_gpd_sf(z: np.ndarray, xi: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """log S_GPD(z) for z >= 0 (-inf beyond a bounded tail's end)."""
     t = z / sigma
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -91,7 +91,7 @@ def _log_tail_sf(z: np.ndarray, xi: np.ndarray, sigma: np.ndarray) -> np.ndarray
     return np.where((xi < 0) & (t >= -1.0 / np.where(xi == 0, -1.0, xi)), -np.inf, out)
 
 
-def _tail_isf(p: np.ndarray, xi: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+def gpd_isf(p: np.ndarray, xi: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """z >= 0 with S_GPD(z) = p, p in (0, 1]."""
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(np.abs(xi) < 1e-12, -sigma * np.log(p),
@@ -111,7 +111,7 @@ class _Tails:
     def log_sf(self, x: np.ndarray) -> np.ndarray:
         """log S(x) of every row at the points x (shape (T,)): shape (R, T)."""
         x = np.asarray(x, dtype=float)[None, :]
-        tail = math.log(self.q) + _log_tail_sf(x - self.u[:, None], self.xi[:, None],
+        tail = math.log(self.q) + log_gpd_sf(x - self.u[:, None], self.xi[:, None],
                                                self.sigma[:, None])
         n = self.rows.shape[1]
         body = np.empty((self.rows.shape[0], x.shape[1]))
@@ -122,7 +122,7 @@ class _Tails:
 
     def isf(self, s: np.ndarray) -> np.ndarray:
         """x with S(x) = s for every row; s of shape (R, T)."""
-        out = self.u[:, None] + _tail_isf(np.minimum(s, self.q) / self.q, self.xi[:, None],
+        out = self.u[:, None] + gpd_isf(np.minimum(s, self.q) / self.q, self.xi[:, None],
                                           self.sigma[:, None])
         body = s >= self.q
         if body.any():
@@ -204,7 +204,7 @@ class TailPrediction:
         return "\n".join(lines)
 
 
-def _tail_size(n: int, tail_size) -> int:
+def tail_size_of(n: int, tail_size) -> int:
     if isinstance(tail_size, str):
         if tail_size != "sqrt":
             raise ValueError(f"tail_size must be 'sqrt', a fraction in (0, 1) or a count, got "
@@ -218,9 +218,9 @@ def _tail_size(n: int, tail_size) -> int:
         raise ValueError(f"tail_size must be 'sqrt', a fraction in (0, 1) or a count, got "
                          f"{tail_size!r}")
     if not 2 <= k <= n - 1:
-        raise ValueError(f"the tail needs between 2 and n - 1 = {n - 1} values, got k = {k} "
-                         f"(from tail_size={tail_size!r}); the sample has {n} values: "
-                         f"at least 21 are needed for the default tail")
+        raise ValueError(f"a Pareto tail of k = {k} values (tail_size={tail_size!r}) needs "
+                         f"2 <= k <= N - 1 = {n - 1}: the sample has N = {n} values (the default "
+                         "tail takes ceil(sqrt(N)) of them, at least 20, so it needs at least 21)")
     return k
 
 
@@ -292,7 +292,7 @@ def predict_maximum_pot(data, *, n: float, threshold: float | None = None, area_
     factors = np.atleast_1d(np.asarray(area_factor, dtype=float)).ravel()
     if factors.size == 0 or not np.all(np.isfinite(factors) & (factors > 0)):
         raise ValueError(f"area_factor must be positive finite numbers, got {area_factor!r}")
-    k = _tail_size(nn, tail_size)
+    k = tail_size_of(nn, tail_size)
     gen = np.random.default_rng(rng)
     idx = gen.integers(0, nn, size=(int(n_resamples), nn))
     rows = np.sort(np.vstack([x[None, :], x[idx]]), axis=1)

@@ -27,7 +27,7 @@ import numpy as np
 from scipy.stats import rv_continuous
 
 from ..distributions.gld import GLD
-from .peaks_over_threshold import _log_tail_sf, _tail_isf, _tail_size, fit_gpd
+from .peaks_over_threshold import log_gpd_sf, gpd_isf, tail_size_of, fit_gpd
 from .tails import log1mexp
 
 __all__ = ["TAIL_COLUMNS", "ParetoTailGLD", "pareto_tail_rows", "spliced_log_tails",
@@ -85,7 +85,7 @@ def spliced_log_tails(x, tails, body, body_log_fu):
     log_q = np.log(q)
     with np.errstate(divide="ignore", invalid="ignore"):
         zt = np.where(above, z, 0.0)
-        t_logs = log_q + _log_tail_sf(zt, xi, sigma)
+        t_logs = log_q + log_gpd_sf(zt, xi, sigma)
         t_logp = log_q + _log_tail_pdf(zt, xi, sigma)
         log_c = np.log1p(-q) - np.asarray(body_log_fu, dtype=float)[:, None]
         b_logf = np.minimum(body[0] + log_c, 0.0)
@@ -123,7 +123,7 @@ def spliced_quantiles(v, s, tails, body_quantiles, body_fu, body_su):
     su = np.asarray(body_su, dtype=float)[:, None]
     in_tail = s < q
     with np.errstate(divide="ignore", invalid="ignore"):
-        tail = u + _tail_isf(np.clip(s / q, 0.0, 1.0), xi, sigma)
+        tail = u + gpd_isf(np.clip(s / q, 0.0, 1.0), xi, sigma)
         vb = np.clip(v * fu / (1.0 - q), 0.0, 1.0)
         sb = np.clip((s - q + v * su) / (1.0 - q), 0.0, 1.0)
     out = np.array(tail, dtype=float, copy=True)
@@ -237,7 +237,7 @@ class ParetoTailGLD(rv_continuous):
         x = np.sort(np.asarray(data, dtype=float).ravel())
         if not np.all(np.isfinite(x)):
             raise ValueError("data must be finite: remove NaN and inf first")
-        k = _tail_size(x.size, tail_size)
+        k = tail_size_of(x.size, tail_size)
         if body is None:
             from ..fitting import fit
 

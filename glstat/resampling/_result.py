@@ -197,7 +197,7 @@ class BootstrapFit:
         >>> bt.tail_size, bt.tail.shape
         (32, (101, 4))
         """
-        from ..extremes.peaks_over_threshold import _tail_size
+        from ..extremes.peaks_over_threshold import tail_size_of
         from ..extremes.spliced_tail import pareto_tail_rows
         from ._arguments import resample_seeds
         from ._driver import draw
@@ -205,7 +205,7 @@ class BootstrapFit:
         x = self._data
         if x is None:
             raise ValueError("the bootstrap holds no data (nan_policy='propagate'): no tail")
-        k = _tail_size(x.size, tail_size)
+        k = tail_size_of(x.size, tail_size)
         full = pareto_tail_rows(x[None, x.size - k - 1:], x.size, k)[0]
         if not np.all(np.isfinite(full)):
             raise ValueError("the generalized Pareto fit of the sample's tail failed (its "

@@ -47,7 +47,7 @@ def test_a_fitted_upper_tail_too_light_fails():
     with pytest.warns(glstat.FitWarning, match="describes the data poorly"):
         top = glstat.fit(x).dist.support()[1]
     assert top < 2.0 < stats.norm.ppf(0.5 ** (1 / 250))
-    cv = glstat.cross_validate_maximum(x, n_blocks=20, n_resamples=100, rng=1)
+    cv = glstat.cross_validate_maximum(x, n_blocks=20, n_resamples=100, rng=1, tail=None)
     assert cv.block_size == 250 and cv.n_dropped == 0 and cv.n_train == 4750
     assert cv.verdict == "failed" and cv.coverage_check.verdict == "failed"
     assert cv.n_above >= 18 and cv.n_below == 0
@@ -56,6 +56,19 @@ def test_a_fitted_upper_tail_too_light_fails():
     assert text.startswith("check by block cross-validation: failed (20 blocks of 250 values")
     assert "the fitted tail is too light: observed block maxima lie above the predicted " \
            f"interval in {cv.n_above} of 20 blocks" in text
+    assert "by RS moments, 100 resamples" in text
+
+
+def test_the_pareto_tail_passes_where_the_gld_alone_is_too_light():
+    # the same two samples: with the default tail (a generalized Pareto tail on the 70
+    # largest values of every fold) the block maxima fall inside the predicted interval
+    for x, fits in ((_low_outliers(), (("rs", "moments"),)),
+                    (_far_upper_component(), (("rs", "percentiles"),))):
+        cv = glstat.cross_validate_maximum(x, fits, n_blocks=25, n_resamples=50, rng=1)
+        assert cv.verdict == "passed", cv.text()
+        assert cv.coverage_check.hits >= 23 and cv.n_above <= 2
+        assert set(cv.table["fit"]) == {f"{fits[0][0]} {fits[0][1]} pareto"}
+        assert "with a Pareto tail" in cv.text().splitlines()[0]
 
 
 def test_a_far_upper_component_fails_the_percentile_fit():
@@ -63,7 +76,7 @@ def test_a_far_upper_component_fails_the_percentile_fit():
     # does not move them, yet most blocks of 250 values hold one of its values
     x = _far_upper_component()
     cv = glstat.cross_validate_maximum(x, (("rs", "percentiles"),), n_blocks=20, n_resamples=50,
-                                       rng=1)
+                                       rng=1, tail=None)
     assert cv.verdict == "failed"
     assert cv.n_above >= 15 and cv.n_below == 0
     assert np.median(cv.pit) > 0.99
@@ -126,12 +139,15 @@ def test_blocks_in_order_and_what_each_fold_predicts():
     np.testing.assert_array_equal(t["observed"], blocks.max(axis=1))
     np.testing.assert_array_equal(t["covered"], (t["low"] <= t["observed"]) & (t["observed"] <= t["high"]))
     np.testing.assert_array_equal(t["damaged"], blocks.max(axis=1) > 2500.0)
-    # block 3: its fold's full-sample fit is glstat.fit on the other nine blocks
-    f = glstat.fit(np.delete(blocks, 3, axis=0).ravel())
+    # block 3: its fold's full-sample model is glstat.fit on the other nine blocks with a
+    # Pareto tail on their 30 largest values
+    train = np.delete(blocks, 3, axis=0).ravel()
+    d = glstat.ParetoTailGLD.fit(train, body=glstat.fit(train).dist)
+    assert d.tail_size == 30 and set(t["fit"]) == {"rs moments pareto"}
     obs = blocks[3].max()
-    assert t["pit"][3] == pytest.approx(float(glstat.maximum(f.dist, 100).cdf(obs)), rel=1e-9)
+    assert t["pit"][3] == pytest.approx(float(glstat.maximum(d, 100).cdf(obs)), rel=1e-9)
     assert t["predicted_damage"][3] == pytest.approx(
-        float(glstat.damage_probability(f.dist, 2500.0, 100)), rel=1e-9)
+        float(glstat.damage_probability(d, 2500.0, 100)), rel=1e-9)
     # the checks count the blocks
     assert cv.coverage_check.n == 10 and cv.coverage_check.hits == int(t["covered"].sum())
     assert cv.damage_check.hits == int(t["damaged"].sum())

@@ -66,7 +66,7 @@ def test_damage_interval_covers_on_parents_that_are_not_glds(parent):
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    ({"n": 0}, "n \\(draws"), ({"n": 10, "tail_size": 1}, "between 2 and n - 1"),
+    ({"n": 0}, "n \\(draws"), ({"n": 10, "tail_size": 1}, "2 <= k <= N - 1"),
     ({"n": 10, "tail_size": "half"}, "tail_size must be"), ({"n": 10, "n_resamples": 5}, "n_resamples"),
     ({"n": 10, "area_factor": [0.0]}, "area_factor"), ({"n": 10, "threshold": float("nan")}, "finite"),
 ])

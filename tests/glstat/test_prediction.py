@@ -23,8 +23,9 @@ def test_same_numbers_as_the_steps_one_by_one(sample):
                         area_factor=[1.0, 10.0], n_resamples=60, confidence_level=0.9, rng=5,
                         maximum_rng=7)
     bf = glstat.bootstrap(sample, "rs", "moments", n_resamples=60, confidence_level=0.9, rng=5,
-                          progress=False)
+                          progress=False).with_pareto_tail()
     np.testing.assert_array_equal(p.boot.lambdas.to_numpy(), bf.lambdas.to_numpy())
+    assert p.tail_size == bf.tail_size == 39  # ceil(sqrt(1500))
     d = bf.damage_probability(2600.0, 400.0, [1.0, 10.0])
     np.testing.assert_array_equal(p.damage.estimate, d.estimate)
     np.testing.assert_array_equal(p.damage.low, d.low)
@@ -35,6 +36,38 @@ def test_same_numbers_as_the_steps_one_by_one(sample):
     assert p.count_kwargs() == {"n": 400.0}
     # a larger area is more likely to be damaged
     assert p.damage.estimate[1] > p.damage.estimate[0]
+
+
+def test_without_a_tail_the_gld_steps_and_the_plain_percentiles(sample):
+    p = predict_maximum(sample, n=400.0, threshold=2600.0, n_resamples=60, rng=5, maximum_rng=7,
+                        tail=None)
+    bf = glstat.bootstrap(sample, n_resamples=60, rng=5, progress=False)
+    d = bf.damage_probability(2600.0, 400.0)
+    assert p.tail_size is None and d.interval_level is None
+    np.testing.assert_array_equal(p.damage.estimate, d.estimate)
+    np.testing.assert_array_equal(p.damage.high, d.high)
+    assert np.quantile(d.values, 0.95) == pytest.approx(float(d.high), rel=1e-12)
+    np.testing.assert_array_equal(p.maximum.draws, bf.maximum(400.0, rng=7).draws)
+    assert "Pareto" not in p.summary().splitlines()[0]
+    with pytest.raises(ValueError, match="tail must be 'pareto' or None"):
+        predict_maximum(sample, n=4.0, tail="gpd")
+
+
+def test_the_tail_reads_the_calibrated_percentiles(sample):
+    p = predict_maximum(sample, n=400.0, threshold=2600.0, n_resamples=60, rng=5)
+    d = p.damage
+    assert d.confidence_level == 0.9 and d.interval_level == 0.95
+    lo, hi = np.quantile(d.values, [0.025, 0.975])
+    assert (float(d.low), float(d.high)) == pytest.approx((lo, hi), rel=1e-12)
+    assert p.maximum.interval() == pytest.approx(tuple(np.quantile(p.maximum.draws, [0.025, 0.975])))
+    assert "generalized Pareto tail on its 39 largest" in p.summary().splitlines()[0]
+
+
+def test_too_few_values_for_a_tail_fall_back_to_the_gld_with_a_note():
+    x = np.random.default_rng(2).gamma(4.0, 250.0, 20)
+    p = predict_maximum(x, n=10.0, n_resamples=20, rng=1)
+    assert p.ok and p.tail_size is None
+    assert "no Pareto tail" in p.note and "at least 21" in p.note
 
 
 def test_groups_give_the_resampled_counts(sample):
