@@ -53,8 +53,9 @@ class MaximumCrossValidation:
         full-sample fit, in [0, 1]),
         ``predicted_damage`` (the fold's P(max of m > threshold); NaN without threshold),
         ``damaged`` (observed > threshold; missing without threshold) and ``fit`` (the fit
-        used, e.g. ``"rs moments pareto"``, ``"rs moments"`` without a tail; empty when no requested fit had a solution, and then
-        the prediction columns are missing and the block is left out of the checks).
+        used, e.g. ``"rs moments pareto"``, ``"rs moments"`` without a tail; empty when no
+        requested fit had a solution, and then the prediction columns are missing and the
+        block is left out of the checks).
     coverage_check : glstat.BinomialCheck
         The number of covered blocks against the confidence level.
     damage_check : glstat.BinomialCheck or None

@@ -233,8 +233,9 @@ class MaximumPrediction:
         >>> import glstat
         >>> x = np.random.default_rng(1).gamma(4.0, 250.0, 2000)   # pressures, MPa
         >>> p = glstat.predict_maximum(x, n=500, threshold=2500.0, n_resamples=50, rng=2)
-        >>> print(p.summary("MPa").splitlines()[0])
-        RS moments GLD fit of 2000 values with a generalized Pareto tail on its 45 largest, 50 bootstrap resamples (50 fitted)
+        >>> print(p.summary("MPa").splitlines()[0])  # doctest: +NORMALIZE_WHITESPACE
+        RS moments GLD fit of 2000 values with a generalized Pareto tail on its 45 largest,
+        50 bootstrap resamples (50 fitted)
         >>> f"{float(p.damage.estimate):.6g}" in p.summary("MPa")
         True
         """

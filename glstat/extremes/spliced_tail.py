@@ -27,7 +27,7 @@ import numpy as np
 from scipy.stats import rv_continuous
 
 from ..distributions.gld import GLD
-from .peaks_over_threshold import log_gpd_sf, gpd_isf, tail_size_of, fit_gpd
+from .peaks_over_threshold import fit_gpd, gpd_isf, log_gpd_sf, tail_size_of
 from .tails import log1mexp
 
 __all__ = ["TAIL_COLUMNS", "ParetoTailGLD", "pareto_tail_rows", "spliced_log_tails",

@@ -13,7 +13,6 @@ import numpy as np
 
 from _glstat_runtime.validation import check_level, draws_or_count
 
-from ..distributions.gld import GLD
 from ..errors import FitError
 from ..extremes.counts import ObservedCounts, RowCounts, as_count
 from ..extremes.damage import damage_probability as _damage
@@ -40,6 +39,7 @@ from .maxima import (
     resample_count_maximum,
     resample_maximum,
     resample_probability,
+    row_distributions,
 )
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -166,10 +166,10 @@ class BootstrapFit:
         of its values, and a generalized Pareto tail fitted to its k largest values
         (Zhang–Stephens) replaces it above (:class:`glstat.ParetoTailGLD`, docs/method.md
         §6). :meth:`maximum`, :meth:`damage_probability` and :meth:`integrity_probability`
-        then use these spliced models, and their intervals read the calibrated percentile
-        pair (the 2.5 % and 97.5 % percentiles for a nominal 90 %,
-        :func:`glstat.resampling.maxima.interval_level`). The lambdas, their intervals and
-        :meth:`dists` stay those of the GLD fits.
+        then use these spliced models, as do :meth:`dists` and the damage functions given the
+        bootstrap, and their intervals read the calibrated percentile pair (the 2.5 % and
+        97.5 % percentiles for a nominal 90 %, :func:`glstat.resampling.maxima.interval_level`).
+        The lambdas, their intervals and :meth:`batch` stay those of the GLD fits.
 
         Parameters
         ----------
@@ -272,14 +272,14 @@ class BootstrapFit:
     def _level(self, confidence_level) -> float:
         return self.confidence_level if confidence_level is None else check_level(confidence_level)
 
-    def dists(self) -> list[GLD]:
-        """The GLD of every successful resample, in resample order."""
+    def dists(self) -> list:
+        """The model of every successful resample, in resample order: its GLD, or with
+        :meth:`with_pareto_tail` its :class:`glstat.ParetoTailGLD`."""
         if "dists" not in self._cache:
-            self._cache["dists"] = [GLD(l1, l2, l3, l4, param=self.param)
-                                    for l1, l2, l3, l4 in self._lam()]
+            self._cache["dists"] = row_distributions(self._lam(), self.param, self._tail_rows())
         return list(self._cache["dists"])
 
-    def __glstat_distributions__(self) -> list[GLD]:
+    def __glstat_distributions__(self) -> list:
         """The bootstrap distributions, for :mod:`glstat.extremes.damage` and :mod:`glstat.extremes`."""
         return self.dists()
 
