@@ -17,8 +17,11 @@ the same data for every method) and every method predicts, with its nonparametri
   (:meth:`glstat.BootstrapMaximum.interval`) against a fresh draw of the true maximum, and the
   interval of the per-resample medians against the true median.
 
-Methods (:data:`METHODS`): ``rs_moments`` is :func:`glstat.predict_maximum` with its defaults
-(the baseline), ``fkml_lmoments`` and ``fkml_mle`` the same with other fits; the tail models
+Methods (:data:`METHODS`): ``default`` is :func:`glstat.predict_maximum` with its defaults (an
+RS moment GLD with a generalized Pareto tail on the ceil(sqrt(n)) largest values of every
+resample, the calibrated 2.5 / 97.5 % percentiles as its 90 % interval); ``rs_moments`` is the
+same without the tail (``tail=None``: the GLD alone, the paper's method and the baseline),
+``fkml_lmoments`` and ``fkml_mle`` the GLD alone with other fits; the tail models
 are implemented here: ``tail_gld`` (a GLD fitted by L-moments to the top of the sample, used as
 the conditional tail), ``pot_gpd_mle``, ``pot_gpd_zs`` and ``pot_gpd_zs_sqrt`` (generalized
 Pareto peaks over threshold, fitted by scipy's maximum likelihood or by the Zhang-Stephens
@@ -155,6 +158,9 @@ class Method:
         Bootstrap resamples B.
     slow : bool
         Whether it optimises per resample (then it runs on ``--slow-reps`` data sets only).
+    interval_level : float
+        The level of the percentile pair the method reports as its 90 % interval (0.95 for
+        the library's default, which reads the calibrated 2.5 % and 97.5 % percentiles).
     """
 
     name: str
@@ -162,6 +168,7 @@ class Method:
     func: MethodFunc
     n_resamples: int
     slow: bool = False
+    interval_level: float = LEVEL
 
 
 # ---------------------------------------------------------------------------------------------
@@ -169,7 +176,8 @@ class Method:
 # ---------------------------------------------------------------------------------------------
 def predict_glstat(x: np.ndarray, ms: np.ndarray, thresholds: np.ndarray, rng: np.random.Generator,
                    *, fits: tuple[tuple[str, str], ...], n_resamples: int,
-                   likelihood_resamples: int | None = None) -> Prediction | None:
+                   likelihood_resamples: int | None = None, tail: str | None = None
+                   ) -> Prediction | None:
     """:func:`glstat.predict_maximum` with ``fits``; its bootstrap at every (m, threshold).
 
     The first m and threshold are those of the call; the others come from the same
@@ -193,6 +201,8 @@ def predict_glstat(x: np.ndarray, ms: np.ndarray, thresholds: np.ndarray, rng: n
         Bootstrap resamples B.
     likelihood_resamples : int, optional
         At most this many resamples for the likelihood fits.
+    tail : {"pareto", None}
+        As for :func:`glstat.predict_maximum` (None: the GLDs alone).
 
     Returns
     -------
@@ -201,7 +211,7 @@ def predict_glstat(x: np.ndarray, ms: np.ndarray, thresholds: np.ndarray, rng: n
     """
     p = predict_maximum(x, fits, n=float(ms[0]), threshold=float(thresholds[0, 0]),
                         n_resamples=n_resamples, likelihood_resamples=likelihood_resamples,
-                        rng=rng, maximum_rng=rng)
+                        rng=rng, maximum_rng=rng, tail=tail)
     if not p.ok or p.maximum is None or p.damage is None:
         return None
     boot = p.boot
@@ -221,10 +231,12 @@ def predict_glstat(x: np.ndarray, ms: np.ndarray, thresholds: np.ndarray, rng: n
     except FitError:
         return None
     # the interval scored below is the library's own (same percentiles of the same values)
-    lo, hi = np.quantile(damage[:, 0, 0], [(1 - LEVEL) / 2, (1 + LEVEL) / 2])
+    level = LEVEL if tail is None else 0.95
+    lo, hi = np.quantile(damage[:, 0, 0], [(1 - level) / 2, (1 + level) / 2])
     if not np.allclose([lo, hi], [p.damage.low, p.damage.high], rtol=1e-12, atol=1e-15):
         raise AssertionError("damage interval differs from predict_maximum's")
-    if not np.allclose(p.maximum.interval(), np.quantile(draws[0], [0.05, 0.95])):
+    if not np.allclose(p.maximum.interval(), np.quantile(draws[0], [(1 - level) / 2,
+                                                                    (1 + level) / 2])):
         raise AssertionError("maximum interval differs from predict_maximum's")
     return Prediction(damage=damage, draws=np.column_stack(draws), medians=np.column_stack(medians),
                       n_resamples=n_resamples)
@@ -561,7 +573,7 @@ B_LIKELIHOOD = 30  #: resamples of the GLD maximum likelihood fit (0.01-0.1 s pe
 
 #: Every method; the index in this tuple seeds its bootstrap (stable when some are left out).
 METHODS = (
-    Method("rs_moments", "a. predict_maximum defaults: RS, method of moments",
+    Method("rs_moments", "a. predict_maximum(tail=None): the GLD alone, RS, method of moments",
            partial(predict_glstat, fits=(("rs", "moments"),), n_resamples=B_FAST), B_FAST),
     Method("fkml_lmoments", "b. predict_maximum, FKML L-moments",
            partial(predict_glstat, fits=(("fkml", "lmoments"),), n_resamples=B_FAST), B_FAST),
@@ -581,6 +593,11 @@ METHODS = (
     Method("pot_gpd_zs_sqrt", "d. GPD on the ceil(sqrt(n)) largest values (>= 20), Zhang-Stephens",
            partial(predict_pot, estimator=gpd_zhang_stephens, q=None, k_min=20, k_sqrt=1.0,
                    n_resamples=B_FAST), B_FAST),
+    # appended last, so that the seeds of the methods above are unchanged
+    Method("default", "e. predict_maximum defaults: RS moments GLD with a Pareto tail on the "
+           "ceil(sqrt(n)) largest values, the calibrated 2.5 / 97.5 % percentiles",
+           partial(predict_glstat, fits=(("rs", "moments"),), n_resamples=B_FAST, tail="pareto"),
+           B_FAST, interval_level=0.95),
 )
 
 
@@ -636,7 +653,8 @@ class Tally:
     true_max: list[np.ndarray] = field(default_factory=list)
     seconds: list[float] = field(default_factory=list)
 
-    def add(self, pred: Prediction | None, true_max: np.ndarray, seconds: float) -> None:
+    def add(self, pred: Prediction | None, true_max: np.ndarray, seconds: float,
+            level: float = LEVEL) -> None:
         """Record one repetition.
 
         Parameters
@@ -647,6 +665,8 @@ class Tally:
             A fresh draw of the true maximum for every m.
         seconds : float
             Run time of the call.
+        level : float
+            The level of the percentile pair the method reports (:attr:`Method.interval_level`).
         """
         nan_m = np.full(self.shape[0], np.nan)
         for lv, (lo, hi) in self.damage.items():
@@ -654,8 +674,8 @@ class Tally:
                     else percentile_interval(pred.damage, lv))
             lo.append(a)
             hi.append(b)
-        mlo, mhi = (nan_m, nan_m) if pred is None else percentile_interval(pred.draws, LEVEL)
-        dlo, dhi = (nan_m, nan_m) if pred is None else percentile_interval(pred.medians, LEVEL)
+        mlo, mhi = (nan_m, nan_m) if pred is None else percentile_interval(pred.draws, level)
+        dlo, dhi = (nan_m, nan_m) if pred is None else percentile_interval(pred.medians, level)
         for lst, val in ((self.max_lo, mlo), (self.max_hi, mhi), (self.med_lo, dlo),
                          (self.med_hi, dhi), (self.true_max, true_max)):
             lst.append(np.asarray(val, dtype=float))
@@ -735,7 +755,8 @@ def tally_rows(tally: Tally, parent: Parent, n: int, ms: np.ndarray, damages: Se
                 wide[f"coverage_{lv * 100:.0f}"] = float(sc[lv]["coverage"][i, j])
                 wide[f"mean_width_{lv * 100:.0f}"] = float(sc[lv]["mean_width"][i, j])
             out.append({**base, "m": float(m), "quantity": "damage", "true_value": float(dj),
-                        **{key: float(val[i, j]) for key, val in sc[LEVEL].items()}, **wide})
+                        **{key: float(val[i, j])
+                           for key, val in sc[method.interval_level].items()}, **wide})
     draw = score(np.array(tally.max_lo), np.array(tally.max_hi), np.array(tally.true_max))
     med = score(np.array(tally.med_lo), np.array(tally.med_hi), true_median[None, :])
     for i, m in enumerate(ms):
@@ -814,7 +835,8 @@ def run(parents: Sequence[Parent], ns: Sequence[int], ms: np.ndarray, damages: S
                     with warnings.catch_warnings(), np.errstate(all="ignore"):
                         warnings.simplefilter("ignore")
                         pred = mt.func(x, ms, thresholds, g)
-                    tallies[mt.name].add(pred, true_max, time.perf_counter() - t0)
+                    tallies[mt.name].add(pred, true_max, time.perf_counter() - t0,
+                                         mt.interval_level)
             for mt in methods:
                 rows += tally_rows(tallies[mt.name], parent, n, ms, damages, true_median, mt)
             log(f"{parent.name:10s} n={n:<5d} {time.perf_counter() - t_cell:7.1f} s")
