@@ -167,6 +167,10 @@ def _add_load_options(p: argparse.ArgumentParser) -> None:
                         "several --pressure values; default 1)")
     p.add_argument("--bootstrap", type=_positive(int),
                    help=f"bootstrap resamples B (default {DEFAULTS['bootstrap']})")
+    p.add_argument("--tail", choices=("pareto", "none"), default="pareto",
+                   help="upper tail of every fitted GLD: a generalized Pareto tail on the "
+                        "sqrt(N) largest values with calibrated intervals (pareto), or the GLD "
+                        "alone, the paper's method (none)")
 
 
 def _add_surface_options(p: argparse.ArgumentParser) -> None:
@@ -349,7 +353,8 @@ def _study_settings(args, argv: list[str]):
                                  n_resamples=args.bootstrap or base["bootstrap"], seed=args.seed,
                                  damage_areas=(*AnalysisSettings().damage_areas,
                                                *(a * 1e-6 for a in args.area or ())),
-                                 target_damage=args.target_damage / 100)
+                                 target_damage=args.target_damage / 100,
+                                 tail=None if args.tail == "none" else args.tail)
     if args.paper_table is not None:
         from ..study.paper_table import read_table1, rows_not_run
 

@@ -5,8 +5,10 @@ Reads one column of values from a delimited text, Parquet, Excel or NPY file
 tabulates every root found and the goodness of fit (:func:`glstat.gof_report`), bootstraps
 the fit (:func:`glstat.bootstrap`) and, on request, gives the distribution of the maximum of
 ``--n-max`` values and the damage probability at a hardness ``--hardness`` for the analysed
-area and for areas ``--area-factor`` times larger, and checks that prediction by block
-cross-validation (:func:`glstat.cross_validate_maximum`). Figures, ``fit.json``,
+area and for areas ``--area-factor`` times larger (:func:`glstat.predict_maximum`: by default
+from the GLD with a generalized Pareto tail on its largest values and the calibrated
+bootstrap interval, ``--tail pareto``; ``--tail none`` for the GLD alone), and checks that
+prediction by block cross-validation (:func:`glstat.cross_validate_maximum`). Figures, ``fit.json``,
 ``summary.csv`` and ``cross_validation.csv`` go to ``--out``. Phases longer than two seconds
 announce themselves on stderr.
 
@@ -42,6 +44,7 @@ from .fit_options import (
     gof_resamples_for,
 )
 from .fit_output import (
+    indent,
     print_bootstrap,
     print_cross_validation,
     print_damage,
@@ -49,10 +52,17 @@ from .fit_output import (
     print_gof,
     print_header,
     print_maximum,
+    print_model,
     write_figures,
     write_tables,
 )
-from .fit_results import FitResults, collect_notes, damage_summary, maximum_summary
+from .fit_results import (
+    FitResults,
+    collect_notes,
+    damage_summary,
+    full_sample_model,
+    maximum_summary,
+)
 from .sample_files import InputError, Sample, read_sample
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -113,6 +123,12 @@ def check_whole_points(args: argparse.Namespace) -> None:
                          f"{lo:g} or {hi:g}") from None
 
 
+def library_tail(tail: str) -> str | None:
+    """``--tail`` as the ``tail`` argument of :func:`glstat.predict_maximum` and
+    :func:`glstat.cross_validate_maximum` (``"none"`` is None)."""
+    return None if tail == "none" else tail
+
+
 def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
     from ..fitting import fit
     from ..gof import gof_report
@@ -131,7 +147,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         raise FitError(f"the {f.param.upper()} {f.method} fit has non-finite lambdas {f.lambdas}: "
                        "no distribution to report")
     lo, hi = (float(v) for v in f.dist.support())
-    res = FitResults(sample=sample, fit=f, gof=None, seed=seed, support=(lo, hi), notes=notes)
+    res = FitResults(sample=sample, fit=f, gof=None, seed=seed, support=(lo, hi), notes=notes,
+                     tail=args.tail)
     print_fit(res, emit)
     res.gof_resamples, res.gof_note = gof_resamples_for(x.size, args.gof_resamples)
     from tqdm import tqdm
@@ -160,14 +177,23 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
                 x, [(args.param, args.method)], n=None if args.count is not None else n,
                 count=args.count, threshold=args.hardness, area_factor=factors,
                 n_resamples=args.bootstrap, confidence_level=args.confidence_level, rng=seed,
-                maximum=args.n_max is not None, progress=None)
+                maximum=args.n_max is not None, progress=None, tail=library_tail(args.tail))
         if res.prediction.boot is None:
             raise FitError(f"the {args.param.upper()} {args.method} bootstrap has no fit: "
                            f"{res.prediction.note}")
         res.boot = res.prediction.boot
+        res.model = res.prediction.dist
+        if args.tail == "pareto" and res.prediction.tail_size is None:
+            res.tail_note = res.prediction.note
         res.boot_summary = res.boot.summary()
         collect_notes(res.prediction.notes, notes)
         print_bootstrap(res.boot, res.boot_summary, emit)
+    else:
+        res.model, res.tail_note = full_sample_model(x, f.dist, args.tail)
+    if res.tail_note:
+        collect_notes([res.tail_note], notes)
+    if args.n_max is not None or args.hardness is not None:
+        print_model(res, emit)
     if args.n_max is not None:
         with phase("distribution of the maximum"):
             res.maximum = maximum_summary(res, args.n_max, args.confidence_level, args.count)
@@ -183,7 +209,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         with phase(f"block cross-validation ({k_cv} blocks x {b_cv} resamples)"):
             res.cross_validation = cross_validate_maximum(
                 x, [(args.param, args.method)], n_blocks=k_cv, threshold=args.hardness,
-                confidence_level=args.confidence_level, n_resamples=b_cv, rng=seed)
+                confidence_level=args.confidence_level, n_resamples=b_cv, rng=seed,
+                tail=library_tail(args.tail))
     print_cross_validation(res, emit)
     if args.pareto_tail:
         _pareto_tail(args, res, x, n, factors, seed, emit)
@@ -192,22 +219,24 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
 
 def _pareto_tail(args, res: FitResults, x: np.ndarray, n: float, factors, seed,
                  emit: Callable[[str], None]) -> None:
-    """``--pareto-tail``: the maximum and the damage from a generalized Pareto tail."""
+    """``--pareto-tail``: the peaks-over-threshold prediction (an empirical body with a
+    generalized Pareto tail, :func:`glstat.predict_maximum_pot`), printed beside the default."""
     from ..extremes.peaks_over_threshold import predict_maximum_pot
 
     emit("")
+    head = "peaks-over-threshold prediction (--pareto-tail, an empirical body)"
     if args.count is not None:
-        emit("generalized Pareto tail: skipped: it takes a fixed number of points (--n-max N), "
-             "not a random count")
+        emit(f"{head}: skipped: it takes a fixed number of points (--n-max N), not a random count")
         return
     try:
         res.pareto_tail = predict_maximum_pot(
             x, n=n, threshold=args.hardness, area_factor=factors,
             n_resamples=max(args.bootstrap, 10), confidence_level=args.confidence_level, rng=seed)
     except ValueError as exc:
-        emit(f"generalized Pareto tail: skipped: {exc}")
+        emit(f"{head}: skipped: {exc}")
         return
-    emit(res.pareto_tail.text())
+    emit(f"{head}:")
+    emit(indent(res.pareto_tail.text()))
 
 
 # ---------------------------------------------------------------------------------------------

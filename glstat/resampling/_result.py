@@ -36,6 +36,7 @@ from ._tables import summary_frame
 from .maxima import (
     BootstrapMaximum,
     BootstrapProbability,
+    interval_level,
     resample_count_maximum,
     resample_maximum,
     resample_probability,
@@ -411,7 +412,8 @@ class BootstrapFit:
 
     # -- maximum and damage -----------------------------------------------------------------
     def maximum_quantiles(self, n, v) -> np.ndarray:
-        """Quantiles ``Q_b(v^(1/n))`` of the maximum of n draws for every bootstrap GLD b.
+        """Quantiles ``Q_b(v^(1/n))`` of the maximum of n draws for every bootstrap model b
+        (its GLD, with its Pareto tail when the bootstrap has them).
 
         Parameters
         ----------
@@ -428,7 +430,21 @@ class BootstrapFit:
         """
         with np.errstate(divide="ignore"):
             logv = np.log(np.asarray(v, dtype=float))
-        return max_quantiles(self._lam(), self._fam, np.asarray(n, dtype=float), logv)
+        return max_quantiles(self._lam(), self._fam, np.asarray(n, dtype=float), logv,
+                             self._tail_rows())
+
+    @property
+    def calibrated(self) -> bool:
+        """Whether the intervals of the maximum and the probabilities read the calibrated
+        percentile pair (a bootstrap with Pareto tails, :meth:`with_pareto_tail`)."""
+        return self._tails is not None
+
+    def percentile_level(self, confidence_level: float | None = None) -> float:
+        """The level of the percentile pair read as the interval of nominal
+        ``confidence_level`` (default :attr:`confidence_level`): the level itself, or with
+        Pareto tails ``1 - (1 - level) / 2`` (:func:`glstat.resampling.maxima.interval_level`).
+        """
+        return interval_level(self._level(confidence_level), self.calibrated)
 
     def maximum(self, n: float | None = None, confidence_level: float | None = None, *, rng=None,
                 count=None) -> BootstrapMaximum:

@@ -211,7 +211,7 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
         return sa
     param = method = order = None
     if grouped:
-        sa.choice = choose_fit(per)
+        sa.choice = choose_fit(per, tail=a.tail)
         param, method, order = sa.choice.param, sa.choice.method, sa.choice.order()
     full_slot, _, _, maximum_slot = SEED_SLOTS[sample]
     sa.prediction = predict_sample(

@@ -103,6 +103,10 @@ class AnalysisSettings:
     target_damage : float
         Damage probability the allowable nominal pressure must not exceed on each of
         ``damage_areas`` (campaigns of several loads; :mod:`glstat.study.allowable`).
+    tail : {"pareto", None}
+        The model of the upper tail (:func:`glstat.predict_maximum`): ``"pareto"`` (default),
+        every GLD with a generalized Pareto tail on the ceil(sqrt(N)) largest values of its
+        sample and the calibrated intervals; None, the GLDs alone (the paper's method).
     """
 
     hardness: float = 2050e6
@@ -118,6 +122,7 @@ class AnalysisSettings:
     n_levels: int = 7
     damage_areas: tuple[float, ...] = (1e-6, 1e-4, 1e-3)
     target_damage: float = 0.01
+    tail: str | None = "pareto"
 
     @property
     def hardness_mpa(self) -> float:
@@ -154,6 +159,8 @@ class AnalysisSettings:
         if not (0.0 < self.target_damage < 1.0):
             raise ValueError(f"target_damage must be a probability in (0, 1), got "
                              f"{self.target_damage!r}")
+        if self.tail not in ("pareto", None):
+            raise ValueError(f"tail must be 'pareto' or None, got {self.tail!r}")
 
 
 
@@ -221,6 +228,6 @@ def predict_sample(x: np.ndarray, a: AnalysisSettings, rng, fits: list[tuple[str
                            n_resamples=n_resamples or a.n_resamples,
                            likelihood_resamples=MLE_RESAMPLES,
                            confidence_level=a.confidence_level, rng=rng, maximum=maximum,
-                           maximum_rng=maximum_rng)
+                           maximum_rng=maximum_rng, tail=a.tail)
 
 

@@ -56,7 +56,20 @@ def _max_log_score(dist, maxima: np.ndarray, counts: np.ndarray) -> tuple[int, f
     return int(maxima.size - ok.sum()), (float(np.mean(v[ok])) if ok.any() else -math.inf)
 
 
-def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
+def _scored_model(x: np.ndarray, dist, tail: str | None):
+    """The candidate's model as the prediction uses it: ``dist`` with a Pareto tail on the
+    largest of ``x`` (``tail="pareto"`` and at least 21 values), else ``dist``."""
+    if tail is None or x.size < 21:
+        return dist
+    from ..extremes.spliced_tail import ParetoTailGLD
+
+    try:
+        return ParetoTailGLD.fit(x, body=dist)
+    except ValueError:
+        return dist
+
+
+def choose_fit(per: list, candidates=CANDIDATES, tail: str | None = None) -> FitChoice:
     """Choose the GLD fit of a sample by an inner split of its surfaces.
 
     The surfaces are split into two halves (alternately); every candidate is fitted to one half
@@ -71,6 +84,10 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
     per : list of (values, count, maximum)
         Per surface: its values (MPa), its count and its observed maximum (MPa).
     candidates : sequence of (param, method)
+    tail : {"pareto", None}
+        With ``"pareto"``, every candidate is scored as the model the prediction uses: its GLD
+        with a generalized Pareto tail on the half's ceil(sqrt(N)) largest values
+        (:meth:`glstat.ParetoTailGLD.fit`; the GLD alone for a half of fewer than 21 values).
 
     Returns
     -------
@@ -93,7 +110,7 @@ def choose_fit(per: list, candidates=CANDIDATES) -> FitChoice:
                 out += len(test)
                 s.append(-math.inf)
                 continue
-            o, v = _max_log_score(f.dist, np.array([t[2] for t in test]),
+            o, v = _max_log_score(_scored_model(x, f.dist, tail), np.array([t[2] for t in test]),
                                   np.array([t[1] for t in test]))
             out += o
             s.append(v)

@@ -214,7 +214,7 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
         p, m, order = param, method, None
         grouped = sample in GROUPED_SAMPLES
         if grouped:
-            ch = choose_fit([per[i] for i in train])
+            ch = choose_fit([per[i] for i in train], tail=a.tail)
             p, m, order = ch.param, ch.method, ch.order()
         _, fold_slot, maxima_slot, _ = SEED_SLOTS[sample]
         pred = predict_sample(x, a, sample_rng(a, ih, il, fold_slot, f),
@@ -231,7 +231,7 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
             obs = np.array([per[i][2] for i in tested])
             v = sample_rng(a, ih, il, maxima_slot, f).random((bf.n_successful, len(tested)))
             draws = bf.maximum_quantiles(ns[None, :], v)
-            alpha = 1 - a.confidence_level
+            alpha = 1 - bf.percentile_level(a.confidence_level)
             lo, hi = np.nanquantile(draws, [alpha / 2, 1 - alpha / 2], axis=0)
             pred = np.nanmean(draws, axis=0)
             for j, i in enumerate(tested):
