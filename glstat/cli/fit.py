@@ -193,7 +193,7 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
     if res.tail_note:
         collect_notes([res.tail_note], notes)
     if args.n_max is not None or args.hardness is not None:
-        print_model(res, emit)
+        print_model(res, args.confidence_level, emit)
     if args.n_max is not None:
         with phase("distribution of the maximum"):
             res.maximum = maximum_summary(res, args.n_max, args.confidence_level, args.count)

@@ -19,8 +19,9 @@ from .sample_files import Sample
 if TYPE_CHECKING:  # pragma: no cover
     from ..resampling import BootstrapFit
 
-__all__ = ["print_bootstrap", "print_cross_validation", "print_damage", "print_fit", "print_gof",
-           "print_header", "print_maximum", "write_figures", "write_tables"]
+__all__ = ["indent", "interval_words", "model_doc", "print_bootstrap", "print_cross_validation",
+           "print_damage", "print_fit", "print_gof", "print_header", "print_maximum", "print_model",
+           "write_figures", "write_tables"]
 
 
 def fmt_g(v: float, digits: int = 6) -> str:
@@ -100,15 +101,50 @@ def print_bootstrap(bf: BootstrapFit, summary: Any, emit: Callable[[str], None])
     emit(indent(text_table(s[cols])))
 
 
+def print_model(res: FitResults, level: float, emit: Callable[[str], None]) -> None:
+    """The model of the maximum and the damage when it has a generalized Pareto tail: its
+    tail size and parameters, and with a bootstrap the percentiles read as the intervals of
+    nominal coverage ``level`` (nothing for the GLD alone)."""
+    k = res.tail_size
+    if k is None:
+        return
+    u, _, xi, sigma = (float(v) for v in res.model.tail[0])
+    hi = res.model_support[1]
+    end = f"upper end {fmt_g(hi)}" if math.isfinite(hi) else "unbounded above"
+    emit("")
+    emit(f"model of the maximum and the damage: the GLD with a generalized Pareto tail on its {k} "
+         "largest values")
+    emit(f"  tail above {fmt_g(u)}: shape xi {fmt_g(xi, 3)}, scale {fmt_g(sigma, 4)}, {end} "
+         "(--tail none: the GLD alone)")
+    pair = interval_words({"confidence_level": level, "interval_level": res.interval_level(level)})
+    if pair is not None:
+        emit(f"  {100 * level:g} % intervals: {pair}")
+
+
+def interval_words(d: dict[str, Any]) -> str | None:
+    """``"the 2.5–97.5 % bootstrap percentiles, calibrated on non-GLD parents"`` when the
+    interval of ``d`` (a maximum or damage summary: ``confidence_level``, ``interval_level``)
+    reads the calibrated percentile pair, else None."""
+    pair = d.get("interval_level")
+    if pair is None or pair == d["confidence_level"]:
+        return None
+    a = 100.0 * (1.0 - pair) / 2.0
+    return f"the {a:g}–{100.0 - a:g} % bootstrap percentiles, calibrated on non-GLD parents"
+
+
 def print_maximum(m: dict[str, Any], emit: Callable[[str], None]) -> None:
     level = 100 * m["confidence_level"]
     emit("")
     if "table" in m:
-        emit(f"maximum of {how_many(m)}: mean {fmt_g(m['mean'])}, {level:g} % interval "
-             f"[{fmt_g(m['low'])}, {fmt_g(m['high'])}] (one draw per bootstrap GLD)")
+        head = (f"maximum of {how_many(m)}: mean {fmt_g(m['mean'])}, {level:g} % interval "
+                f"[{fmt_g(m['low'])}, {fmt_g(m['high'])}]")
+        calibrated = interval_words(m) is not None
+        emit(f"{head} (calibrated; one draw per bootstrap model)" if calibrated
+             else f"{head} (one draw per bootstrap GLD)")
         emit(indent(text_table(m["table"][["quantity", "center", "low", "high"]])))
     else:
-        emit(f"maximum of {how_many(m)} (full-sample fit, no bootstrap): mean {fmt_g(m['mean'])}, "
+        what = "fit" if m.get("tail_size") is None else "model"
+        emit(f"maximum of {how_many(m)} (full-sample {what}, no bootstrap): mean {fmt_g(m['mean'])}, "
              f"{level:g} % interval [{fmt_g(m['low'])}, {fmt_g(m['high'])}]")
 
 
@@ -127,8 +163,11 @@ def print_damage(d: dict[str, Any], args: argparse.Namespace, emit: Callable[[st
     level = 100 * d["confidence_level"]
     emit("")
     with_ci = d["low"] is not None
+    calibrated = "calibrated " if interval_words(d) is not None else ""
+    interval = (f", {level:g} % {calibrated}bootstrap interval:" if with_ci
+                else " (no bootstrap: no interval):")
     emit(f"damage probability P(max > {d['hardness']:g}) for {how_many(d, 'points')} ({src})"
-         + (f", {level:g} % bootstrap interval:" if with_ci else " (no bootstrap: no interval):"))
+         + interval)
     tab = pd.DataFrame({"area_factor": d["area_factors"], "points": [f"{v:.10g}" for v in d["points"]],
                         "integrity": d["integrity"], "damage": d["estimate"]})
     if with_ci:
@@ -200,9 +239,9 @@ def integrity_figure(res: FitResults, d: dict[str, Any], ax) -> None:
     grid = np.logspace(math.log10(k_lo), math.log10(k_hi), 61)
     nn = None if d.get("count") is not None else d["n"]
     if d["reason"] is None:
-        plot_integrity_vs_area(res.fit.dist, d["hardness"], nn, grid, ax=ax, count=d.get("count"))
+        plot_integrity_vs_area(res.model, d["hardness"], nn, grid, ax=ax, count=d.get("count"))
     else:
-        p = integrity_probability(res.fit.dist, d["hardness"], nn, grid, count=d.get("count"),
+        p = integrity_probability(res.model, d["hardness"], nn, grid, count=d.get("count"),
                                   outside_support="limit")
         ax.plot(grid, p, color="C0", label="integrity")
         ax.set_xscale("log")
@@ -313,6 +352,20 @@ def summary_frame(res: FitResults) -> Any:
     return pd.DataFrame(rows)
 
 
+def model_doc(res: FitResults) -> dict[str, Any]:
+    """The full-sample model of the maximum and the damage for ``fit.json``: ``tail``
+    (``"pareto"`` or ``"none"``: what was used), ``tail_size`` (k, None for the GLD alone),
+    the tail's ``u``, ``q``, ``xi``, ``sigma`` (None for the GLD alone), the ``support`` (None
+    for an unbounded end) and ``note`` (why a requested tail could not be fitted)."""
+    k = res.tail_size
+    doc: dict[str, Any] = {"tail": "none" if k is None else "pareto", "tail_size": k,
+                           "support": list(res.model_support), "note": res.tail_note}
+    tail = None if k is None else res.model.tail[0]
+    for j, name in enumerate(("u", "q", "xi", "sigma")):
+        doc[name] = None if tail is None else float(tail[j])
+    return doc
+
+
 def write_tables(res: FitResults, args: argparse.Namespace, out: Path) -> None:
     from .. import __version__
 
@@ -329,11 +382,13 @@ def write_tables(res: FitResults, args: argparse.Namespace, out: Path) -> None:
                      "gof_resamples": res.gof_resamples,
                      "gof_resamples_requested": args.gof_resamples, "gof_note": res.gof_note,
                      "cross_validate": getattr(args, "cross_validate", None),
-                     "no_cross_validate": getattr(args, "no_cross_validate", False)},
+                     "no_cross_validate": getattr(args, "no_cross_validate", False),
+                     "tail": args.tail},
         "fit": {"lambdas": list(f.lambdas), "param": f.param, "method": f.method, "region": f.region,
                 "n": f.n, "support": list(res.support), "statistics": f.statistics,
                 "options": f.options, "solutions": records(f.solutions)},
         "gof": records(res.gof)[0],
+        "model": model_doc(res),
         "bootstrap": None, "maximum": None, "damage": None,
         "cross_validation": cross_validation_doc(res), "notes": res.notes,
     }
