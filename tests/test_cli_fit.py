@@ -67,9 +67,13 @@ def test_csv_full_run_tables_files_and_damage(tmp_path, capsys):
     pd.DataFrame({"surface": [f"s{i % 3}" for i in range(x.size)], "pressure": x}).to_csv(csv, index=False)
     before = _digest(csv)
     ref = glstat.fit(x, "rs", "moments")
+    # the default model: the GLD with a generalized Pareto tail on its k = max(20, ceil(sqrt(300)))
+    # = 20 largest values
+    model = glstat.ParetoTailGLD.fit(x, body=ref.dist)
+    assert model.tail_size == 20
     n_max = 1e5
-    # the hardness at the median of the fitted maximum: damage 1/2 for the analysed area
-    hardness = float(glstat.maximum(ref.dist, n_max).median())
+    # the hardness at the median of the model's maximum: damage 1/2 for the analysed area
+    hardness = float(glstat.maximum(model, n_max).median())
     out_dir = tmp_path / "out"
     code, out, err = _run(capsys, [csv, "--bootstrap", 40, "--gof-resamples", 9, "--n-max", n_max,
                                    "--hardness", hardness, "--area-factor", 1, 10, "--out", out_dir,
@@ -97,10 +101,19 @@ def test_csv_full_run_tables_files_and_damage(tmp_path, capsys):
     ks_row = next(r for r in rows if r.startswith("ks ")).split()
     assert len(ks_row) == 3 and 0 < float(ks_row[2]) <= 1  # a p-value
 
-    # damage: estimate 1/2 at k = 1; interval from the same bootstrap
-    bf = glstat.bootstrap(x, "rs", "moments", n_resamples=40, rng=SEED)
+    # the model, said where the maximum and the damage are printed
+    u, _, xi, sigma = model.tail[0]
+    assert _section(out, "model of the maximum and the damage: the GLD with a generalized Pareto "
+                         "tail on its 20 largest values")[1] == (
+        "90 % intervals: the 2.5–97.5 % bootstrap percentiles, calibrated on non-GLD parents")
+    assert f"tail above {u:.6g}: shape xi {xi:.3g}, scale {sigma:.4g}" in out
+
+    # damage: estimate 1/2 at k = 1; interval from the same bootstrap with the same tails
+    bf = glstat.bootstrap(x, "rs", "moments", n_resamples=40, rng=SEED).with_pareto_tail()
     want = bf.damage_probability(hardness, n_max, np.array([1.0, 10.0]))
-    dmg = _section(out, f"damage probability P(max > {hardness:g})")
+    assert want.interval_level == 0.95  # the calibrated pair of a nominal 90 %
+    dmg = _section(out, f"damage probability P(max > {hardness:g}) for n = 100000 points (--n-max), "
+                        "90 % calibrated bootstrap interval:")
     assert dmg[0].split() == ["area_factor", "points", "integrity", "damage", "low", "high"]
     table = np.array([[float(v) for v in r.split()] for r in dmg[1:3]])
     np.testing.assert_allclose(table[:, 0], [1, 10])
@@ -110,15 +123,18 @@ def test_csv_full_run_tables_files_and_damage(tmp_path, capsys):
     assert table[0, 3] == pytest.approx(0.5, rel=1e-5)
     np.testing.assert_allclose(table[:, 4], want.low, rtol=1e-5, atol=1e-12)
     np.testing.assert_allclose(table[:, 5], want.high, rtol=1e-5, atol=1e-12)
-    assert "90 % bootstrap interval" in out
 
-    # maximum of n_max values, one draw per bootstrap GLD
+    # maximum of n_max values, one draw per bootstrap model, calibrated interval
     bm = bf.maximum(n_max)
-    assert f"maximum of 100000 values: mean {bm.mean:.6g}" in out
+    lo, hi = bm.interval()
+    assert bm.calibrated
+    assert (f"maximum of 100000 values: mean {bm.mean:.6g}, 90 % interval [{lo:.6g}, {hi:.6g}] "
+            "(calibrated; one draw per bootstrap model)") in out
 
     # the block cross-validation, on by default with --n-max: 300 values make 25 blocks of 12
     assert out.index("check by block cross-validation: ") > out.index("damage probability P(max >")
-    assert "(25 blocks of 12 values, each predicted from the other 288 by RS moments, 40 resamples)" in out
+    assert ("(25 blocks of 12 values, each predicted from the other 288 by RS moments with a Pareto "
+            "tail, 40 resamples)") in out
 
     # files
     names = {p.name for p in out_dir.iterdir() if not p.name.startswith(".")}
@@ -130,6 +146,11 @@ def test_csv_full_run_tables_files_and_damage(tmp_path, capsys):
     assert doc["fit"]["lambdas"] == list(ref.lambdas)
     assert doc["input"]["column"] == "pressure" and doc["input"]["n_used"] == 300
     assert doc["settings"]["seed"] == SEED and doc["bootstrap"]["n_resamples"] == 40
+    assert doc["settings"]["tail"] == "pareto"
+    assert doc["model"]["tail"] == "pareto" and doc["model"]["tail_size"] == 20
+    assert [doc["model"][c] for c in ("u", "q", "xi", "sigma")] == list(model.tail[0])
+    assert doc["maximum"]["tail_size"] == doc["damage"]["tail_size"] == 20
+    assert doc["maximum"]["interval_level"] == doc["damage"]["interval_level"] == 0.95
     assert doc["damage"]["estimate"] == pytest.approx(list(want.estimate), rel=1e-12)
     assert doc["damage"]["low"] == pytest.approx(list(want.low), rel=1e-12, abs=1e-300)
     assert doc["gof"]["ks"] == pytest.approx(float(gof["ks"].iloc[0]), rel=1e-12)
@@ -157,12 +178,14 @@ def _low_outliers(n: int = 2000, seed: int = 0) -> np.ndarray:
 
 
 def test_cross_validation_fails_a_too_light_tail_and_writes_its_table(tmp_path, capsys):
+    # the GLD alone (--tail none): its upper tail ends below the normal's block maxima
     x = _low_outliers()
     npy = tmp_path / "low.npy"
     np.save(npy, x)
     out_dir = tmp_path / "o"
     code, out, err = _run(capsys, [npy, "--bootstrap", 50, "--gof-resamples", 0, "--n-max", 1000,
-                                   "--hardness", 2.0, "--out", out_dir, "--seed", SEED])
+                                   "--hardness", 2.0, "--tail", "none", "--out", out_dir,
+                                   "--seed", SEED])
     assert code == 0, err
     lines = _section(out, "check by block cross-validation: failed (25 blocks of 80 values, each "
                           "predicted from the other 1920 by RS moments, 50 resamples)")
@@ -173,7 +196,7 @@ def test_cross_validation_fails_a_too_light_tail_and_writes_its_table(tmp_path, 
     assert out.index("check by block cross-validation") > out.index("damage probability P(max > 2)")
     # the table is the library's, with the run's seed, level and resamples
     want = glstat.cross_validate_maximum(x, [("rs", "moments")], n_blocks=25, threshold=2.0,
-                                         n_resamples=50, confidence_level=0.9, rng=SEED)
+                                         n_resamples=50, confidence_level=0.9, rng=SEED, tail=None)
     got = pd.read_csv(out_dir / "cross_validation.csv")
     assert list(got.columns) == list(want.table.columns) and len(got) == 25
     np.testing.assert_allclose(got[["observed", "low", "high", "pit", "predicted_damage"]],
@@ -185,6 +208,30 @@ def test_cross_validation_fails_a_too_light_tail_and_writes_its_table(tmp_path, 
     assert cv["verdict"] == "failed" and cv["n_blocks"] == 25 and cv["block_size"] == 80
     assert cv["coverage"]["hits"] == want.coverage_check.hits and cv["n_above"] == want.n_above
     assert "cross_validation.csv" in doc["files"]
+
+
+def test_cross_validation_of_the_default_tail_on_the_same_data(tmp_path, capsys):
+    # the same data with the default Pareto tail: the tail follows the normal's upper values and
+    # the interval of the maximum covers the block maxima (the coverage check passes; 25 blocks
+    # are too few to check the damage, so the verdict is "not checkable", not "failed")
+    x = _low_outliers()
+    npy = tmp_path / "low.npy"
+    np.save(npy, x)
+    out_dir = tmp_path / "o"
+    code, out, err = _run(capsys, [npy, "--bootstrap", 50, "--gof-resamples", 0, "--n-max", 1000,
+                                   "--hardness", 2.0, "--out", out_dir, "--seed", SEED])
+    assert code == 0, err
+    want = glstat.cross_validate_maximum(x, [("rs", "moments")], n_blocks=25, threshold=2.0,
+                                         n_resamples=50, confidence_level=0.9, rng=SEED)
+    assert want.coverage_check.verdict == "passed" and want.verdict != "failed"
+    lines = _section(out, f"check by block cross-validation: {want.verdict} (25 blocks of 80 values, "
+                          "each predicted from the other 1920 by RS moments with a Pareto tail, 50 "
+                          "resamples)")
+    assert lines[0].startswith("coverage of the 90 % interval of the maximum: passed: ")
+    got = pd.read_csv(out_dir / "cross_validation.csv")
+    np.testing.assert_allclose(got[["observed", "low", "high"]], want.table[["observed", "low", "high"]],
+                               rtol=1e-12)
+    assert json.loads((out_dir / "fit.json").read_text())["cross_validation"]["verdict"] == want.verdict
 
 
 def test_cross_validation_options_and_skips(tmp_path, capsys):
@@ -259,14 +306,22 @@ def test_npy_fkml_percentiles_without_bootstrap(tmp_path, capsys):
     assert "FKML parameterisation, percentiles" in out
     assert "not available (parameters estimated; set n_resamples)" in out
     assert "bootstrap:" not in out and "damage probability" not in out
-    m = glstat.maximum(ref.dist, 1000)
+    # without a bootstrap the maximum is that of the full-sample model: the FKML fit with a
+    # generalized Pareto tail on its 20 largest values
+    model = glstat.ParetoTailGLD.fit(x, body=ref.dist)
+    m = glstat.maximum(model, 1000)
     lo, hi = m.interval(0.9)
-    assert f"interval [{lo:.6g}, {hi:.6g}]" in out
+    assert (f"maximum of 1000 values (full-sample model, no bootstrap): mean {float(m.mean()):.6g}, "
+            f"90 % interval [{lo:.6g}, {hi:.6g}]") in out
+    assert "model of the maximum and the damage: the GLD with a generalized Pareto tail on its 20 " \
+           "largest values" in out
+    assert "calibrated" not in out  # no bootstrap: no percentiles to calibrate
     names = {p.name for p in out_dir.iterdir()}
     assert names == {"histogram.png", "qq.png", "pp.png", "maximum_density.png", "fit.json", "summary.csv"}
     doc = json.loads((out_dir / "fit.json").read_text())
     assert doc["bootstrap"] is None and doc["damage"] is None
     assert doc["fit"]["param"] == "fkml" and doc["fit"]["lambdas"] == list(ref.lambdas)
+    assert doc["model"]["tail_size"] == 20 and doc["model"]["xi"] == model.tail[0, 2]
 
 
 def test_whitespace_text_without_header_and_column_position(tmp_path, capsys):
@@ -322,8 +377,13 @@ def test_nan_policy_omit_and_raise(tmp_path, capsys):
     np.testing.assert_allclose(_printed_lambdas(out), glstat.fit(finite).lambdas, rtol=1e-12)
 
 
+def _bounded(n: int = 400) -> np.ndarray:
+    return 100.0 + 100.0 * np.random.default_rng(6).beta(2.0, 2.0, n)  # RS moments: support ≈ [101.6, 201.4]
+
+
 def test_hardness_outside_the_fitted_support(tmp_path, capsys):
-    x = 100.0 + 100.0 * np.random.default_rng(6).beta(2.0, 2.0, 400)  # RS moments: support ≈ [101.6, 201.4]
+    # the GLD alone (--tail none): beyond the ends of its support the damage is exactly 0 or 1
+    x = _bounded()
     csv = tmp_path / "u.csv"
     pd.DataFrame({"p": x}).to_csv(csv, index=False)
     lo, hi = glstat.fit(x).dist.support()
@@ -331,7 +391,8 @@ def test_hardness_outside_the_fitted_support(tmp_path, capsys):
     for hardness, value, words in ((hi + 50.0, 0.0, "at or above the upper end"),
                                    (lo - 50.0, 1.0, "at or below the lower end")):
         code, out, err = _run(capsys, [csv, "--bootstrap", 20, "--gof-resamples", 0, "--hardness", hardness,
-                                       "--area-factor", 1, 5, "--out", tmp_path / "o", "--seed", 1])
+                                       "--area-factor", 1, 5, "--tail", "none", "--out", tmp_path / "o",
+                                       "--seed", 1])
         assert code == 0, err
         dmg = _section(out, "damage probability")
         table = np.array([[float(v) for v in r.split()] for r in dmg[1:3]])
@@ -342,6 +403,34 @@ def test_hardness_outside_the_fitted_support(tmp_path, capsys):
         assert words in out and f"damage probability is {value:g}" in out
         doc = json.loads((tmp_path / "o" / "fit.json").read_text())
         assert doc["damage"]["estimate"] == [value, value] and words in doc["damage"]["reason"]
+
+
+def test_hardness_above_the_gld_with_the_default_tail(tmp_path, capsys):
+    # the same data and hardness above the GLD's upper end, with the default Pareto tail: the
+    # full-sample model ends where its tail ends (shape xi < 0 here), so its damage is 0 with
+    # that end as the reason, but some bootstrap models reach past the hardness: the interval's
+    # upper end is not 0
+    x = _bounded()
+    csv = tmp_path / "u.csv"
+    pd.DataFrame({"p": x}).to_csv(csv, index=False)
+    hardness = float(glstat.fit(x).dist.support()[1]) + 50.0
+    model = glstat.ParetoTailGLD.fit(x, body=glstat.fit(x).dist)
+    end = float(model.support()[1])
+    assert model.tail[0, 2] < 0 and end < hardness
+    code, out, err = _run(capsys, [csv, "--bootstrap", 20, "--gof-resamples", 0, "--hardness", hardness,
+                                   "--area-factor", 1, 5, "--out", tmp_path / "o", "--seed", 1])
+    assert code == 0, err
+    with pytest.warns(glstat.BootstrapWarning, match="bootstrap fits failed: 2 of 20"):
+        bf = glstat.bootstrap(x, n_resamples=20, rng=1).with_pareto_tail()
+    want = bf.damage_probability(hardness, x.size, np.array([1.0, 5.0]))
+    table = np.array([[float(v) for v in r.split()] for r in _section(out, "damage probability")[1:3]])
+    np.testing.assert_array_equal(table[:, 3], 0.0)
+    np.testing.assert_allclose(table[:, 5], want.high, rtol=1e-5)
+    assert np.all(want.high > 0)
+    assert f"at or above the upper end of the fitted support ({end:.6g})" in out
+    above = sum(hardness >= float(d.support()[1]) for d in bf.dists())
+    assert 0 < above < bf.n_successful
+    assert f"in the bootstrap, {above} fit(s) have the hardness above their support (damage 0)" in out
 
 
 def test_failed_bootstrap_resamples_are_reported(tmp_path, capsys):
@@ -661,16 +750,19 @@ def test_pareto_tail_on_data_whose_gld_fit_misses_the_tail(tmp_path, capsys):
                                    "--hardness", 125.0, "--no-cross-validate", "--pareto-tail",
                                    "--out", tmp_path / "o", "--seed", SEED])
     assert code == 0, err
-    line = next(ln for ln in out.splitlines() if ln.startswith("  damage P(max > 125) on 1 area"))
+    line = next(ln for ln in out.splitlines() if ln.startswith("    damage P(max > 125) on 1 area"))
     est, low, high = (float(v) for v in re.findall(r"[\d.]+(?:e-?\d+)?", line.split(":")[1]))
     exact = 1 - (1 - stats.norm.sf(125.0, 100.0, 10.0)) ** 1000
     assert low <= exact <= high and est > 0.9
-    assert out.index("generalized Pareto tail on the 45 largest values") > out.index("damage probability")
+    head = "peaks-over-threshold prediction (--pareto-tail, an empirical body):"
+    assert out.index(head) > out.index("damage probability")
+    assert _section(out, head)[0].startswith("generalized Pareto tail on the 45 largest values")
     # a random count is not supported: said, not computed
     code, out, err = _run(capsys, [npy, "--bootstrap", 20, "--gof-resamples", 0, "--n-max", "poisson:50",
                                    "--no-cross-validate", "--pareto-tail", "--out", tmp_path / "p"])
     assert code == 0, err
-    assert "generalized Pareto tail: skipped: it takes a fixed number of points" in out
+    assert ("peaks-over-threshold prediction (--pareto-tail, an empirical body): skipped: it takes a "
+            "fixed number of points") in out
 
 
 def test_names_with_dollars_are_shown_literally_in_the_figures(tmp_path, capsys):
