@@ -50,6 +50,7 @@ def test_the_frame_holds_the_results_attributes(prediction):
     assert (t["confidence_level"] == p.confidence_level).all()
     assert (t["param"] == "rs").all() and (t["method"] == "moments").all()
     assert (t["n_resamples"] == 40).all() and t["count"].isna().all()
+    assert (t["tail_size"] == p.tail_size).all()
     # integrity and damage are complements (the full-sample fit's F^(k n))
     np.testing.assert_allclose(_rows(t, "damage")["estimate"].to_numpy(),
                                1 - _rows(t, "integrity")["estimate"].to_numpy(), rtol=1e-12)
@@ -63,7 +64,10 @@ def test_the_summary_states_the_numbers_of_the_frame(prediction):
     assert f"damage P(max > {HARDNESS:.6g} MPa)" in text
     for k, e, low, high in zip([1, 10], p.damage.estimate, p.damage.low, p.damage.high, strict=True):
         assert f"area factor {k}: {e:.6g} [{low:.6g}, {high:.6g}]" in text
-    assert text.splitlines()[0] == "RS moments GLD fit of 1500 values, 40 bootstrap resamples (40 fitted)"
+    # the default tail: k = max(20, ceil(sqrt(1500))) = 39 largest values
+    assert p.tail_size == max(20, int(np.ceil(np.sqrt(1500)))) == 39
+    assert text.splitlines()[0] == ("RS moments GLD fit of 1500 values with a generalized Pareto tail on "
+                                    "its 39 largest, 40 bootstrap resamples (40 fitted)")
     # without a unit, the text says the values are in the units of the data
     assert "values in the units of the data" in p.summary() and "MPa" not in p.summary()
 
@@ -167,11 +171,17 @@ def test_glstat_fit_reports_the_predictions_damage(tmp_path, sample, monkeypatch
     assert res.maximum["mean"] == float(_rows(t, "maximum")["estimate"].iloc[0])
     doc = json.loads((tmp_path / "o" / "fit.json").read_text())
     assert doc["damage"]["high"] == list(_rows(t, "damage")["high"])
-    # the prediction's estimate is that of the full-sample fit the command prints
-    want = original(res.fit.dist, HARDNESS, 500.0, np.array([1.0, 10.0]), outside_support="limit")
+    # the prediction's estimate is that of the full-sample model the command uses: the fit the
+    # command prints with the default Pareto tail
+    model = glstat.ParetoTailGLD.fit(sample[:300], body=res.fit.dist)
+    assert isinstance(res.model, glstat.ParetoTailGLD)
+    assert res.model.tail_size == res.prediction.tail_size == model.tail_size == 20
+    np.testing.assert_array_equal(res.model.tail, model.tail)
+    np.testing.assert_array_equal(res.model.body.lambdas, res.fit.lambdas)
+    want = original(model, HARDNESS, 500.0, np.array([1.0, 10.0]), outside_support="limit")
     np.testing.assert_allclose(res.damage["estimate"], want, rtol=1e-12)
 
-    # without a bootstrap there is no prediction: the damage comes from the fit itself
+    # without a bootstrap there is no prediction: the damage comes from the same model
     res0 = cli_fit.run(_fit_args(csv, tmp_path / "o0", "--bootstrap", "0"), lines.append)
     assert res0.prediction is None and len(calls) == 1
     np.testing.assert_array_equal(res0.damage["estimate"], want)
