@@ -1,0 +1,180 @@
+"""``glstat fit --tail``: the maximum and the damage from the GLD with a generalized Pareto tail
+(the default) or from the GLD alone (``--tail none``), each compared with the library's steps
+on the same values and seed."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import glstat
+from glstat.cli import fit as cli_fit
+
+SEED = 3
+N_MAX = 1000
+HARDNESS = 3500.0  # MPa, within the upper values of the maximum of 1000 draws below
+FACTORS = [1.0, 10.0]
+
+
+@pytest.fixture(scope="module")
+def sample(tmp_path_factory):
+    x = np.random.default_rng(11).gamma(4.0, 350.0, 300)  # pressures, MPa
+    path = tmp_path_factory.mktemp("tail") / "p.csv"
+    np.savetxt(path, x, header="pressure", comments="")  # 18 significant digits: exact
+    return path, x
+
+
+def _run(path, out, *extra):
+    lines: list[str] = []
+    args = cli_fit.build_parser().parse_args(
+        [str(path), "--n-max", str(N_MAX), "--hardness", str(HARDNESS), "--area-factor", "1", "10",
+         "--bootstrap", "30", "--gof-resamples", "0", "--no-cross-validate", "--seed", str(SEED),
+         "--out", str(out), *extra])
+    res = cli_fit.run(args, lines.append)
+    return res, "\n".join(lines), json.loads((out / "fit.json").read_text())
+
+
+def _is_the_gld_fit(res) -> bool:
+    """Whether the model of the run is its GLD fit alone (no tail)."""
+    return (not isinstance(res.model, glstat.ParetoTailGLD)
+            and tuple(res.model.lambdas) == tuple(res.fit.lambdas))
+
+
+def _library(x, tail):
+    return glstat.predict_maximum(x, n=N_MAX, threshold=HARDNESS, area_factor=FACTORS,
+                                  n_resamples=30, rng=SEED, tail=tail)
+
+
+def test_tail_none_reproduces_the_gld_alone(sample, tmp_path):
+    path, x = sample
+    res, out, doc = _run(path, tmp_path / "o", "--tail", "none")
+    want = _library(x, None)
+    assert want.tail_size is None and not want.maximum.calibrated
+    lo, hi = want.maximum.interval()
+    assert (res.maximum["mean"], res.maximum["low"], res.maximum["high"]) == (want.maximum.mean, lo, hi)
+    np.testing.assert_array_equal(res.damage["estimate"], want.damage.estimate)
+    np.testing.assert_array_equal(res.damage["low"], want.damage.low)
+    np.testing.assert_array_equal(res.damage["high"], want.damage.high)
+    assert _is_the_gld_fit(res) and res.tail_size is None
+    # nothing new is said: the GLD alone, the plain percentile interval
+    assert (f"maximum of 1000 values: mean {want.maximum.mean:.6g}, 90 % interval [{lo:.6g}, {hi:.6g}] "
+            "(one draw per bootstrap GLD)") in out
+    assert "90 % bootstrap interval:" in out
+    for word in ("Pareto", "calibrated", "model of the maximum"):
+        assert word not in out
+    assert doc["settings"]["tail"] == "none"
+    assert doc["model"]["tail"] == "none" and doc["model"]["tail_size"] is None
+    assert doc["maximum"]["interval_level"] == 0.9 and doc["maximum"]["tail_size"] is None
+
+
+def test_the_default_is_the_gld_with_a_pareto_tail(sample, tmp_path):
+    path, x = sample
+    res, out, doc = _run(path, tmp_path / "o")
+    want = _library(x, "pareto")
+    k = max(20, int(np.ceil(np.sqrt(x.size))))
+    assert want.tail_size == k == 20 and want.maximum.calibrated
+    lo, hi = want.maximum.interval()
+    assert (res.maximum["mean"], res.maximum["low"], res.maximum["high"]) == (want.maximum.mean, lo, hi)
+    np.testing.assert_array_equal(res.damage["estimate"], want.damage.estimate)
+    np.testing.assert_array_equal(res.damage["high"], want.damage.high)
+    # a different model from the GLD alone: the tail changes the numbers
+    assert res.maximum["high"] != _library(x, None).maximum.interval()[1]
+    # the text says which model and which interval, before the maximum and the damage
+    model = f"model of the maximum and the damage: the GLD with a generalized Pareto tail on its {k} " \
+            "largest values"
+    pair = "90 % intervals: the 2.5–97.5 % bootstrap percentiles, calibrated on non-GLD parents"
+    assert out.index(model) < out.index(pair) < out.index("maximum of 1000 values") \
+        < out.index("damage probability P(max > 3500)")
+    assert "90 % calibrated bootstrap interval:" in out
+    assert "(calibrated; one draw per bootstrap model)" in out
+    # fit.json: the option, and the model with its tail
+    assert doc["settings"]["tail"] == "pareto"
+    u, q, xi, sigma = want.dist.tail[0]
+    assert doc["model"] == {"tail": "pareto", "tail_size": k, "support": doc["model"]["support"],
+                            "note": None, "u": u, "q": q, "xi": xi, "sigma": sigma}
+    assert doc["maximum"]["interval_level"] == doc["damage"]["interval_level"] == 0.95
+
+
+def test_without_bootstrap_the_model_is_pareto_tail_gld_fit(sample, tmp_path, monkeypatch):
+    path, x = sample
+    calls = []
+    original = glstat.ParetoTailGLD.fit.__func__
+
+    def spy(cls, data, body=None, tail_size="sqrt"):
+        calls.append((np.array(data), body, tail_size))
+        return original(cls, data, body=body, tail_size=tail_size)
+
+    monkeypatch.setattr(glstat.ParetoTailGLD, "fit", classmethod(spy))
+    res, out, doc = _run(path, tmp_path / "o", "--bootstrap", "0")
+    assert len(calls) == 1
+    data, body, tail_size = calls[0]
+    np.testing.assert_array_equal(data, x)
+    assert body is res.fit.dist and tail_size == "sqrt"
+    model = original(glstat.ParetoTailGLD, x, body=glstat.fit(x).dist)
+    np.testing.assert_array_equal(res.model.tail, model.tail)
+    want = glstat.damage_probability(model, HARDNESS, N_MAX, FACTORS)
+    np.testing.assert_allclose(res.damage["estimate"], want, rtol=1e-12)
+    m = glstat.maximum(model, N_MAX)
+    assert f"maximum of 1000 values (full-sample model, no bootstrap): mean {float(m.mean()):.6g}" in out
+    assert "model of the maximum and the damage: the GLD with a generalized Pareto tail" in out
+    assert "calibrated" not in out and doc["model"]["tail_size"] == 20
+    # --tail none: the GLD itself, no tail fitted
+    calls.clear()
+    res, out, _ = _run(path, tmp_path / "o2", "--bootstrap", "0", "--tail", "none")
+    assert calls == [] and _is_the_gld_fit(res)
+    assert "(full-sample fit, no bootstrap)" in out and "Pareto" not in out
+
+
+@pytest.mark.parametrize("bootstrap", ["0", "20"])
+def test_too_few_values_for_the_tail_fall_back_to_the_gld_with_a_note(tmp_path, bootstrap):
+    # the default tail takes at least 20 values above its start: 20 values are too few
+    x = np.random.default_rng(2).gamma(4.0, 350.0, 20)
+    path = tmp_path / "few.csv"
+    np.savetxt(path, x, header="pressure", comments="")
+    res, out, doc = _run(path, tmp_path / "o", "--bootstrap", bootstrap)
+    assert res.tail_size is None and _is_the_gld_fit(res)
+    assert res.tail_note is not None and res.tail_note.startswith("no Pareto tail (a Pareto tail of k = 20")
+    assert "needs at least 21" in res.tail_note
+    assert f"note: {res.tail_note}" in out
+    assert "model of the maximum" not in out and "calibrated" not in out
+    assert doc["model"]["tail"] == "none" and doc["model"]["note"] == res.tail_note
+    assert res.tail_note in doc["notes"]
+
+
+def test_an_unbounded_tail_gives_damage_above_the_gld_s_upper_end(tmp_path):
+    # N(0, 1) with 5 % far lower outliers (seed 1): the RS moment fit ends at 1.44, below the
+    # normal's upper values; the generalized Pareto tail of the 45 largest values has shape
+    # xi > 0 (unbounded)
+    g = np.random.default_rng(1)
+    x = g.normal(0.0, 1.0, 2000)
+    far = g.random(2000) < 0.05
+    x[far] = -3.0 - g.exponential(3.0, far.sum())
+    path = tmp_path / "low.npy"
+    np.save(path, x)
+    gld = glstat.fit(x, warn=False).dist  # a poor fit, on purpose
+    model = glstat.ParetoTailGLD.fit(x, body=gld)
+    assert float(gld.support()[1]) < 3.0 and model.tail[0, 2] > 0 and np.isinf(model.support()[1])
+    common = [str(path), "--n-max", "100", "--hardness", "3.0", "--bootstrap", "0", "--gof-resamples", "0",
+              "--seed", "1"]
+    lines: list[str] = []
+    res = cli_fit.run(cli_fit.build_parser().parse_args([*common, "--out", str(tmp_path / "a")]),
+                      lines.append)
+    want = glstat.damage_probability(model, 3.0, 100.0)
+    assert float(res.damage["estimate"][0]) == pytest.approx(float(want), rel=1e-12)
+    assert 0 < float(want) < 1 and res.damage["reason"] is None
+    # the GLD alone: above its upper end, damage 0 with the reason
+    res = cli_fit.run(cli_fit.build_parser().parse_args([*common, "--tail", "none",
+                                                         "--out", str(tmp_path / "b")]), lines.append)
+    assert float(res.damage["estimate"][0]) == 0.0
+    assert "at or above the upper end of the fitted support" in res.damage["reason"]
+
+
+def test_tail_option_help_and_bad_value(capsys):
+    text = " ".join(cli_fit.build_parser().format_help().split())
+    assert "--tail {pareto,none}" in text
+    assert ("also print the peaks-over-threshold prediction with an empirical body "
+            "(glstat.predict_maximum_pot) beside the default") in text
+    assert cli_fit.main(["x.csv", "--tail", "gpd"]) == 2
+    assert "invalid choice: 'gpd'" in capsys.readouterr().err
