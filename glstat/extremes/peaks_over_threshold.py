@@ -73,7 +73,8 @@ def fit_gpd(exceedances) -> tuple[np.ndarray, np.ndarray]:
         theta = 1.0 / y[:, -1:] + (1.0 - np.sqrt(m / (j - 0.5)))[None, :] / (3.0 * xstar[:, None])
         kk = np.mean(np.log1p(-theta[:, :, None] * y[:, None, :]), axis=2)
         ll = k * (np.log(-theta / kk) - kk - 1.0)
-        w = np.exp(ll - np.nanmax(ll, axis=1, keepdims=True))
+        top = np.max(np.where(np.isnan(ll), -np.inf, ll), axis=1, keepdims=True)
+        w = np.exp(ll - top)  # NaN for a row without a finite likelihood: no fit
         w = np.where(np.isfinite(w), w, 0.0)
         theta_hat = np.sum(theta * w, axis=1) / np.sum(w, axis=1)
         xi = np.mean(np.log1p(-theta_hat[:, None] * y), axis=1)

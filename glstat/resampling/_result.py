@@ -228,7 +228,25 @@ class BootstrapFit:
         if good.any():
             tails[good] = pareto_tail_rows(tops[good], sizes[good], k)
         options = dict(self.options, tail_size=k)
-        return replace(self, options=options, _tails=tails, _full_tail=full, _cache={})
+        return replace(self, options=options, _tails=tails, _full_tail=full, _cache={},
+                       failed=self._tail_failures(tails, sizes, k))
+
+    def _tail_failures(self, tails: np.ndarray, sizes: np.ndarray, k: int) -> pd.DataFrame:
+        """:attr:`failed` with the resamples whose GLD was fitted but whose tail was not."""
+        import pandas as pd
+
+        lam = self.lambdas[list(LAMBDA_NAMES)].to_numpy(dtype=float)
+        bad = np.flatnonzero(np.all(np.isfinite(lam), axis=1) & ~np.all(np.isfinite(tails), axis=1))
+        if bad.size == 0:
+            return self.failed
+        detail = [f"no Pareto tail: the resample has {int(sizes[r])} values, at most k = {k}"
+                  if sizes[r] <= k else
+                  f"no Pareto tail: the generalized Pareto fit of the resample's {k} largest "
+                  "values failed (they are all equal to the next one?)" for r in bad]
+        extra = pd.DataFrame({"resample": bad.astype(np.int64), "reason": "no Pareto tail",
+                              "detail": detail})
+        out = pd.concat([self.failed, extra], ignore_index=True)
+        return out.sort_values("resample", kind="stable").reset_index(drop=True)
 
 
     def _draw_counts(self, n, count):
