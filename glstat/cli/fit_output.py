@@ -253,7 +253,8 @@ def integrity_figure(res: FitResults, d: dict[str, Any], ax) -> None:
         bp = res.boot.integrity_probability(d["hardness"], nn, grid, d["confidence_level"],
                                             count=d.get("count"))
         ax.fill_between(grid, bp.low, bp.high, color="C1", alpha=0.25,
-                        label=f"{100 * d['confidence_level']:g} % bootstrap interval")
+                        label=f"{100 * d['confidence_level']:g} % bootstrap interval"
+                              + (" (calibrated)" if interval_words(d) is not None else ""))
     ax.plot(k, d["integrity"], linestyle="none", marker="o",
             color="C3", label="requested area factors")
     ax.legend()
