@@ -218,8 +218,8 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
         data, a, sample_rng(a, ih, il, full_slot),
         fit_order(a, param, method, order), groups=labels if grouped else None,
         n=None if grouped else sa.n_ref,
-        n_resamples=a.grid_resamples if sample == "grid" else None, threshold=a.hardness_mpa,
-        maximum=True, maximum_rng=sample_rng(a, ih, il, maximum_slot))
+        threshold=a.hardness_mpa, maximum=True, maximum_rng=sample_rng(a, ih, il, maximum_slot),
+        sample=sample)
     bf, p, m = sa.prediction.boot, sa.prediction.param, sa.prediction.method
     sa.note = sa.prediction.note
     if bf is None:

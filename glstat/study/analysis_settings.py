@@ -104,9 +104,11 @@ class AnalysisSettings:
         Damage probability the allowable nominal pressure must not exceed on each of
         ``damage_areas`` (campaigns of several loads; :mod:`glstat.study.allowable`).
     tail : {"pareto", None}
-        The model of the upper tail (:func:`glstat.predict_maximum`): ``"pareto"`` (default),
-        every GLD with a generalized Pareto tail on the ceil(sqrt(N)) largest values of its
-        sample and the calibrated intervals; None, the GLDs alone (the paper's method).
+        The model of the upper tail (:func:`glstat.predict_maximum`) of the spot and
+        per-asperity samples: ``"pareto"`` (default), every GLD with a generalized Pareto tail
+        on the ceil(sqrt(N)) largest values of its sample and the calibrated intervals; None,
+        the GLDs alone. The grid-point sample, the paper's predictor, always uses the GLD
+        alone, as the paper did.
     """
 
     hardness: float = 2050e6
@@ -219,15 +221,19 @@ def fit_order(a: AnalysisSettings, param: str | None = None, method: str | None 
 
 def predict_sample(x: np.ndarray, a: AnalysisSettings, rng, fits: list[tuple[str, str]], *,
                    groups=None, n: float | None = None, n_resamples: int | None = None,
-                   threshold: float | None = None, maximum: bool = False, maximum_rng=None):
-    """:func:`glstat.predict_maximum` with the settings' resamples and level: the first of
-    ``fits`` that has a solution, likelihood fits on at most MLE_RESAMPLES resamples."""
+                   threshold: float | None = None, maximum: bool = False, maximum_rng=None,
+                   sample: str = PRIMARY_SAMPLE):
+    """:func:`glstat.predict_maximum` with the settings' resamples, level and tail: the first
+    of ``fits`` that has a solution, likelihood fits on at most MLE_RESAMPLES resamples. The
+    grid-point ``sample`` is the paper's predictor, reproduced as the paper made it: the GLD
+    alone, on the settings' ``grid_resamples``."""
+    grid = sample == "grid"
     from ..prediction import predict_maximum
 
     return predict_maximum(x, fits, n=n, groups=groups, threshold=threshold,
-                           n_resamples=n_resamples or a.n_resamples,
+                           n_resamples=a.grid_resamples if grid else (n_resamples or a.n_resamples),
                            likelihood_resamples=MLE_RESAMPLES,
                            confidence_level=a.confidence_level, rng=rng, maximum=maximum,
-                           maximum_rng=maximum_rng, tail=a.tail)
+                           maximum_rng=maximum_rng, tail=None if grid else a.tail)
 
 

@@ -220,7 +220,7 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
         pred = predict_sample(x, a, sample_rng(a, ih, il, fold_slot, f),
                               fit_order(a, p, m, order), groups=labels if grouped else None,
                               n=None if grouped else max(float(counts.mean()), 1.0),
-                              n_resamples=a.grid_resamples if sample == "grid" else None)
+                              sample=sample)
         bf = pred.boot
         if bf is None:
             return Validation(error=f"no {p.upper()} {m} fit of a fitting fold: {pred.note}")
