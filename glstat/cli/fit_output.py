@@ -122,7 +122,7 @@ def print_model(res: FitResults, level: float, emit: Callable[[str], None]) -> N
 
 
 def interval_words(d: dict[str, Any]) -> str | None:
-    """``"the 2.5–97.5 % bootstrap percentiles, calibrated on non-GLD parents"`` when the
+    """``"the 3.5–96.5 % bootstrap percentiles, calibrated on non-GLD parents"`` when the
     interval of ``d`` (a maximum or damage summary: ``confidence_level``, ``interval_level``)
     reads the calibrated percentile pair, else None."""
     pair = d.get("interval_level")

@@ -56,7 +56,7 @@ class FitResults:
         Maximum of ``--n-max`` values: ``n``, ``mean``, ``low``, ``high`` (with a bootstrap,
         the ``maximum`` row of ``prediction.to_frame()``), the full-sample model's median and
         interval, ``tail_size`` (k of the model's Pareto tail, None for the GLD alone),
-        ``interval_level`` (the level of the bootstrap percentile pair: 0.95 for a calibrated
+        ``interval_level`` (the level of the bootstrap percentile pair: 0.93 for a calibrated
         90 % interval; None without a bootstrap) and (with a bootstrap) the mixture interval
         and table.
     damage : dict or None
@@ -124,7 +124,7 @@ class FitResults:
 
     def interval_level(self, level: float) -> float | None:
         """The level of the bootstrap percentile pair read as the interval of nominal
-        ``level`` (0.95 for a calibrated 90 % interval), or None without a bootstrap."""
+        ``level`` (0.93 for a calibrated 90 % interval), or None without a bootstrap."""
         if self.boot is None:
             return None
         from ..resampling.maxima import interval_level

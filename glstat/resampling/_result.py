@@ -168,8 +168,8 @@ class BootstrapFit:
         (Zhang–Stephens) replaces it above (:class:`glstat.ParetoTailGLD`, docs/method.md
         §6). :meth:`maximum`, :meth:`damage_probability` and :meth:`integrity_probability`
         then use these spliced models, as do :meth:`dists` and the damage functions given the
-        bootstrap, and their intervals read the calibrated percentile pair (the 2.5 % and
-        97.5 % percentiles for a nominal 90 %, :func:`glstat.resampling.maxima.interval_level`).
+        bootstrap, and their intervals read the calibrated percentile pair (the 3.5 % and
+        96.5 % percentiles for a nominal 90 %, :func:`glstat.resampling.maxima.interval_level`).
         The lambdas, their intervals and :meth:`batch` stay those of the GLD fits.
 
         Parameters
@@ -460,7 +460,7 @@ class BootstrapFit:
     def percentile_level(self, confidence_level: float | None = None) -> float:
         """The level of the percentile pair read as the interval of nominal
         ``confidence_level`` (default :attr:`confidence_level`): the level itself, or with
-        Pareto tails ``1 - (1 - level) / 2`` (:func:`glstat.resampling.maxima.interval_level`).
+        Pareto tails ``1 - 0.7 (1 - level)`` (:func:`glstat.resampling.maxima.interval_level`).
         """
         return interval_level(self._level(confidence_level), self.calibrated)
 
