@@ -250,16 +250,21 @@ class MaximumPrediction:
         if not unit:
             lines[0] += "; values in the units of the data"
         m = self.maximum
+        what = "model" if self.tail_size is not None else "GLD"
         if m is not None:
             lo, hi = m.interval()
             lines.append(f"maximum of {self._draws_text(m.n)}: {m.mean:.6g}{u}, "
                          f"{100 * m.confidence_level:g} % interval [{lo:.6g}, {hi:.6g}]{u} "
-                         "(mean and interval of one random maximum per bootstrap GLD)")
+                         f"(mean and interval of one random maximum per bootstrap {what})")
         d = self.damage
         if d is not None:
+            how = "bootstrap interval"
+            if d.interval_level is not None:
+                a = 50 * (1 - d.interval_level)
+                how = f"calibrated bootstrap interval (the {a:.3g}–{100 - a:.3g} % percentiles)"
             lines.append(f"damage P(max > {d.threshold:.6g}{u}) over {self._draws_text(d.n)} "
-                         f"per analysed area (full-sample fit), {100 * d.confidence_level:g} % bootstrap "
-                         "interval:")
+                         f"per analysed area (full-sample {what}), {100 * d.confidence_level:g} % "
+                         f"{how}:")
             k = np.broadcast_to(d.area_factor, np.shape(d.estimate)).ravel()
             for kj, e, lo, hi in zip(k, np.ravel(d.estimate), np.ravel(d.low), np.ravel(d.high),
                                      strict=True):

@@ -66,10 +66,10 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
               f"predicted from the peak pressures of the connected contact spots of each surface's "
               f"pressure map with their number per surface as a random count (docs/method.md §6; "
               f"the largest spot peak of a surface is its maximal pressure), with its {lvl} % "
-              f"bootstrap interval (surfaces resampled). 'Check' tests the prediction on held-out "
-              f"surfaces: the fraction damaged and the coverage of the maximum's interval, each by "
-              f"an exact binomial test ('not checkable' when the surfaces are too few to detect a "
-              f"miss of 20 percentage points). "
+              f"bootstrap interval (surfaces resampled){_tail_words(asettings)}. 'Check' tests "
+              f"the prediction on held-out surfaces: the fraction damaged and the coverage of "
+              f"the maximum's interval, each by an exact binomial test ('not checkable' when the "
+              f"surfaces are too few to detect a miss of 20 percentage points). "
               + ("The elastic BEM solves every surface: it is the reference answer; the asperity "
                  "model is the paper's, shown with its own check." if info.get("bem_analysis") else
                  "The elastic BEM column is the same predictor on the elastic solution of the first "
@@ -102,6 +102,15 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
         out.paragraph("Fit of the peak pressures, chosen on an inner split of the surfaces (never on "
                       "the surfaces it is checked against): " + "; ".join(choices) + ".")
     return out
+
+
+def _tail_words(asettings) -> str:
+    """How the fitted GLDs end above their largest peaks, for the first screen's caption."""
+    if asettings.tail is None:
+        return "; the GLDs alone (--tail none), as the paper fitted them"
+    return ("; every fitted GLD ends in a generalized Pareto tail on its sample's ⌈√N⌉ largest "
+            "peaks and the interval is the calibrated one (the 3.5–96.5 % bootstrap percentiles, "
+            "docs/method.md §6)")
 
 
 def _allowable_block(out: Blocks, settings, asettings, analysis: dict, bem_analysis) -> None:
