@@ -134,11 +134,13 @@ def validation_section(settings, asettings, analysis: dict) -> Blocks:
 
 
 def _guaranteed_cell(value: float, observed_max: float, e_star: float) -> str:
-    """A guaranteed pressure (MPa) marked * beyond the largest observed pressure and † above
-    the contact modulus E* (MPa)."""
-    if not np.isfinite(value):
+    """A guaranteed pressure (MPa) marked * beyond the largest observed pressure; above the
+    contact modulus E* (MPa) only "> E*" and †, not a number no contact can reach."""
+    if np.isnan(value) or value == -np.inf:
         return "—"
-    mark = "†" if value > e_star else "*" if value > observed_max else ""
+    if value > e_star:
+        return "> E*†"
+    mark = "*" if value > observed_max else ""
     return f"{value:.4g}{mark}"
 
 
@@ -170,5 +172,6 @@ def damage_section(settings, asettings, analysis: dict) -> Blocks:
               f"* beyond the largest pressure observed in the sample (an extrapolation of the "
               f"fitted tail); † above the contact modulus E* = {e_star / 1e3:.0f} GPa, where no "
               f"elastic contact pressure can be trusted (the material would have yielded long "
-              f"before): read such values as 'far above the hardness', not as pressures.")
+              f"before): the fitted tail gives no pressure there, only 'far above the "
+              f"hardness'.")
     return out
