@@ -246,7 +246,8 @@ class ParetoTailGLD(rv_continuous):
         if not np.all(np.isfinite(row)):
             raise ValueError("the generalized Pareto fit of the sample's tail failed (its "
                              "largest values are all equal?): use another tail_size")
-        return cls(body, *row, tail_size=k)
+        u, q, xi, sigma = (float(v) for v in row)
+        return cls(body, u=u, q=q, xi=xi, sigma=sigma, tail_size=k)
 
     def _body_tails(self, x):
         b = self.body

@@ -158,7 +158,8 @@ class BootstrapFit:
             return self.fit.dist
         from ..extremes.spliced_tail import ParetoTailGLD
 
-        return ParetoTailGLD(self.fit.dist, *self._full_tail, tail_size=self.tail_size)
+        u, q, xi, sigma = (float(v) for v in self._full_tail)
+        return ParetoTailGLD(self.fit.dist, u=u, q=q, xi=xi, sigma=sigma, tail_size=self.tail_size)
 
     def with_pareto_tail(self, tail_size: str | float | int = "sqrt") -> BootstrapFit:
         """The same bootstrap with a generalized Pareto tail on every fit.
