@@ -20,10 +20,12 @@ __all__ = [
     "PLAUSIBLE_MODULUS",
     "PLAUSIBLE_PRESSURE",
     "PLAUSIBLE_ROUGHNESS",
+    "TRIM_MAX",
     "check_level",
     "check_method",
     "check_n_resamples",
     "check_param",
+    "check_trim",
     "draws_or_count",
     "elastic_constants",
     "finite_separation",
@@ -50,7 +52,10 @@ __all__ = [
 #: The parameterisations of the GLD.
 PARAMS = ("rs", "fkml")
 #: The fitting methods of :func:`glstat.fit`.
-FIT_METHODS = ("moments", "percentiles", "lmoments", "mle", "mps", "starship")
+FIT_METHODS = ("moments", "percentiles", "lmoments", "tlmoments", "mle", "mps", "starship")
+#: Largest number of values trimmed on one side by the TL-moments (``trim`` of
+#: :func:`check_trim`).
+TRIM_MAX = 4095
 
 
 def check_n_resamples(n_resamples, allow_zero: bool = False) -> int:
@@ -90,6 +95,34 @@ def check_method(method) -> str:
     if method not in FIT_METHODS:
         raise ValueError(f"method must be one of {FIT_METHODS}, got {method!r}")
     return method
+
+
+def check_trim(trim) -> tuple[int, int]:
+    """The trimming (t1, t2) of the TL-moments: two non-negative integers (values removed
+    from the lower and the upper end of the conceptual sample), at most :data:`TRIM_MAX`.
+
+    Raises
+    ------
+    TypeError
+        ``trim`` is not a pair of integers (e.g. a single number, floats, booleans).
+    ValueError
+        A negative or too large value.
+    """
+    if isinstance(trim, (str, bytes)) or not hasattr(trim, "__len__") or len(trim) != 2:
+        raise TypeError(f"trim must be a pair (t1, t2) of non-negative integers, the numbers of "
+                        f"values trimmed from the lower and the upper end, e.g. trim=(1, 1); got "
+                        f"{trim!r}")
+    out = []
+    for name, t in zip(("t1", "t2"), trim, strict=True):
+        if isinstance(t, (bool, np.bool_)) or not isinstance(t, numbers.Integral):
+            raise TypeError(f"trim: {name} must be a non-negative integer, got {t!r} (TL-moments "
+                            "trim whole values of the conceptual sample; R's gld also takes "
+                            "integers)")
+        if not 0 <= t <= TRIM_MAX:
+            raise ValueError(f"trim: {name} must be between 0 and {TRIM_MAX}, got {t} (trim=(0, 0) "
+                             "gives the L-moments; (1, 1) is the usual choice)")
+        out.append(int(t))
+    return out[0], out[1]
 
 
 def draws_or_count(n, count, *, whole: bool = False) -> float | None:

@@ -40,6 +40,8 @@ FIT_METHOD_ALIASES = {
     "msp": "mps",         # R fit.fkml "MSP" (maximum spacings product)
     "sm": "starship",     # R fit.fkml / fit.gpd "SM"
     "lmom": "lmoments",   # R fit.fkml "Lmom" (TL-moments with no trimming)
+    "tl": "tlmoments",    # R fit.fkml "TL": R's t1, t2 are glstat's trim=(t1, t2); R's default
+                          # t1 = t2 = 0 (the L-moments) differs from glstat's trim=(1, 1)
     "lm": "lmoments",     # R fit.gpd "LM"
     "mom": "moments",     # R fit.fkml "Mom"
     "mm": "moments",      # scipy rv_continuous.fit method="MM"
@@ -49,8 +51,6 @@ FIT_METHOD_ALIASES = {
 REFUSED_METHODS = {
     "tm": ("R's Titterington's method (spacings of adjacently averaged data, a variant of the "
            "maximum product of spacings)", "mps"),
-    "tl": ("R's trimmed L-moments (glstat has no trimming; with t1 = t2 = 0, R's default, TL is "
-           "the method of L-moments)", "lmoments"),
     "dla": ("R's distributional least absolutes (sum of |x_(i) - Q(p_i)| over the order "
             "statistics, a quantile-matching fit)", "percentiles"),
 }
@@ -95,9 +95,9 @@ def resolve_method(method) -> str:
     Parameters
     ----------
     method : str
-        One of glstat's ``"moments"``, ``"percentiles"``, ``"lmoments"``, ``"mle"``,
-        ``"mps"``, ``"starship"``, or R's ``"ML"``, ``"MPS"``, ``"MSP"``, ``"SM"``,
-        ``"Lmom"``, ``"LM"``, ``"Mom"``, or scipy's ``"MLE"``, ``"MM"``.
+        One of glstat's ``"moments"``, ``"percentiles"``, ``"lmoments"``, ``"tlmoments"``,
+        ``"mle"``, ``"mps"``, ``"starship"``, or R's ``"ML"``, ``"MPS"``, ``"MSP"``, ``"SM"``,
+        ``"Lmom"``, ``"LM"``, ``"TL"``, ``"Mom"``, or scipy's ``"MLE"``, ``"MM"``.
 
     Returns
     -------
@@ -107,7 +107,7 @@ def resolve_method(method) -> str:
     Raises
     ------
     ValueError
-        Not a string, an unknown name, or R's ``"TM"``, ``"TL"``, ``"DLA"``, which glstat
+        Not a string, an unknown name, or R's ``"TM"``, ``"DLA"``, which glstat
         does not implement (the message names the closest glstat method).
     """
     if not isinstance(method, str):
@@ -121,4 +121,4 @@ def resolve_method(method) -> str:
         raise ValueError(f"method={method!r} is {what}, which glstat does not implement; the closest "
                          f"glstat method is method={closest!r}")
     raise ValueError(f"method must be one of {_METHODS} or an R name (ML, MPS, MSP, SM, Lmom, LM, "
-                     f"Mom), got {method!r}")
+                     f"TL, Mom), got {method!r}")

@@ -1,5 +1,5 @@
-"""Fits from summary statistics: every root of the moment, percentile and L-moment
-equations (:func:`equation_roots`), the candidate table and its selection
+"""Fits from summary statistics: every root of the moment, percentile, L-moment and
+TL-moment equations (:func:`equation_roots`), the candidate table and its selection
 (:func:`fit_from_stats`), the statistics of a sample (:func:`fit_equations`), and the
 poor-fit diagnosis of a fit of data (:func:`poor_fit_issue`)."""
 
@@ -11,10 +11,13 @@ from functools import lru_cache
 
 import numpy as np
 
+from _glstat_runtime.validation import check_trim
+
 from .._core import quantile_function
 from ..errors import FitError, FitWarning
 from . import kernels as K
 from . import sample_statistics as S
+from . import tl_kernels as T
 from .candidates import FitIssue, FitRecord, candidate, make_record, select_candidate
 
 __all__ = ["DATA_METHODS", "FAMILY", "KIND", "STAT_NAMES", "check_u", "equation_roots",
@@ -22,12 +25,14 @@ __all__ = ["DATA_METHODS", "FAMILY", "KIND", "STAT_NAMES", "check_u", "equation_
 
 logger = logging.getLogger("glstat.fitting.fit_functions")
 
-KIND = {"moments": K.MOMENTS, "percentiles": K.PERCENTILES, "lmoments": K.LMOMENTS}
+KIND = {"moments": K.MOMENTS, "percentiles": K.PERCENTILES, "lmoments": K.LMOMENTS,
+        "tlmoments": K.TLMOMENTS}
 FAMILY = {"rs": quantile_function.RS, "fkml": quantile_function.FKML}
 STAT_NAMES = {
     "moments": ("mean", "std", "skew", "kurt"),
     "percentiles": ("rho1", "rho2", "rho3", "rho4"),
     "lmoments": ("l1", "l2", "t3", "t4"),
+    "tlmoments": ("tl1", "tl2", "tt3", "tt4"),
 }
 
 
@@ -36,12 +41,13 @@ def seed_table(kind: int, fam: int, u: float) -> tuple[np.ndarray, ...]:
     """Seed tables of the statistics of ``kind`` (computed once).
 
     Returns the shape grid, the two statistics on it, and the lambda -> 0 limit table of
-    :func:`glstat._fit_engine.kernels.build_limit_table`.
+    :func:`glstat._fit_engine.kernels.build_limit_table` (``u``: the percentile probability,
+    or the packed trimming of the TL-moments).
     """
     logger.debug("building the %s seed table of the %s statistics (u=%g)",
                  "RS" if fam == quantile_function.RS else "FKML",
                  {k: m for m, k in KIND.items()}.get(kind), u)
-    nodes = K.grid_nodes(kind)
+    nodes = K.grid_nodes(kind, u)
     t1 = np.empty((nodes.size, nodes.size))
     t2 = np.empty_like(t1)
     K.build_table(kind, fam, u, nodes, t1, t2)
@@ -94,10 +100,14 @@ def reach_message(method: str, param: str, stats, u: float) -> str:
                    "data-based method ('mle', 'mps', 'starship')",
         "percentiles": "method='lmoments' or a data-based method ('mle', 'mps', 'starship')",
         "lmoments": "method='percentiles' or a data-based method ('mle', 'mps', 'starship')",
+        "tlmoments": "another trimming (trim=(t1, t2)), method='lmoments' or 'percentiles' or a "
+                     "data-based method ('mle', 'mps', 'starship')",
     }[method]
     where = ""
     if method == "moments" and param == "rs":
         where = " (RS has a 4th moment only in regions 3 and 4)"
+    if method == "tlmoments":
+        where = " (trim=({}, {}))".format(*T.unpack_trim(u))
     msg = (f"no {param.upper()} GLD matches the {method} statistics {desc}{where}. ")
     if alt:
         msg += alt[0] + "; "
@@ -176,9 +186,11 @@ def fit_from_stats(method, param, stats, u, x, n, statistics, options) -> FitRec
     return make_record(rows, sel, param, method, n, statistics, options)
 
 
-def fit_equations(x: np.ndarray, param: str, method: str, u: float = 0.1) -> FitRecord:
-    """The equation fit (``"moments"``, ``"percentiles"`` or ``"lmoments"``) of the sorted,
-    finite sample ``x``: its statistics, every root, the selected candidate.
+def fit_equations(x: np.ndarray, param: str, method: str, u: float = 0.1,
+                  trim: tuple[int, int] = (1, 1)) -> FitRecord:
+    """The equation fit (``"moments"``, ``"percentiles"``, ``"lmoments"`` or ``"tlmoments"``,
+    whose trimming ``trim`` is checked) of the sorted, finite sample ``x``: its statistics,
+    every root, the selected candidate.
 
     Raises
     ------
@@ -191,6 +203,12 @@ def fit_equations(x: np.ndarray, param: str, method: str, u: float = 0.1) -> Fit
         u = check_u(u)
         stats = S.sample_rho(x, u)
         S.check_rho(*stats)
+    elif method == "tlmoments":
+        t1, t2 = check_trim(trim)
+        stats = S.sample_tlmoments(x, t1, t2)
+        S.check_tlmoment_stats(*stats)
+        return fit_from_stats(method, param, stats, T.pack_trim(t1, t2), x, x.size,
+                              dict(zip(STAT_NAMES[method], stats, strict=True)), {"trim": (t1, t2)})
     else:
         stats = S.sample_lmoments(x)
         S.check_lmoment_stats(*stats)

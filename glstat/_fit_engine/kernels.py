@@ -7,7 +7,9 @@ standardized GLD; location and scale then follow in closed form. ``kind`` select
 * ``MOMENTS``: ``(alpha3, log(alpha4 - alpha3**2 - 1))`` - skewness and the log of the kurtosis
   excess over its lower bound (the log keeps heavy-tailed targets well scaled);
 * ``PERCENTILES``: ``(log rho3, rho4)`` of Karian & Dudewicz at probability ``u``;
-* ``LMOMENTS``: the L-moment ratios ``(tau3, tau4)``.
+* ``LMOMENTS``: the L-moment ratios ``(tau3, tau4)``;
+* ``TLMOMENTS``: the ratios ``(tau3, tau4)`` of the trimmed L-moments, the trimming (t1, t2)
+  packed into the argument ``u`` (:mod:`glstat._fit_engine.tl_kernels`).
 
 Seeds come from a table of the statistics on a grid of (a, b): every grid triangle whose image
 contains the target gives one seed (its barycentric pre-image), so each branch of the map that
@@ -26,10 +28,12 @@ from numba import njit
 
 from .._core.moments import central_moment, log_beta, mean_std
 from .._core.quantile_function import FKML, RS, q_lower, rs_sign
+from .tl_kernels import std_tlmoment, tl_bounds, tl_location, tlmoment_equations, unpack_trim
 
 MOMENTS = 0
 PERCENTILES = 1
 LMOMENTS = 2
+TLMOMENTS = 3
 
 EPS = 2.220446049250313e-16
 MAXROOTS = 24
@@ -428,17 +432,29 @@ def equations(kind, fam, a, b, u, f, jac):
         return moment_equations(fam, a, b, f, jac)
     if kind == PERCENTILES:
         return percentile_equations(fam, a, b, u, f, jac)
+    if kind == TLMOMENTS:
+        return tlmoment_equations(fam, a, b, u, f, jac)
     return lmoment_equations(fam, a, b, f, jac)
 
 
 @njit(cache=True)
-def lower_bound(kind):
-    """Smallest shape value for which the statistics of ``kind`` exist."""
+def shape_bounds(kind, u):
+    """Values of (lambda3, lambda4) above which the statistics of ``kind`` exist (``u``:
+    the packed trimming of TLMOMENTS)."""
     if kind == MOMENTS:
-        return -0.25
+        return -0.25, -0.25
     if kind == LMOMENTS:
-        return -1.0
-    return -math.inf
+        return -1.0, -1.0
+    if kind == TLMOMENTS:
+        return tl_bounds(u)
+    return -math.inf, -math.inf
+
+
+@njit(cache=True)
+def lower_bound(kind, u):
+    """Smallest value of either shape for which the statistics of ``kind`` may exist."""
+    lo_a, lo_b = shape_bounds(kind, u)
+    return min(lo_a, lo_b)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -455,9 +471,10 @@ _NEG_FRAC = np.array([0.99, 0.95, 0.85, 0.7, 0.5, 0.3, 0.15, 0.07, 0.03, 0.01, 0
 _SMALL = np.array([4e-4, 1e-3])
 
 
-def grid_nodes(kind: int) -> np.ndarray:
-    """Grid of shape values (the same for lambda3 and lambda4) for the seed table of ``kind``."""
-    lo = lower_bound(kind)
+def grid_nodes(kind: int, u: float = 0.1) -> np.ndarray:
+    """Grid of shape values (the same for lambda3 and lambda4) for the seed table of ``kind``
+    (``u``: the packed trimming of TLMOMENTS)."""
+    lo = lower_bound(kind, u)
     if math.isinf(lo):
         neg = -_POS[::-1]
     else:
@@ -606,8 +623,9 @@ def _limit_seed(kind, fam, u, lim, s1, s2):
 # Newton solver
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True)
-def _newton(kind, fam, u, s1, s2, a, b, lo, maxit):
+def _newton(kind, fam, u, s1, s2, a, b, maxit):
     """Damped Newton from (a, b); returns (a, b, max|F|, iterations)."""
+    lo_a, lo_b = shape_bounds(kind, u)
     f = np.empty(2)
     jac = np.empty((2, 2))
     fn = np.empty(2)
@@ -634,6 +652,7 @@ def _newton(kind, fam, u, s1, s2, a, b, lo, maxit):
             x = a if k == 0 else b
             dx = da if k == 0 else db
             sx = sa if k == 0 else sb
+            lo = lo_a if k == 0 else lo_b
             if sx > 0.0 and x + dx < 0.0 and fam == RS:
                 lam = min(lam, 0.9 * x / -dx)
             if sx < 0.0 and x + dx > 0.0 and fam == RS:
@@ -699,11 +718,11 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out):
     Parameters
     ----------
     kind, fam : int
-        Statistics (MOMENTS, PERCENTILES, LMOMENTS) and family (RS, FKML).
+        Statistics (MOMENTS, PERCENTILES, LMOMENTS, TLMOMENTS) and family (RS, FKML).
     s1, s2 : float
         Target statistics in the coordinates of ``kind``.
     u : float
-        Percentile probability (PERCENTILES only).
+        Percentile probability (PERCENTILES), packed trimming (TLMOMENTS).
     nodes, t1, t2 : ndarray
         Seed grid and its table from `build_table`.
     lim : ndarray, shape (NPHI, 4)
@@ -717,7 +736,6 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out):
     int
         Number of rows written (converged roots first is not guaranteed; see R_CONV).
     """
-    lo = lower_bound(kind)
     # Newton iteration limits from seeds and from the nearest node, as int64 values: literal
     # arguments would compile `_newton` once per limit
     maxit_seed = np.int64(60)
@@ -768,7 +786,7 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out):
                     continue
                 a = l0 * nodes[i0] + l1 * nodes[i1] + l2 * nodes[i2]
                 b = l0 * nodes[j0] + l1 * nodes[j1] + l2 * nodes[j2]
-                ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, lo, maxit_seed)
+                ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, maxit_seed)
                 if res <= _ACCEPT:
                     nroots = _add_root(out, nroots, ra, rb, res, it)
     if fam == RS:
@@ -779,11 +797,11 @@ def solve_shape(kind, fam, s1, s2, u, nodes, t1, t2, lim, out):
         if not seen:
             a, b, ok = _limit_seed(kind, fam, u, lim, s1, s2)
             if ok:
-                ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, lo, maxit_seed)
+                ra, rb, res, it = _newton(kind, fam, u, s1, s2, a, b, maxit_seed)
                 if res <= _ACCEPT:
                     nroots = _add_root(out, nroots, ra, rb, res, it)
     if bi >= 0 and nroots == 0:
-        ra, rb, res, it = _newton(kind, fam, u, s1, s2, nodes[bi], nodes[bj], lo, maxit_best)
+        ra, rb, res, it = _newton(kind, fam, u, s1, s2, nodes[bi], nodes[bj], maxit_best)
         if res <= _ACCEPT or nroots == 0:
             nroots = _add_root(out, nroots, ra, rb, res, it)
     return nroots
@@ -794,7 +812,8 @@ def location_scale(kind, fam, a, b, loc_stat, scale_stat, u):
     """lambda1 and lambda2 of the fit with shapes (a, b).
 
     ``(loc_stat, scale_stat)`` are (mean, std) for MOMENTS, (rho1 = median,
-    rho2 = pi(1-u) - pi(u)) for PERCENTILES and (l1, l2) for LMOMENTS.
+    rho2 = pi(1-u) - pi(u)) for PERCENTILES, (l1, l2) for LMOMENTS and the TL-location
+    and TL-scale for TLMOMENTS.
     """
     if kind == MOMENTS:
         m, v = std_mean_var(fam, a, b)
@@ -803,6 +822,10 @@ def location_scale(kind, fam, a, b, loc_stat, scale_stat, u):
     elif kind == PERCENTILES:
         scale = scale_stat / (std_quantile(fam, a, b, 1.0 - u) - std_quantile(fam, a, b, u))
         l1 = loc_stat - scale * std_quantile(fam, a, b, 0.5)
+    elif kind == TLMOMENTS:
+        t1, t2 = unpack_trim(u)
+        scale = scale_stat / std_tlmoment(fam, a, b, 2, t1, t2)[0]
+        l1 = loc_stat - scale * tl_location(fam, a, b, t1, t2)
     else:
         scale = scale_stat / std_lmoment(fam, a, b, np.int64(2))[0]
         l1 = loc_stat - scale * mean_std(fam, a, b)

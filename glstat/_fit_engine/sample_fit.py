@@ -12,6 +12,8 @@ import logging
 
 import numpy as np
 
+from _glstat_runtime.validation import check_trim
+
 from . import sample_statistics as S
 from .aliases import resolve_method, resolve_param
 from .candidates import FitRecord, count_valid, nan_record
@@ -40,12 +42,16 @@ def fit_sample(data, param: str = "rs", method: str = "moments", nan_policy: str
             return fit_censored(data, param, method, **options)
         data = np.asarray(data._uncensored, dtype=float)  # nothing censored: the plain fit
     allowed = {"u"} if method == "percentiles" else set()
+    if method == "tlmoments":
+        allowed = {"trim"}
     if method in DATA_METHODS:
         allowed = {"maxiter", "starts", "optimizer", "start"}
     unknown = set(options) - allowed
     if unknown:
         raise ValueError(f"unknown option(s) {sorted(unknown)} for method {method!r}; "
                          f"allowed: {sorted(allowed) or 'none'}")
+    if method == "tlmoments":
+        options["trim"] = check_trim(options.get("trim", (1, 1)))
     x, _ = S.prepare_data(data, nan_policy)
     if x is None:
         return nan_record(param, method, None, dict(options))
@@ -55,7 +61,7 @@ def fit_sample(data, param: str = "rs", method: str = "moments", nan_policy: str
 
         f = fit_data_objective(x, param, method, **options)
     else:
-        f = fit_equations(x, param, method, options.get("u", 0.1))
+        f = fit_equations(x, param, method, options.get("u", 0.1), options.get("trim", (1, 1)))
     logger.debug("fit %s %s of n=%d: %d candidate(s), %d valid; selected lambdas %s", param, method, n,
                  len(f._candidates), count_valid(f._candidates), f.lambdas)
     issue = poor_fit_issue(f._candidates, param, method, x)

@@ -1,4 +1,5 @@
-"""Fitting a GLD: every root of the moment, percentile and L-moment equations, ML, MPS, starship.
+"""Fitting a GLD: every root of the moment, percentile, L-moment and TL-moment equations, ML, MPS,
+starship.
 
 The public functions here check their input and return :class:`GLDFit` results; the fit of
 a sample is :func:`glstat._fit_engine.sample_fit.fit_sample`, the candidate bookkeeping and
@@ -13,6 +14,8 @@ import warnings
 
 import numpy as np
 
+from _glstat_runtime.validation import check_trim as _check_trim
+
 from .._fit_engine import kernels as K
 from .._fit_engine import sample_statistics as S
 from .._fit_engine.aliases import resolve_method as _resolve_method
@@ -25,10 +28,11 @@ from .._fit_engine.equations import check_u as _check_u
 from .._fit_engine.equations import fit_from_stats
 from .._fit_engine.equations import seed_table as _table
 from .._fit_engine.sample_fit import fit_sample
+from .._fit_engine.tl_kernels import pack_trim as _pack_trim
 from ..errors import FitError, FitWarning
 from .result import GLDFit, as_gldfit
 
-__all__ = ["fit", "fit_batch", "fit_lmoments", "fit_moments", "fit_percentiles"]
+__all__ = ["fit", "fit_batch", "fit_lmoments", "fit_moments", "fit_percentiles", "fit_tlmoments"]
 
 # ---------------------------------------------------------------------------------------------
 # public API: fits from summary statistics
@@ -154,17 +158,69 @@ def fit_lmoments(l1: float, l2: float, t3: float, t4: float, param: str = "rs") 
                                     dict(zip(_STAT_NAMES["lmoments"], stats, strict=True)), {}))
 
 
+def fit_tlmoments(l1: float, l2: float, t3: float, t4: float, param: str = "rs", *,
+                  trim: tuple[int, int] = (1, 1)) -> GLDFit:
+    """GLD matching the first two TL-moments and the TL-moment ratios tau3, tau4 with trimming
+    ``trim``: every root.
+
+    Parameters
+    ----------
+    l1, l2 : float
+        TL-location and TL-scale, the first two trimmed L-moments (units of the data).
+    t3, t4 : float
+        TL-skewness l3 / l2 and TL-kurtosis l4 / l2 (dimensionless).
+    param : {"rs", "fkml"}
+        Parameterisation.
+    trim : (int, int)
+        Trimming (t1, t2): the numbers of values trimmed from the lower and the upper end of
+        the conceptual sample (Elamir & Seheult 2003; R gld's ``t1``, ``t2``). (0, 0) gives
+        the L-moments.
+
+    Returns
+    -------
+    GLDFit
+        All roots in ``solutions``; the selected one is the valid root with the smallest
+        max(|lambda3|, |lambda4|) (no data to compare with). ``options["trim"]`` holds the
+        trimming.
+
+    Raises
+    ------
+    FitError
+        Non-finite statistics, l2 <= 0, or statistics no GLD of this parameterisation
+        matches (the message says what would).
+    TypeError, ValueError
+        ``trim`` is not a pair of non-negative integers.
+
+    Examples
+    --------
+    >>> import glstat
+    >>> from glstat.fitting import fit_tlmoments
+    >>> g = glstat.GLD(0.0, 1.0, 0.3, 0.3, param="fkml")
+    >>> f = fit_tlmoments(0.0, 0.3047, 0.0, 0.0643, param="fkml")
+    >>> [round(v, 2) for v in f.lambdas[2:]]
+    [0.3, 0.3]
+    """
+    param = _check_param(param)
+    t1, t2 = _check_trim(trim)
+    stats = (float(l1), float(l2), float(t3), float(t4))
+    S.check_tlmoment_stats(*stats)
+    return as_gldfit(fit_from_stats("tlmoments", param, stats, _pack_trim(t1, t2), None, None,
+                                    dict(zip(_STAT_NAMES["tlmoments"], stats, strict=True)),
+                                    {"trim": (t1, t2)}))
+
+
 def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0.1,
               ref=None, extremes=None, require_cover: bool = True,
-              return_cover: bool = False) -> tuple[np.ndarray, ...]:
+              return_cover: bool = False, trim: tuple[int, int] = (1, 1)) -> tuple[np.ndarray, ...]:
     """Fits for many rows of statistics in one compiled call (the bootstrap core).
 
     Parameters
     ----------
     stats : array_like, shape (B, 4)
         One row per resample: (mean, std, skew, kurt) for ``"moments"`` (Pearson kurtosis),
-        (rho1, rho2, rho3, rho4) for ``"percentiles"``, (l1, l2, t3, t4) for ``"lmoments"``.
-    method : {"moments", "percentiles", "lmoments"}
+        (rho1, rho2, rho3, rho4) for ``"percentiles"``, (l1, l2, t3, t4) for ``"lmoments"``,
+        (tl1, tl2, tt3, tt4) for ``"tlmoments"``.
+    method : {"moments", "percentiles", "lmoments", "tlmoments"}
     param : {"rs", "fkml"}
     u : float
         Percentile probability.
@@ -181,6 +237,8 @@ def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0
         ``n_roots`` may be positive) when True, the nearest valid root when False.
     return_cover : bool
         Also return the number of covering roots per row.
+    trim : (int, int)
+        Trimming (t1, t2) of ``"tlmoments"``.
 
     Returns
     -------
@@ -198,6 +256,8 @@ def fit_batch(stats, method: str = "moments", param: str = "rs", *, u: float = 0
         raise ValueError(f"fit_batch supports {tuple(_KIND)}, got {method!r}")
     u = _check_u(u)
     kind = _KIND[method]
+    if kind == K.TLMOMENTS:
+        u = _pack_trim(*_check_trim(trim))
     st = np.array(stats, dtype=float, copy=True, ndmin=2)
     if st.ndim != 2 or st.shape[1] != 4:
         raise ValueError(f"stats must have shape (B, 4), got {np.shape(stats)}")
@@ -244,14 +304,16 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
         censoring makes meaningless). ``statistics`` then also counts each kind of value.
     param : {"rs", "fkml"}
         Parameterisation; R's spelling ``"fmkl"`` is accepted (any case).
-    method : {"moments", "percentiles", "lmoments", "mle", "mps", "starship"}
+    method : {"moments", "percentiles", "lmoments", "tlmoments", "mle", "mps", "starship"}
         R's names are accepted in any case: ``"ML"`` (``"mle"``), ``"MPS"``/``"MSP"``,
-        ``"SM"`` (``"starship"``), ``"Lmom"``/``"LM"`` (``"lmoments"``), ``"Mom"`` and
-        scipy's ``"MM"`` (``"moments"``); R's ``"TM"``, ``"TL"``, ``"DLA"`` raise
-        ``ValueError`` naming the closest glstat method (docs/fitting.md).
+        ``"SM"`` (``"starship"``), ``"Lmom"``/``"LM"`` (``"lmoments"``), ``"TL"``
+        (``"tlmoments"``), ``"Mom"`` and scipy's ``"MM"`` (``"moments"``); R's ``"TM"``,
+        ``"DLA"`` raise ``ValueError`` naming the closest glstat method (docs/fitting.md).
         ``"moments"``: match mean, variance, skewness, kurtosis (divisor n). ``"percentiles"``:
         Karian–Dudewicz rho statistics at ``u`` (option, default 0.1; sample quantile at
-        (n+1)p). ``"lmoments"``: unbiased sample L-moments. ``"mle"``: maximum likelihood;
+        (n+1)p). ``"lmoments"``: unbiased sample L-moments. ``"tlmoments"``: unbiased
+        sample trimmed L-moments (Elamir & Seheult 2003) with trimming ``trim`` (option,
+        default (1, 1); R's ``t1``, ``t2``, whose default in R is (0, 0)). ``"mle"``: maximum likelihood;
         ``"mps"``: maximum product of spacings; ``"starship"``: minimum Anderson–Darling
         statistic of the probability integral transform. The last three start from the
         percentile and L-moment fits and from generic shapes, are refined by a compiled
@@ -264,7 +326,7 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
         use it in worker threads and loops, which should not touch the process-wide warning
         filters, and warn once with the aggregated issues in the calling thread.
     **options
-        ``u`` (percentiles); for the data-based methods ``starts`` (number of distinct
+        ``u`` (percentiles); ``trim`` (tlmoments); for the data-based methods ``starts`` (number of distinct
         starting points refined, default 2), ``maxiter`` (iterations per start; default 500
         for BFGS, 2000 for Nelder–Mead), ``optimizer`` (``"bfgs"``, default, or
         ``"nelder-mead"``) and ``start``, a guess (lambda1, lambda2, lambda3, lambda4) used
