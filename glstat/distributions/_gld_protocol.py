@@ -285,11 +285,13 @@ class GLDProtocol:
         return self.end_point(l1, l2, l3, l4, lower)
 
     def _support_end(self, lower: bool) -> Callable[..., Any]:
-        ufunc = np.frompyfunc(self._end_scalar, 5, 1)
-
         def end(*, lam1, lam2, lam3, lam4, **_):
             # scipy's transformations pass their own parameters along
-            return np.asarray(ufunc(lam1, lam2, lam3, lam4, lower), dtype=float)[()]
+            arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float)
+                                           for v in (lam1, lam2, lam3, lam4)))
+            out = np.array([self._end_scalar(*(float(v) for v in row), lower)
+                            for row in zip(*(a.ravel() for a in arrays), strict=True)])
+            return out.reshape(arrays[0].shape)[()]
 
         end.__doc__ = self.end_docs[0 if lower else 1]
         end.__name__ = "lower_end" if lower else "upper_end"
