@@ -193,12 +193,12 @@ def fit_tlmoments(l1: float, l2: float, t3: float, t4: float, param: str = "rs",
 
     Examples
     --------
-    >>> import glstat
     >>> from glstat.fitting import fit_tlmoments
-    >>> g = glstat.GLD(0.0, 1.0, 0.3, 0.3, param="fkml")
-    >>> f = fit_tlmoments(0.0, 0.3047, 0.0, 0.0643, param="fkml")
-    >>> [round(v, 2) for v in f.lambdas[2:]]
-    [0.3, 0.3]
+    >>> f = fit_tlmoments(0.0, 0.36768, 0.0, 0.044549, param="fkml")  # those of FKML (0, 1, 0.3, 0.3)
+    >>> [round(v, 4) for v in f.lambdas]
+    [0.0, 1.0, 0.3, 0.3]
+    >>> len(f.solutions)                 # a second root with lambda3 = lambda4 = 3.2
+    2
     """
     param = _check_param(param)
     t1, t2 = _check_trim(trim)
