@@ -824,7 +824,7 @@ def location_scale(kind, fam, a, b, loc_stat, scale_stat, u):
         l1 = loc_stat - scale * std_quantile(fam, a, b, 0.5)
     elif kind == TLMOMENTS:
         t1, t2 = unpack_trim(u)
-        scale = scale_stat / std_tlmoment(fam, a, b, 2, t1, t2)[0]
+        scale = scale_stat / std_tlmoment(fam, a, b, np.int64(2), t1, t2)[0]
         l1 = loc_stat - scale * tl_location(fam, a, b, t1, t2)
     else:
         scale = scale_stat / std_lmoment(fam, a, b, np.int64(2))[0]

@@ -33,6 +33,7 @@ packed as ``TRIM_BASE * t1 + t2`` (an exactly represented integer, see :func:`pa
 
 import math
 
+import numpy as np
 from numba import njit
 
 from _glstat_runtime.validation import TRIM_MAX
@@ -132,7 +133,8 @@ def tlmoment_equations(fam, a, b, u, f, jac):
     t1, t2 = unpack_trim(u)
     if not (a > -(t1 + 1.0) and b > -(t2 + 1.0)):
         return False
-    l2, l2a, l2b = std_tlmoment(fam, a, b, 2, t1, t2)
+    # the order as an int64 value, not a literal: one compiled signature of std_tlmoment
+    l2, l2a, l2b = std_tlmoment(fam, a, b, np.int64(2), t1, t2)
     if not (l2 > 0.0):
         return False
     for row in range(2):
