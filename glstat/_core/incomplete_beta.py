@@ -6,17 +6,19 @@ down to the smallest probabilities (the quantiles of the order statistics,
 inverse starts from the leading term ``I_x(a, b) ~ x^a / (a B(a, b))`` and is refined by
 Newton's method in ``log x``.
 
-For a small rank ``r`` (``r <= SMALL_RANK``) and any number of trials n (1e12 and beyond),
-:func:`binomial_tails` gives both binomial tails ``P(Bin(n, p) < r)`` and
-``P(Bin(n, p) >= r) = I_p(r, n - r + 1)`` to a few ulp plus the conditioning of ``n log q``,
+For any rank r and any number of trials n (1e12 and beyond), :func:`binomial_tails` gives
+both binomial tails ``P(Bin(n, p) < r)`` and ``P(Bin(n, p) >= r) = I_p(r, n - r + 1)`` to a
+few ulp plus the conditioning of ``n log q``,
 and :func:`binomial_tail_inv` inverts either one. ``scipy.special.betainc`` and ``betaincc``
 lose up to 1e-8 relative there when ``b = n - r + 1`` is large (1e6 and beyond, near the
-median of the binomial). Here the lower tail is the finite sum
+median of the binomial). For ``r <= SMALL_RANK`` the lower tail is the finite sum
 ``q^n sum_(j<r) C(n, j) (p/q)^j`` with ``log q`` given by the caller (``log1p(-p)`` or the
 parent's ``logsf``), whose terms are all positive; the upper tail is ``1 - lower`` where the
 lower tail is at most 1/2, the series of its own terms where ``n p <= (r + 1) / 8`` (ratio
 of successive terms at most 1/8), and ``scipy.special.betainc``, accurate where the upper
-tail is below 1/2, in between.
+tail is below 1/2, in between. Larger ranks (with ``n - r + 1 >= r``) use one binomial
+term in Loader's saddle-point form times an integral of order one
+(:mod:`glstat._core.binomial_tail`), to the same accuracy.
 """
 
 from __future__ import annotations
@@ -26,6 +28,8 @@ from typing import NamedTuple
 
 import numpy as np
 from scipy import special
+
+from .binomial_tail import binomial_tails_any_rank
 
 __all__ = [
     "SMALL_RANK",
@@ -205,7 +209,8 @@ def binomial_tails(r: int, n: float, p, q, logp, logq) -> BinomialTails:
     Parameters
     ----------
     r : int
-        Rank, ``1 <= r <= SMALL_RANK`` and ``r <= n``.
+        Rank, ``1 <= r <= n``. Ranks above ``SMALL_RANK`` (which need ``n - r + 1 >= r``) are
+        computed by :func:`glstat._core.binomial_tail.binomial_tails_any_rank`.
     n : float
         Number of trials (a whole number, as large as 1e15).
     p, q : array_like
@@ -229,6 +234,8 @@ def binomial_tails(r: int, n: float, p, q, logp, logq) -> BinomialTails:
     much.
     """
     p, q, logp, logq = (np.asarray(a, dtype=float) for a in np.broadcast_arrays(p, q, logp, logq))
+    if r > SMALL_RANK:
+        return BinomialTails(*binomial_tails_any_rank(r, n, p, q, logp, logq))
     log_total, log_last = _lower_sum(r, n, p, q, logp, logq)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
         nlogq = n * logq
@@ -270,7 +277,7 @@ def binomial_tail_inv(r: int, n: float, log_target, lower, p0):
     Parameters
     ----------
     r : int
-        Rank, ``1 <= r <= SMALL_RANK``.
+        Rank, ``1 <= r <= n`` (above ``SMALL_RANK`` with ``n - r + 1 >= r``).
     n : float
         Number of trials.
     log_target : array_like

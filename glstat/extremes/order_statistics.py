@@ -54,7 +54,6 @@ from scipy import special
 from _glstat_runtime.validation import draws_or_count
 
 from .._core.incomplete_beta import (
-    SMALL_RANK,
     betainccinv,
     betaincinv,
     binomial_tail_inv,
@@ -337,7 +336,7 @@ class _OrderStatisticGen(ExtremeGen):
         return f, logf, s, logs
 
     def _small(self, x):
-        """(cdf, sf, logcdf, logsf) by the binomial tails (rank <= SMALL_RANK)."""
+        """(cdf, sf, logcdf, logsf) by the binomial tails at the rank from the nearer end."""
         r, near = self._rank()
         n = self._order[1]
         f, logf, s, logs = self._logs(x)
@@ -349,15 +348,7 @@ class _OrderStatisticGen(ExtremeGen):
         return t.low, t.up, t.loglow, t.logup
 
     def _both(self, x):
-        if self._rank()[0] <= SMALL_RANK:
-            return self._small(x)[:2]
-        k, m = self._km()
-        f, _, s, _ = self._parent.tail(x)
-        lower = s >= 0.5
-        with np.errstate(invalid="ignore"):
-            cdf = np.where(lower, special.betainc(k, m, f), special.betaincc(m, k, s))
-            sf = np.where(lower, special.betaincc(k, m, f), special.betainc(m, k, s))
-        return cdf, sf
+        return self._small(x)[:2]
 
     @flat
     def _cdf(self, x):
@@ -369,17 +360,11 @@ class _OrderStatisticGen(ExtremeGen):
 
     @flat
     def _logcdf(self, x):
-        if self._rank()[0] <= SMALL_RANK:
-            return self._small(x)[2]
-        with np.errstate(divide="ignore"):
-            return np.log(self._both(x)[0])
+        return self._small(x)[2]
 
     @flat
     def _logsf(self, x):
-        if self._rank()[0] <= SMALL_RANK:
-            return self._small(x)[3]
-        with np.errstate(divide="ignore"):
-            return np.log(self._both(x)[1])
+        return self._small(x)[3]
 
     @flat
     def _logpdf(self, x):
@@ -391,7 +376,7 @@ class _OrderStatisticGen(ExtremeGen):
         return a + b + lp - special.betaln(k, m)
 
     def _quantile_small(self, v, q, logv, logq):
-        """Quantile for a rank <= SMALL_RANK: (p, 1 - p) from :func:`binomial_tail_inv`.
+        """Quantile: (p, 1 - p) from :func:`binomial_tail_inv` at the rank from the nearer end.
 
         With ``near`` the tail ``P(Bin(n, p) < r)`` is the sf (p = F), otherwise the cdf
         (p = S); the smaller of the two targets is solved for, from the estimate of
@@ -411,23 +396,11 @@ class _OrderStatisticGen(ExtremeGen):
         return self._parent.quantile(p, pc) if near else self._parent.quantile(pc, p)
 
     def _quantile_vq(self, v, q, logv, logq):
-        k, m = self._km()
         v, q, logv, logq = np.broadcast_arrays(
             np.asarray(v, float), np.asarray(q, float), np.asarray(logv, float),
             np.asarray(logq, float),
         )
-        if self._rank()[0] <= SMALL_RANK:
-            return self._quantile_small(v, q, logv, logq)
-        # u = F at the quantile, s = 1 - u; each from the better-conditioned inverse
-        u = np.full(v.shape, np.nan)
-        s = np.full(v.shape, np.nan)
-        low = v <= 0.5
-        u[low] = betaincinv(k, m, v[low], logv[low])
-        u[~low] = betainccinv(k, m, q[~low], logq[~low])
-        high = q <= 0.5
-        s[high] = betaincinv(m, k, q[high], logq[high])
-        s[~high] = betainccinv(m, k, v[~high], logv[~high])
-        return self._parent.quantile(u, s)
+        return self._quantile_small(v, q, logv, logq)
 
 
 class OrderStatisticDistribution(ExtremeFrozen):
