@@ -25,7 +25,15 @@ from .extremes.order_statistics import (
 )
 from .extremes.peaks_over_threshold import TailPrediction, predict_maximum_pot
 from .extremes.spliced_tail import ParetoTailGLD
-from .fitting import GLDFit, fit, fit_batch, fit_lmoments, fit_moments, fit_percentiles
+from .fitting import (
+    GLDFit,
+    fit,
+    fit_batch,
+    fit_lmoments,
+    fit_moments,
+    fit_percentiles,
+    fit_tlmoments,
+)
 from .gof import compare_families, edf_statistics, gof_report
 from .gof.binomial_check import BinomialCheck, binomial_check
 from .prediction import MaximumPrediction, predict_maximum
@@ -54,6 +62,7 @@ __all__ = [
     "FitWarning",
     "GLDFit",
     "GeneralizedLambda",
+    "GeneralizedLambdaRS",
     "InvalidParameterError",
     "MaximumCountDistribution",
     "MaximumCrossValidation",
@@ -76,6 +85,7 @@ __all__ = [
     "fit_lmoments",
     "fit_moments",
     "fit_percentiles",
+    "fit_tlmoments",
     "gld_fkml",
     "gld_rs",
     "gof_report",
@@ -118,6 +128,11 @@ def __getattr__(name: str):
 
         globals()[name] = GeneralizedLambda
         return GeneralizedLambda
+    if name == "GeneralizedLambdaRS":
+        from .distributions.generalized_lambda_rs import GeneralizedLambdaRS
+
+        globals()[name] = GeneralizedLambdaRS
+        return GeneralizedLambdaRS
     if name in _MOVED:
         return _MOVED[name]
     raise AttributeError(f"module 'glstat' has no attribute {name!r}")

@@ -37,7 +37,8 @@ __all__ = [
 
 METHODS = FIT_METHODS
 METHOD_NAMES = {"moments": "method of moments", "percentiles": "percentiles (Karian–Dudewicz)",
-                 "lmoments": "L-moments", "mle": "maximum likelihood",
+                 "lmoments": "L-moments", "tlmoments": "TL-moments (trimmed L-moments, trim (1, 1))",
+                 "mle": "maximum likelihood",
                  "mps": "maximum product of spacings", "starship": "starship (minimum Anderson–Darling)"}
 #: Replicates of the goodness-of-fit p-values by default, and the budget that caps them:
 #: replicates x sample size <= GOF_BUDGET values simulated and refitted (about 10 s of work);

@@ -32,7 +32,7 @@ def test_param_aliases(r_name, ours):
     assert resolve_param(r_name) == ours
 
 
-@pytest.mark.parametrize("r_name, closest", [("TM", "mps"), ("TL", "lmoments"), ("DLA", "percentiles")])
+@pytest.mark.parametrize("r_name, closest", [("TM", "mps"), ("DLA", "percentiles")])
 def test_refused_methods_name_the_closest(r_name, closest):
     with pytest.raises(ValueError, match=f"closest glstat method is method='{closest}'"):
         glstat.fit(X, "fmkl", r_name)
