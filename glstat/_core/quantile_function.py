@@ -826,8 +826,9 @@ def _rs_zero_shape(b, y, y_lo):
     v_lo -= sg * y_lo
     v_hi, v_lo = two_sum(v_hi, v_lo)
     if not v_hi > 0.0:
-        # b > 0: at or above the upper end point 1
-        return 0.0, -math.inf, True
+        # b > 0: at or above the upper end point 1; b < 0: at or below the lower end point 0
+        # (y <= -1 on the standardized scale, where Q = (1 - p)**b - 1 never reaches)
+        return 0.0, -math.inf, b > 0.0
     lv = math.log(v_hi) + math.log1p(v_lo / v_hi)
     m = lv / b  # log(1 - p)
     if not m < 0.0:

@@ -91,3 +91,30 @@ def test_zero_shape_matches_a_tiny_shape():
     xs = np.array([np.nextafter(hi, 0.0), 6.0, 3.0, 1.7])
     np.testing.assert_allclose(g0.cdf(xs), g1.cdf(xs), rtol=1e-14)
     np.testing.assert_allclose(g0.pdf(xs), g1.pdf(xs), rtol=1e-12)
+
+
+@pytest.mark.parametrize("l3, l4, outside", [
+    (0.0, -1.0, [-0.5, -5.0, -1e300]),   # region 4 side: support [0.5, inf), points below it
+    (0.0, -0.25, [0.0, -3.0]),
+    (-1.0, 0.0, [0.6, 3.0, 1e300]),      # the mirror: support (-inf, 0.5], points above it
+])
+def test_a_negative_shape_beside_a_zero_one_is_zero_beyond_its_finite_end(l3, l4, outside):
+    # RS(0.5, -1, 0, lambda4 < 0): Q = 0.5 + ((1 - u)**lambda4 - 1), from 0.5 upwards; the
+    # standardized point y = x - 0.5 <= -1 once gave F = 1 (the closed form's "at the end"
+    # branch assumed the upper end of lambda4 > 0)
+    g = glstat.GLD(0.5, -1.0, l3, l4, param="rs")
+    lo, hi = g.support()
+    x = np.array(outside)
+    below = l3 == 0.0
+    assert np.all(x < lo) if below else np.all(x > hi)
+    np.testing.assert_array_equal(g.cdf(x), 0.0 if below else 1.0)
+    np.testing.assert_array_equal(g.sf(x), 1.0 if below else 0.0)
+    np.testing.assert_array_equal(g.pdf(x), 0.0)
+    assert np.all(g.logcdf(x) == (-np.inf if below else 0.0))
+    # the scipy distribution object agrees (its own support handling)
+    d = glstat.gld_rs(l3, l4, loc=0.5, scale=1.0)
+    np.testing.assert_array_equal(d.cdf(x), g.cdf(x))
+    # and inside the support the closed form still holds
+    inside = lo + 0.3 if below else hi - 0.3
+    np.testing.assert_allclose(g.cdf(inside), float(_reference(0.5, -1.0, l3, l4, inside)[0]),
+                               rtol=1e-14)
