@@ -80,18 +80,18 @@ def _log1pmx(x):
 
 @njit(cache=True, error_model="numpy")
 def _deviation(k, n, p, q):
-    """k - n p to full relative accuracy, from the exact product of n and the smaller of p, q."""
+    """(k - n p, n p, n q), the first to full relative accuracy, from the exact product of n
+    and the smaller of p, q."""
     if p <= q:
         hi, lo = two_prod(n, p)
-        return (k - hi) - lo
+        return (k - hi) - lo, hi + lo, (n - hi) - lo
     hi, lo = two_prod(n, q)
-    return ((k - n) + hi) + lo
+    return ((k - n) + hi) + lo, (n - hi) - lo, hi + lo
 
 
 @njit(cache=True, error_model="numpy")
-def _bd0(k, d, logm):
-    """k log(k / M) + M - k with M = k - d (d = k - M accurate) and log M given."""
-    m = k - d
+def _bd0(k, d, m, logm):
+    """k log(k / M) + M - k with d = k - M accurate, M and log M given."""
     if m > 0.0 and math.isfinite(d / m):
         e = d / m
         if e <= 1.0:
@@ -101,12 +101,13 @@ def _bd0(k, d, logm):
 
 
 @njit(cache=True, error_model="numpy")
-def _log_term(j, n, d, logp, logq):
-    """log of C(n, j) p^j q^(n-j), with d = j - n p accurate (Loader's saddle-point form)."""
+def _log_term(j, n, d, m, mf, logp, logq):
+    """log of C(n, j) p^j q^(n-j), with d = j - n p accurate, m = n p and mf = n q (Loader's
+    saddle-point form)."""
     logn = math.log(n)
     return (
         _stirlerr(n) - _stirlerr(j) - _stirlerr(n - j)
-        - _bd0(j, d, logn + logp) - _bd0(n - j, -d, logn + logq)
+        - _bd0(j, d, m, logn + logp) - _bd0(n - j, -d, mf, logn + logq)
         + 0.5 * (logn - _LOG_2PI - math.log(j) - math.log(n - j))
     )
 
@@ -158,12 +159,12 @@ def _tails(r, n, p, q, logp, logq, out):
         out[0], out[1], out[2], out[3], out[4], out[5] = 0.0, 1.0, -np.inf, 0.0, -np.inf, 0.0
         return
     # (r - 1) - (n - 1) p decides which tail has the decreasing integrand
-    d1 = _deviation(r - 1.0, n - 1.0, p, q)
+    d1 = _deviation(r - 1.0, n - 1.0, p, q)[0]
     if d1 >= 0.0:
         # upper tail: r b(r) K(r - 1, n - r, p / q), c = d1 / q
-        d = _deviation(r, n, p, q)
+        d, m, mf = _deviation(r, n, p, q)
         kk = _integral(r - 1.0, n - r, p / q, d1 / q)
-        small = math.log(r) + _log_term(r, n, d, logp, logq) + math.log(kk)
+        small = math.log(r) + _log_term(r, n, d, m, mf, logp, logq) + math.log(kk)
         big = math.log1p(-math.exp(small))
         out[0], out[1], out[2], out[3] = -math.expm1(small), math.exp(small), big, small
         # d log(up)/dw = q / K, d log(low)/dw = -(up / low) q / K   (w = log(p / q))
@@ -171,9 +172,9 @@ def _tails(r, n, p, q, logp, logq, out):
         out[4] = -math.exp(small - big) * q / kk
     else:
         # lower tail: (n - r + 1) b(r - 1) K(n - r, r - 1, q / p), c = -d1 / p
-        d = _deviation(r - 1.0, n, p, q)
+        d, m, mf = _deviation(r - 1.0, n, p, q)
         kk = _integral(n - r, r - 1.0, q / p, -d1 / p)
-        small = math.log(n - r + 1.0) + _log_term(r - 1.0, n, d, logp, logq) + math.log(kk)
+        small = math.log(n - r + 1.0) + _log_term(r - 1.0, n, d, m, mf, logp, logq) + math.log(kk)
         big = math.log1p(-math.exp(small))
         out[0], out[1], out[2], out[3] = math.exp(small), -math.expm1(small), small, big
         out[4] = -p / kk

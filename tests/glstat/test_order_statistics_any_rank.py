@@ -64,6 +64,16 @@ def tails_ref(r, n, p, q):
         return low, 1 - low, mp.log(low), mp.log1p(-low)
 
 
+def _log_size(i, ref):
+    """|log| of the value that carries the error of entry i of (low, up, loglow, logup):
+    its own log for low/up, the other tail's log for the log of the larger tail
+    (``log(1 - t) ~ -t``); 0 for the log of the smaller tail (compared by its own size)."""
+    if i < 2:
+        return abs(float(mp.log(ref[i])))
+    own, other = abs(float(ref[i])), abs(float(ref[5 - i]))
+    return other if other > own else 0.0
+
+
 def _rel(a, b):
     with mp.workdps(DPS):
         if not math.isfinite(a):
@@ -85,8 +95,8 @@ def test_reference_against_binomial_sum_and_betainc():
 
 
 def _check_kernel(r, n, z_values):
-    """binomial_tails at p = mean + z sd of the beta, or a tenth of the mean where that is
-    negative (both tails, their logs)."""
+    """binomial_tails at p = mean + z sd of the beta, or a tenth of the mean (of 1 - mean)
+    where that is outside (0, 1) (both tails, their logs)."""
     a, b = r, n - r + 1
     x0 = a / (a + b)
     sd = math.sqrt(x0 * (1 - x0) / (a + b))
@@ -95,6 +105,8 @@ def _check_kernel(r, n, z_values):
         p = x0 + z * sd
         if p <= 0:  # a small rank: the lower tail of p at a tenth of the mean
             p = x0 / 10
+        if p >= 1:
+            p = 1 - (1 - x0) / 10
         q = 1.0 - p
         t = binomial_tails(r, float(n), np.array([p]), np.array([q]), np.log([p]), np.log1p([-p]))
         with mp.workdps(DPS):
@@ -106,7 +118,7 @@ def _check_kernel(r, n, z_values):
                 got, want, want_q = got_all[i], ref[i], ref_q[i]
                 if i < 2 and want < 1e-300:  # below the normal doubles: the logs are checked
                     continue
-                size = 0.0 if i >= 2 else abs(float(mp.log(want)))
+                size = _log_size(i, ref)
                 tol = TOL + 2 * EPS * size + 2 * _rel(float(want_q), want)
                 err = _rel(float(got), want)
                 if not err <= tol:
@@ -165,7 +177,7 @@ def test_order_statistic_median_ranks(k, n):
                 got, want, want_d = got_all[i], ref[i], ref_d[i]
                 if i < 2 and want < 1e-300:
                     continue
-                size = 0.0 if i >= 2 else abs(float(mp.log(want)))
+                size = _log_size(i, ref)
                 tol = TOL + 2 * EPS * size + 2 * _rel(float(want_d), want)
                 err = _rel(float(got), want)
                 if not err <= tol:
