@@ -13,18 +13,18 @@ Numerics (docs/gld.md). For n up to 1e12 and beyond, ``v^(1/n) = 1 - O(1/n)`` an
 * ``cdf = exp(n log F)``, ``sf = -expm1(n log F)``, ``pdf = exp(log n + (n - 1) log F + log f)``;
 * the quantile at ``v`` uses ``t = log(v) / n``: ``Q(exp(t))`` when ``exp(t) <= 1/2``, and
   otherwise the parent's ``isf`` at ``-expm1(t) = 1 - v^(1/n)``, which never subtracts from 1;
-* an order statistic of small rank from either end, ``r = min(k, n-k+1) <= 32``, counts the
-  draws on the near side of x: with ``p`` the parent's probability on that side (F for
-  ``k <= n-k+1``, S otherwise) and ``q`` its complement, ``P(Bin(n, p) < r)`` is the finite sum
-  ``q^n sum_(j<r) C(n, j) (p/q)^j`` with ``log q`` from ``log1p(-p)`` or the parent's
-  ``logsf``/``logcdf``, and ``P(Bin(n, p) >= r)`` is one minus it, its own series or
-  ``scipy.special.betainc`` (:func:`glstat._core.incomplete_beta.binomial_tails`); the
-  quantile solves for (p, q) by Newton's method from ``betaincinv``'s estimate. Both stay at
-  about 1e-13 relative for n up to 1e12 (docs/extremes.md), where ``scipy.special.betainc``
-  alone loses up to 1e-8;
-* other ranks use the regularized incomplete beta function on whichever of ``F`` and
-  ``1 - F`` is small (``I_F(k, n-k+1)`` and its reflection ``I_S(n-k+1, k)``), and invert it with
-  ``betaincinv``/``betainccinv``.
+* an order statistic counts the draws on the near side of x: with ``r = min(k, n-k+1)``,
+  ``p`` the parent's probability on that side (F for ``k <= n-k+1``, S otherwise) and ``q``
+  its complement, cdf and sf are the binomial tails ``P(Bin(n, p) < r)`` and
+  ``P(Bin(n, p) >= r)`` (:func:`glstat._core.incomplete_beta.binomial_tails`): for
+  ``r <= 32`` the finite sum ``q^n sum_(j<r) C(n, j) (p/q)^j`` with ``log q`` from
+  ``log1p(-p)`` or the parent's ``logsf``/``logcdf`` (the other tail one minus it, its own
+  series or ``scipy.special.betainc`` where that is below 1/2); for larger ranks one binomial
+  term in Loader's saddle-point form times an integral of order one
+  (:mod:`glstat._core.binomial_tail`). The quantile solves for (p, q) by Newton's method from
+  ``betaincinv``'s estimate. cdf, sf and their logs stay at about 1e-13 relative, beyond the
+  parent's conditioning, for every rank and n up to 1e12 (docs/gld.md), where
+  ``scipy.special.betainc`` alone loses up to 1e-8.
 
 Moments integrate the order statistic's own quantile function over its uniform variable
 ``v in (0, 1)`` after the substitution ``v = 1 / (1 + exp(-z))``:
@@ -443,10 +443,10 @@ def order_statistic(dist, k: int, n: int) -> OrderStatisticDistribution:
     -------
     OrderStatisticDistribution
         Frozen ``scipy.stats`` distribution. cdf ``I_F(k, n-k+1)`` (regularized incomplete
-        beta; evaluated as ``1 - I_S(n-k+1, k)`` with ``S = 1 - F`` taken from the parent's
-        ``sf`` in the upper half), pdf ``F^(k-1) S^(n-k) f / B(k, n-k+1)`` in logs, quantile
-        ``Q(I^-1(v))`` with ``betaincinv``/``betainccinv``, and moments by quadrature of the
-        quantile function (module docstring). Values in the units of ``dist``.
+        beta, as the binomial tail ``P(Bin(n, F) >= k)`` or its mirror on ``S = 1 - F`` taken
+        from the parent's ``sf``), pdf ``F^(k-1) S^(n-k) f / B(k, n-k+1)`` in logs, quantile
+        ``Q(I^-1(v))`` by Newton's method on the binomial tail, and moments by quadrature of
+        the quantile function (module docstring). Values in the units of ``dist``.
 
     Raises
     ------
