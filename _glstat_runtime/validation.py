@@ -118,10 +118,11 @@ def check_trim(trim) -> tuple[int, int]:
             raise TypeError(f"trim: {name} must be a non-negative integer, got {t!r} (TL-moments "
                             "trim whole values of the conceptual sample; R's gld also takes "
                             "integers)")
-        if not 0 <= t <= TRIM_MAX:
+        value = int(t)
+        if not 0 <= value <= TRIM_MAX:
             raise ValueError(f"trim: {name} must be between 0 and {TRIM_MAX}, got {t} (trim=(0, 0) "
                              "gives the L-moments; (1, 1) is the usual choice)")
-        out.append(int(t))
+        out.append(value)
     return out[0], out[1]
 
 
