@@ -178,3 +178,33 @@ def test_tail_option_help_and_bad_value(capsys):
             "(glstat.predict_maximum_pot) beside the default") in text
     assert cli_fit.main(["x.csv", "--tail", "gpd"]) == 2
     assert "invalid choice: 'gpd'" in capsys.readouterr().err
+
+
+def test_the_answer_closes_the_report(sample, tmp_path):
+    # the last lines before the list of files: what a terminal leaves on screen
+    path, _ = sample
+    res, out, _ = _run(path, tmp_path / "o")
+    lines = out.splitlines()
+    start = lines.index(f"answer (90 % intervals; the GLD with a generalized Pareto tail on its "
+                        f"{res.tail_size} largest values):")
+    block = lines[start + 1:start + 4]
+    m = res.maximum
+    def value(v):  # 4 significant digits, no exponent from 1000 on (the data are in MPa)
+        return f"{v:.0f}" if 1e3 <= abs(v) < 1e7 else f"{v:.4g}"
+
+    assert block[0] == (f"  maximum of {N_MAX} values: {value(m['mean'])} [{value(m['low'])}, "
+                        f"{value(m['high'])}]")
+    for j, k in enumerate(FACTORS):
+        d = res.damage
+        assert block[1 + j].startswith(f"  damage P(max > {HARDNESS:g}) on n = {N_MAX * k:g} "
+                                       "points: ")
+        assert f"{100 * d['estimate'][j]:.3g} %" in block[1 + j] or "99.999 %" in block[1 + j]
+    assert lines[-1].startswith("wrote ") and start > len(lines) - 8
+    # the GLD alone says so; without --n-max and --hardness there is no answer to give
+    _, out_none, _ = _run(path, tmp_path / "n", "--tail", "none")
+    assert "answer (90 % intervals; the GLD alone):" in out_none
+    lines_q: list[str] = []
+    args = cli_fit.build_parser().parse_args([str(path), "--bootstrap", "0", "--gof-resamples",
+                                              "0", "--out", str(tmp_path / "q")])
+    cli_fit.run(args, lines_q.append)
+    assert not any(line.startswith("answer") for line in lines_q)

@@ -45,6 +45,7 @@ from .fit_options import (
 )
 from .fit_output import (
     indent,
+    print_answer,
     print_bootstrap,
     print_cross_validation,
     print_damage,
@@ -279,6 +280,7 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
         emit("")
         for note in res.notes:
             emit(f"note: {note}")
+    print_answer(res, emit)
     with phase("writing figures and tables"):
         try:
             write_figures(res, out)

@@ -19,7 +19,8 @@ from .sample_files import Sample
 if TYPE_CHECKING:  # pragma: no cover
     from ..resampling import BootstrapFit
 
-__all__ = ["indent", "interval_words", "model_doc", "print_bootstrap", "print_cross_validation",
+__all__ = ["indent", "interval_words", "model_doc", "print_answer", "print_bootstrap",
+           "print_cross_validation",
            "print_damage", "print_fit", "print_gof", "print_header", "print_maximum", "print_model",
            "write_figures", "write_tables"]
 
@@ -179,6 +180,51 @@ def print_damage(d: dict[str, Any], args: argparse.Namespace, emit: Callable[[st
     if above or below:
         emit(f"  in the bootstrap, {above} fit(s) have the hardness above their support (damage 0) and "
              f"{below} below it (damage 1)")
+
+
+def _percent(p: float) -> str:
+    """A probability in per cent, 3 significant digits ("< 0.001 %" and "> 99.999 %" within
+    1e-5 of 0 and 1, where the digits would round to 0 or 100 %)."""
+    if not p == p:
+        return "nan"
+    if 0.0 < p < 1e-5:
+        return "< 0.001 %"
+    if 1.0 - 1e-5 < p < 1.0:
+        return "> 99.999 %"
+    return f"{fmt_g(100.0 * p, 3)} %"
+
+
+def _value(v: float) -> str:
+    """A value in the data's units for a reader: 4 significant digits, without an exponent
+    from 1000 to 1e7 (14758.9 -> "14759")."""
+    return f"{v:.0f}" if 1e3 <= abs(v) < 1e7 else fmt_g(v, 4)
+
+
+def print_answer(res: FitResults, emit: Callable[[str], None]) -> None:
+    """The answer in a few lines, last before the list of written files (where a terminal
+    leaves it on screen): the maximum and the damage with their intervals, the model and the
+    verdict of the block cross-validation. Nothing without ``--n-max`` or ``--hardness``."""
+    m, d = res.maximum, res.damage
+    if m is None and d is None:
+        return
+    level = (m or d)["confidence_level"]
+    model = ("the GLD alone" if res.tail_size is None else
+             f"the GLD with a generalized Pareto tail on its {res.tail_size} largest values")
+    emit("")
+    emit(f"answer ({100 * level:g} % intervals; {model}):")
+    if m is not None:
+        emit(f"  maximum of {how_many(m)}: {_value(m['mean'])} [{_value(m['low'])}, "
+             f"{_value(m['high'])}]")
+    if d is not None:
+        for j, k in enumerate(np.atleast_1d(d["area_factors"])):
+            where = how_many({**d, "n": d["n"] * k}, "points")
+            interval = ("" if d["low"] is None else
+                        f" [{_percent(d['low'][j])}, {_percent(d['high'][j])}]")
+            emit(f"  damage P(max > {d['hardness']:g}) on {where}: "
+                 f"{_percent(d['estimate'][j])}{interval}")
+    cv = res.cross_validation
+    if cv is not None:
+        emit(f"  check by block cross-validation: {cv.verdict}")
 
 
 def print_cross_validation(res: FitResults, emit: Callable[[str], None]) -> None:
