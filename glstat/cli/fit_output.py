@@ -205,9 +205,10 @@ def print_answer(res: FitResults, emit: Callable[[str], None]) -> None:
     leaves it on screen): the maximum and the damage with their intervals, the model and the
     verdict of the block cross-validation. Nothing without ``--n-max`` or ``--hardness``."""
     m, d = res.maximum, res.damage
-    if m is None and d is None:
+    first = m if m is not None else d
+    if first is None:
         return
-    level = (m or d)["confidence_level"]
+    level = first["confidence_level"]
     model = ("the GLD alone" if res.tail_size is None else
              f"the GLD with a generalized Pareto tail on its {res.tail_size} largest values")
     emit("")
