@@ -69,8 +69,9 @@ def spliced_log_tails(x, tails, body, body_log_fu):
         Points (units of the data).
     tails : ndarray, shape (B, 4)
         ``u, q, xi, sigma`` per row.
-    body : tuple of three ndarrays, shape (B, T)
-        ``(log F, log S, log f)`` of the body (the GLD) of every row at x.
+    body : tuple of two ndarrays, shape (B, T)
+        ``(log F, log f)`` of the body (the GLD) of every row at x; read only at the points
+        at or below the row's ``u`` (anything, e.g. NaN, above it).
     body_log_fu : ndarray, shape (B,)
         ``log F_GLD(u)`` of every row.
 
@@ -89,7 +90,7 @@ def spliced_log_tails(x, tails, body, body_log_fu):
         t_logp = log_q + _log_tail_pdf(zt, xi, sigma)
         log_c = np.log1p(-q) - np.asarray(body_log_fu, dtype=float)[:, None]
         b_logf = np.minimum(body[0] + log_c, 0.0)
-        b_logp = body[2] + log_c
+        b_logp = body[1] + log_c
     logs = np.where(above, t_logs, log1mexp(b_logf))
     logf = np.where(above, log1mexp(t_logs), b_logf)
     logp = np.where(above, t_logp, b_logp)
@@ -250,12 +251,18 @@ class ParetoTailGLD(rv_continuous):
         return cls(body, u=u, q=q, xi=xi, sigma=sigma, tail_size=k)
 
     def _body_tails(self, x):
+        """(log F, log f) of the body at the points x at or below u (NaN above: unused)."""
         b = self.body
-        x = np.asarray(x, dtype=float)
-        s = np.asarray(b.sf(x), dtype=float)
-        with np.errstate(divide="ignore"):
-            logf = np.where(s < 0.5, np.log1p(-s), b.logcdf(x))
-        return logf[None, :], np.asarray(b.logsf(x))[None, :], np.asarray(b.logpdf(x))[None, :]
+        logf = np.full(x.shape, np.nan)
+        logp = np.full(x.shape, np.nan)
+        below = x <= self.tail[0, 0]
+        if below.any():
+            xb = x[below]
+            s = np.asarray(b.sf(xb), dtype=float)
+            with np.errstate(divide="ignore"):
+                logf[below] = np.where(s < 0.5, np.log1p(-s), b.logcdf(xb))
+            logp[below] = b.logpdf(xb)
+        return logf[None, :], logp[None, :]
 
     def _logs(self, x):
         x = np.asarray(x, dtype=float)

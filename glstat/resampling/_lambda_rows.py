@@ -48,14 +48,19 @@ def quantiles(lam: np.ndarray, fam: int, v, q, tails: np.ndarray | None = None) 
     return _gld_quantiles(lam, fam, v, q)
 
 
-def body_at_tail_start(lam: np.ndarray, fam: int, tails: np.ndarray):
-    """(F, S, log F) of every row's GLD at its own tail start ``u``: arrays (k,)."""
+def _pair_sf_logf(lam: np.ndarray, fam: int, x: np.ndarray):
+    """(S, log F) of the GLD row ``lam[i]`` at the point ``x[i]``, elementwise: arrays (k,)."""
     l1, l2, l3, l4 = (lam[:, i] for i in range(4))
-    y = (tails[:, 0] - l1) * np.abs(l2)
+    y = (x - l1) * np.abs(l2)
     s = evaluate(fam, "sf", y, l3, l4)
     logc = evaluate(fam, "logcdf", y, l3, l4)
     with np.errstate(divide="ignore"):
-        logf = np.where(s < 0.5, np.log1p(-s), logc)
+        return s, np.where(s < 0.5, np.log1p(-s), logc)
+
+
+def body_at_tail_start(lam: np.ndarray, fam: int, tails: np.ndarray):
+    """(F, S, log F) of every row's GLD at its own tail start ``u``: arrays (k,)."""
+    s, logf = _pair_sf_logf(lam, fam, tails[:, 0])
     return np.exp(logf), s, logf
 
 
@@ -86,12 +91,24 @@ def max_quantiles(lam: np.ndarray, fam: int, n: float | np.ndarray, logv,
 
 def log_tails(lam: np.ndarray, fam: int, x, tails: np.ndarray | None = None
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(log F, log S, log f) of every row of ``lam`` at the points x: arrays (k, len(x))."""
-    body = _gld_log_tails(lam, fam, x)
+    """(log F, log S, log f) of every row of ``lam`` at the points x: arrays (k, len(x)).
+
+    With ``tails`` the GLDs are evaluated only at the points at or below each row's tail
+    start (the maxima of many draws lie mostly above it, in the Pareto tail)."""
     if tails is None:
-        return body
+        return _gld_log_tails(lam, fam, x)
+    x = np.asarray(x, dtype=float)
     logfu = body_at_tail_start(lam, fam, tails)[2]
-    return spliced_log_tails(x, tails, body, logfu)
+    below = x[None, :] <= tails[:, :1]
+    body_logf = np.full(below.shape, np.nan)
+    body_logp = np.full(below.shape, np.nan)
+    if below.any():
+        rows, cols = np.nonzero(below)
+        body_logf[below] = _pair_sf_logf(lam[rows], fam, x[cols])[1]
+        l1, l2, l3, l4 = (lam[rows, i] for i in range(4))
+        body_logp[below] = (evaluate(fam, "logpdf", (x[cols] - l1) * np.abs(l2), l3, l4)
+                            + np.log(np.abs(l2)))
+    return spliced_log_tails(x, tails, (body_logf, body_logp), logfu)
 
 
 def _gld_log_tails(lam: np.ndarray, fam: int, x) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
