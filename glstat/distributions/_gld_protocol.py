@@ -11,6 +11,7 @@ from the compiled kernels of ``glstat.GLD`` with lambda1 as ``loc`` and |lambda2
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
@@ -250,7 +251,7 @@ def _entropy_array(fam: int, valid_rows: ValidRows, params: dict[str, Any]) -> n
 # ------------------------------------------------------------------------------------------
 # the protocol object and the common base class
 # ------------------------------------------------------------------------------------------
-class GLDProtocol:
+class GLDProtocol(ABC):
     """A GLD parameterisation in the custom-distribution protocol of
     ``scipy.stats.make_distribution``.
 
@@ -267,17 +268,17 @@ class GLDProtocol:
     end_docs: tuple[str, str] = ("lower end", "upper end")
 
     @property
-    def parameters(self) -> dict[str, dict[str, Any]]:  # pragma: no cover - abstract
-        raise NotImplementedError
+    @abstractmethod
+    def parameters(self) -> dict[str, dict[str, Any]]:
+        """scipy's description of the parameters and their domains."""
 
-    def valid_rows(self, rows: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
+    @abstractmethod
+    def valid_rows(self, rows: np.ndarray) -> np.ndarray:
         """True for the rows (lam1, lam2, lam3, lam4) that define a distribution."""
-        raise NotImplementedError
 
-    def end_point(self, l1: float, l2: float, l3: float, l4: float,
-                  lower: bool) -> float:  # pragma: no cover - abstract
+    @abstractmethod
+    def end_point(self, l1: float, l2: float, l3: float, l4: float, lower: bool) -> float:
         """The lower (upper) end of the support of one valid distribution, rounded outwards."""
-        raise NotImplementedError
 
     def _end_scalar(self, l1: float, l2: float, l3: float, l4: float, lower: bool) -> float:
         if not self.valid_rows(np.array([[l1, l2, l3, l4]], dtype=float))[0]:
