@@ -28,7 +28,14 @@ from numba import njit
 
 from .._core.moments import central_moment, log_beta, mean_std
 from .._core.quantile_function import FKML, RS, q_lower, rs_sign
-from .tl_kernels import std_tlmoment, tl_bounds, tl_location, tlmoment_equations, unpack_trim
+from .tl_kernels import (
+    moment_ratio,
+    std_tlmoment,
+    tl_bounds,
+    tl_location,
+    tlmoment_equations,
+    unpack_trim,
+)
 
 MOMENTS = 0
 PERCENTILES = 1
@@ -375,32 +382,13 @@ def percentile_equations(fam, a, b, u, f, jac):
 # L-moments
 # ---------------------------------------------------------------------------------------------
 @njit(cache=True)
-def _ratio_and_grad(a, r, first):
-    """P(a) = prod_{m=first}^{r-2} (a - m) / prod_{m=1}^{r} (a + m) and dP/da.
-
-    ``first`` = 0 gives int u^a P*_{r-1}(u) du (RS), ``first`` = 1 its log-limit form (FKML).
-    """
-    num = 1.0
-    dnum = 0.0
-    for m in range(first, r - 1):
-        dnum = dnum * (a - m) + num
-        num *= a - m
-    den = 1.0
-    dden = 0.0
-    for m in range(1, r + 1):
-        dden = dden * (a + m) + den
-        den *= a + m
-    return num / den, (dnum * den - num * dden) / (den * den)
-
-
-@njit(cache=True)
 def std_lmoment(fam, a, b, r):
     """r-th L-moment (r >= 2) of the standardized GLD and its derivatives in a and b."""
     first = 0 if fam == RS else 1
     s = rs_sign(a, b) if fam == RS else 1.0
     sg = 1.0 if r % 2 == 0 else -1.0
-    pa, dpa = _ratio_and_grad(a, r, first)
-    pb, dpb = _ratio_and_grad(b, r, first)
+    pa, dpa = moment_ratio(a, r, first, 0, 0)
+    pb, dpb = moment_ratio(b, r, first, 0, 0)
     return s * (pa + sg * pb), s * dpa, s * sg * dpb
 
 

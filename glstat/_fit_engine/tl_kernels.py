@@ -68,8 +68,14 @@ def tl_bounds(u):
 
 
 @njit(cache=True)
-def _term(a, r, first, p, q):
-    """T_r(a; p, q) (``first`` = 0) or T_r(a; p, q) / a (``first`` = 1) and its derivative."""
+def moment_ratio(a, r, first, p, q):
+    """T(a) = c prod_{m=first}^{r-2} (a - m) / prod_{m=p+1}^{r+p+q} (a + m) and dT/da, with
+    c = (r + p + q)! / (r (r + p - 1)!) (1 for p = q = 0).
+
+    The term of one power of the quantile function in the r-th L-moment (p = q = 0) or
+    TL-moment with trimming (p, q): ``first`` = 0 gives int u^a ... du (RS), ``first`` = 1
+    its log-limit form divided by a (FKML).
+    """
     num = 1.0
     dnum = 0.0
     for m in range(first, r - 1):
@@ -80,7 +86,6 @@ def _term(a, r, first, p, q):
     for m in range(p + 1, r + p + q + 1):
         dden = dden * (a + m) + den
         den *= a + m
-    # (r + p + q)! / (r (r + p - 1)!)
     c = 1.0 / r
     for m in range(r + p, r + p + q + 1):
         c *= m
@@ -94,8 +99,8 @@ def std_tlmoment(fam, a, b, r, t1, t2):
     first = 0 if fam == RS else 1
     s = rs_sign(a, b) if fam == RS else 1.0
     sg = 1.0 if r % 2 == 0 else -1.0
-    pa, dpa = _term(a, r, first, t1, t2)
-    pb, dpb = _term(b, r, first, t2, t1)
+    pa, dpa = moment_ratio(a, r, first, t1, t2)
+    pb, dpb = moment_ratio(b, r, first, t2, t1)
     return s * (pa + sg * pb), s * dpa, s * sg * dpb
 
 
