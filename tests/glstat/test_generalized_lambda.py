@@ -26,6 +26,7 @@ import pytest
 from mp_reference import FKML, PARENT_DPS, q_mp, tail_probability
 from numpy.testing import assert_allclose, assert_array_equal
 from scipy import stats
+from tail_points import tail_points as shared_tail_points
 
 import glstat
 
@@ -126,21 +127,8 @@ LOG_P = np.array([-1e-3, -0.1, -1.0, -10.0, -100.0, -300.0, -700.0])
 
 
 def tail_points(lams):
-    """x at tail probabilities exp(LOG_P) on both sides (glstat quantiles, which are
-    doubles: the references are computed at these doubles), and next to a finite end point
-    1, 4 and 64 ulps inside (probabilities far below the double range for small shapes)."""
-    g = _gld(lams)
-    a, b = _dist(lams).support()
-    xs = [g.ppf(np.exp(LOG_P)), g.isf(np.exp(LOG_P))]
-    for end, inward in ((float(a), math.inf), (float(b), -math.inf)):
-        if math.isfinite(end):
-            x = end
-            for k in range(64):
-                x = math.nextafter(x, inward)
-                if k in (0, 3, 63):
-                    xs.append(np.array([x]))
-    x = np.unique(np.concatenate(xs))
-    return x[np.isfinite(x) & (x > a) & (x < b)]
+    """Both tails of the GLD ``lams`` and next to its finite end points (tail_points.py)."""
+    return shared_tail_points(_gld(lams), _dist(lams).support(), LOG_P)
 
 
 # ------------------------------------------------------------------------------------------
