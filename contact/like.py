@@ -290,7 +290,7 @@ def weierstrass_like(
     p = weierstrass_parameters(surface, gamma=gamma, shape=shape)
     rng = np.random.default_rng(rng)
     return [
-        _levelled(weierstrass(p.shape, p.length, p.hurst, gamma=p.gamma, rng=rng,
+        _levelled(weierstrass(p.shape, p.length, p.hurst, gamma=p.gamma, rq=p.rq, rng=rng,
                               n_terms=p.n_terms), p.rq)
         for _ in range(n)
     ]

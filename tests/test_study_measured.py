@@ -22,6 +22,10 @@ from glstat.study.measured import (
 )
 from glstat.study.topography import read_topography
 
+# Many inputs here are unit-free (heights of order 1 on a micrometre or millimetre grid, files of
+# small integers); contact's check of the units warns about them, which these tests do not examine.
+pytestmark = pytest.mark.filterwarnings("ignore:the RMS of the heights:contact.errors.ContactWarning")
+
 FAST = AnalysisSettings(n_resamples=20, grid_resamples=10)
 TILT = 0.05  # a form (plane) of 50 µm per mm, which the study must remove
 

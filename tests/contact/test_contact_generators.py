@@ -9,6 +9,10 @@ import pytest
 
 import contact
 
+# Many inputs here are unit-free (heights of order 1 on a micrometre or millimetre grid, files of
+# small integers); contact's check of the units warns about them, which these tests do not examine.
+pytestmark = pytest.mark.filterwarnings("ignore:the RMS of the heights:contact.errors.ContactWarning")
+
 
 def weierstrass_by_formula(n, length, hurst, gamma, seed, m=None):
     """docs/method.md §2 term by term, with the documented draw order (a, then phi, then psi)."""

@@ -127,6 +127,7 @@ def test_poor_hurst_fit_is_rejected_at_the_requested_quality():
     assert np.isnan(strict["hurst"]) and strict["hurst_r2"] == r["hurst_r2"]
 
 
+@pytest.mark.filterwarnings("ignore:the RMS of the heights:contact.errors.ContactWarning")  # unit-free
 def test_mask_is_ignored():
     z = np.random.default_rng(1).standard_normal((32, 32))
     mask = np.zeros_like(z, dtype=bool)

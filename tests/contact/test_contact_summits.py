@@ -3,11 +3,16 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 import contact
+
+# Many inputs here are unit-free (heights of order 1 on a micrometre or millimetre grid, files of
+# small integers); contact's check of the units warns about them, which these tests do not examine.
+pytestmark = pytest.mark.filterwarnings("ignore:the RMS of the heights:contact.errors.ContactWarning")
 
 
 def brute_force(h: np.ndarray, valid: np.ndarray) -> set[tuple[int, int]]:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -76,7 +77,7 @@ def test_tilt_does_not_change_the_fit():
 def test_radial_psd_puts_a_cosine_in_its_ring():
     n, m = 128, 16
     x = np.arange(n) * (L / n)
-    s = contact.Surface(np.tile(np.cos(2 * math.pi * m * x / L)[:, None], (1, n)), L / n)
+    s = contact.Surface(1e-6 * np.tile(np.cos(2 * math.pi * m * x / L)[:, None], (1, n)), L / n)
     q, c = radial_psd(s)
     peak = q[np.argmax(c)]
     assert peak == pytest.approx(m * Q0, rel=2 ** 0.125 - 1)
@@ -124,7 +125,9 @@ def test_like_keeps_rq_grid_and_units(like):
         contact.self_affine((128, 96), (L, 0.96 * L), 0.6, rq=2e-6, rng=4).heights, 7.8125e-6, 1e-5
     )
     rq = contact.fit_spectrum(measured).rq
-    sims = like(measured, 3, rng=0)
+    with warnings.catch_warnings():  # SI heights and spacing: no units warning on the way
+        warnings.simplefilter("error", contact.ContactWarning)
+        sims = like(measured, 3, rng=0)
     assert len(sims) == 3
     for s in sims:
         assert isinstance(s, contact.Surface)
@@ -167,7 +170,8 @@ def test_weierstrass_like_maps_the_cutoff_to_n_terms():
     gamma = 1.7
     n_terms = math.floor(math.log(f.q_s * L / (2 * math.pi)) / math.log(gamma) + 1e-12) + 1
     got = contact.weierstrass_like(measured, 1, rng=9, gamma=gamma)[0]
-    ref = contact.weierstrass((128, 128), L, f.hurst, gamma=gamma, rng=9, n_terms=n_terms)
+    ref = contact.weierstrass((128, 128), L, f.hurst, gamma=gamma, rq=1e-6, rng=9,
+                              n_terms=n_terms)
     ref = ref.detrend("plane").heights
     np.testing.assert_allclose(got.heights, ref * f.rq / np.sqrt(np.mean(ref**2)), rtol=1e-12,
                                atol=1e-12 * f.rq)
@@ -180,7 +184,7 @@ def test_weierstrass_like_without_cutoff_sums_up_to_nyquist():
     f = contact.fit_spectrum(measured)
     assert not f.cutoff_detected
     got = contact.weierstrass_like(measured, 1, rng=9)[0]
-    ref = contact.weierstrass((64, 96), L, f.hurst, rng=9).detrend("plane").heights
+    ref = contact.weierstrass((64, 96), L, f.hurst, rq=1e-6, rng=9).detrend("plane").heights
     np.testing.assert_allclose(got.heights, ref * f.rq / np.sqrt(np.mean(ref**2)), rtol=1e-12,
                                atol=1e-12 * f.rq)
 

@@ -20,6 +20,10 @@ import contact
 from contact import TopographyFileError
 from contact import io as contact_io
 
+# Many inputs here are unit-free (heights of order 1 on a micrometre or millimetre grid, files of
+# small integers); contact's check of the units warns about them, which these tests do not examine.
+pytestmark = pytest.mark.filterwarnings("ignore:the RMS of the heights:contact.errors.ContactWarning")
+
 ST_REASON = "SurfaceTopography (optional) is the second reference for this format"
 
 ROWS = np.array([[1.0, 1.5, 3.0], [-2.0, -3.0, -6.0], [0.0, 0.0, 0.0], [9.0, 9.0, 9.0]])
