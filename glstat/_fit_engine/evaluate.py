@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from .._core import inverse_table, quantile_function
+from .._core.arrays import writeable_input
 from .kernels import shape_valid
 
 __all__ = ["FAMILY", "gld_evaluate", "gld_support", "lambdas_valid"]
@@ -50,9 +51,7 @@ def gld_evaluate(param: str, what: str, x, lambdas) -> tuple[np.ndarray, int]:
     """
     l1, l2, l3, l4 = (float(v) for v in lambdas)
     arr = np.asarray(x, dtype=float)
-    y = np.ascontiguousarray(arr.ravel())
-    if not y.flags.writeable:  # one array type for the kernels (numba compiles per type)
-        y = y.copy()
+    y = writeable_input(np.ascontiguousarray(arr.ravel()))
     out = np.empty(y.shape)
     status = np.zeros(y.shape, dtype=np.int64)
     fam = FAMILY[param]

@@ -14,6 +14,7 @@ import numpy as np
 from scipy.stats import rv_continuous
 
 from .._core import inverse_table, moments, quantile_function
+from .._core.arrays import writeable_input
 from ..errors import ConvergenceWarning
 from ..regions import fkml_valid, rs_valid
 from .scipy_base import ShapeInfo as _ShapeInfo
@@ -29,16 +30,6 @@ _TABLE_MIN_POINTS = 2_000
 _WHAT = {"cdf": 0, "sf": 1, "logcdf": 2, "logsf": 3, "pdf": 4, "logpdf": 5}
 
 
-def _writable(v: np.ndarray) -> np.ndarray:
-    """``v`` itself when numba may take it as a writeable array, else a copy.
-
-    The kernels only read these inputs, but numba compiles a kernel once more for read-only
-    arrays (broadcast views, arrays of the user): one array type per argument keeps the
-    first call's compilation (and the cached kernel) the only one.
-    """
-    return v if v.flags.writeable else v.copy()
-
-
 def _broadcast_flat(x, lam3, lam4):
     """Flat float arrays of x and the shapes broadcast together (copies only when needed),
     and the common shape."""
@@ -47,9 +38,9 @@ def _broadcast_flat(x, lam3, lam4):
     if lam3.size == 1 and lam4.size == 1:
         # one set of shapes (glstat.GLD): the kernels take length-1 shape arrays, so the
         # shapes are not copied out to the size of x
-        return _writable(np.ascontiguousarray(np.broadcast_to(x, shape)).ravel()), \
+        return writeable_input(np.ascontiguousarray(np.broadcast_to(x, shape)).ravel()), \
             lam3.ravel(), lam4.ravel(), shape
-    flat = [_writable(np.ascontiguousarray(np.broadcast_to(v, shape)).ravel())
+    flat = [writeable_input(np.ascontiguousarray(np.broadcast_to(v, shape)).ravel())
             for v in (x, lam3, lam4)]
     return *flat, shape
 
@@ -62,7 +53,7 @@ def _shapes(lam3, lam4):
         a = a[:1]
     if b.size > 1 and b.min() == b.max():
         b = b[:1]
-    return _writable(np.ascontiguousarray(a)), _writable(np.ascontiguousarray(b))
+    return writeable_input(np.ascontiguousarray(a)), writeable_input(np.ascontiguousarray(b))
 
 
 def evaluate(family: int, what: str, y, lam3, lam4, loc: float = 0.0, inv_scale: float = 1.0):

@@ -438,6 +438,25 @@ _RS_MIX = np.array([[-1.5, 1.5], [1.5, -1.5], [0.134912, 0.134912], [-0.1, -0.2]
 _FKML_MIX = np.array([[0.0, 0.0], [1e-12, -1e-12], [-3.0, 5.0], [5.0, -3.0], [0.25, -0.2]])
 
 
+@pytest.mark.parametrize("rows", [1, 3])
+def test_views_of_broadcast_arrays_are_taken_without_a_warning(rows):
+    """A frozen batch of shapes (columns; one row is the case that failed) evaluated at a
+    row of points: scipy hands the kernels views from ``numpy.broadcast_arrays``, and numpy
+    warns when their writeable flag is read. Same values as one distribution at a time, and
+    no warning."""
+    lam3 = np.array([[0.2], [0.1], [-0.1]])[:rows]
+    lam4 = np.array([[-0.1], [0.3], [0.05]])[:rows]
+    batch = glstat.gld_fkml(lam3, lam4, loc=np.full((rows, 1), 0.5), scale=np.full((rows, 1), 2.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = [batch.ppf([0.5, 0.9]), batch.cdf([0.0, 1.0]), batch.pdf([0.0, 1.0])]
+    for j in range(rows):
+        one = glstat.gld_fkml(lam3[j, 0], lam4[j, 0], loc=0.5, scale=2.0)
+        for row, want in zip(got, [one.ppf([0.5, 0.9]), one.cdf([0.0, 1.0]), one.pdf([0.0, 1.0])],
+                             strict=True):
+            assert_array_equal(row[j], want)
+
+
 @pytest.mark.parametrize(("dist", "mix"), [(glstat.gld_rs, _RS_MIX), (glstat.gld_fkml, _FKML_MIX)],
                          ids=["rs", "fkml"])
 def test_broadcasting_shapes_loc_scale(dist, mix):
