@@ -100,6 +100,30 @@ def test_point_beyond_the_range_after_the_shift(l1):
         assert small == 0.0 or _rel(small, p) < 1e-13
 
 
+@pytest.mark.parametrize("mirror", [False, True])
+def test_exponential_tail_far_out_with_loc_and_scale(mirror):
+    """FKML(1, 0) has an exponential upper tail, Q(u) = (u - 1) - log(1 - u); with loc and
+    scale the standardized point carries a low part, and from |y| of about 1e16 on a Newton
+    step on log S is below one ulp. log S and log f against mpmath (s solves
+    -e^s - s = y exactly), with no ConvergenceWarning; the mirrored law gives the lower tail."""
+    loc, l2 = -2.0, 2.0
+    g = glstat.GLD(loc, l2, 0.0, 1.0, param="fkml") if mirror else \
+        glstat.GLD(loc, l2, 1.0, 0.0, param="fkml")
+    sign = -1.0 if mirror else 1.0
+    xs = sign * np.array([1e3, 1e15, 1e16, 3e17, 1e50, 7.87409739597285e101, 1e300])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ConvergenceWarning)
+        tail = g.logcdf(xs) if mirror else g.logsf(xs)
+        logpdf = g.logpdf(xs)
+    with mp.workdps(DPS):
+        for x, got, got_pdf in zip(xs, tail, logpdf, strict=True):
+            y = (sign * mp.mpf(x) - sign * mp.mpf(loc)) * l2
+            s = mp.findroot(lambda s, y=y: -mp.exp(s) - s - y, -y)
+            assert _rel(got, s) < 1e-15
+            ref_pdf = mp.log(l2) + s - mp.log1p(mp.exp(s))
+            assert _rel(got_pdf, ref_pdf) < 1e-15
+
+
 # -------------------------------------------------------------------------- huge shapes
 HUGE = [
     (FKML, -1500.0, -1400.0),
