@@ -198,6 +198,8 @@ def sample_lmoments(x: np.ndarray) -> tuple[float, float, float, float]:
     l2 = 2 * b1 - b0
     l3 = 6 * b2 - 6 * b1 + b0
     l4 = 20 * b3 - 30 * b2 + 12 * b1 - b0
+    if l2 == 0.0:  # all values equal: no L-moment ratios (NaN, without numpy's 0/0 warning)
+        return c + float(b0), 0.0, math.nan, math.nan
     return c + float(b0), float(l2), float(l3 / l2), float(l4 / l2)
 
 
