@@ -140,6 +140,7 @@ def test_glstat_fit_refuses_hostile_numpy_files_with_status_2(tmp_path, capsys):
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.filterwarnings("ignore:the RMS of the heights:contact.errors.ContactWarning")  # unit-free
 def test_surface_refuses_values_that_are_not_real_numbers():
     import pandas as pd
 

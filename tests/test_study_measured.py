@@ -267,6 +267,8 @@ def test_one_scan_without_tiles_says_to_cut_it_and_never_names_refused_options(m
     assert "a larger --tile" in spot.validation.error
 
 
+# the scan holds micrometres read as metres (the file states no unit): the roughness check warns
+@pytest.mark.filterwarnings("ignore:rq = .* is implausible:contact.errors.ContactWarning")
 def test_cli_reads_files_without_spacing_with_spacing_and_unit(tmp_path, capsys):
     from glstat.cli.commands import main
 
