@@ -112,7 +112,9 @@ def test_recovery_converges(method, param):
         worst = []
         for _ in range(5):
             x = true.rvs(size=n, random_state=rng)
-            f = fit(x, param, method)
+            # some percentile fits of 200 values do not cover them (a FitWarning, checked
+            # elsewhere): here only the quantile error counts
+            f = fit(x, param, method, warn=False)
             worst.append(np.max(np.abs(f.dist.ppf(P[1:-1]) - true.ppf(P[1:-1]))))
         errs.append(np.median(worst))
     assert errs[1] < errs[0] / 3
