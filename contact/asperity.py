@@ -34,6 +34,11 @@ __all__ = ["solve", "solve_displacement"]
 
 logger = logging.getLogger(__name__)
 
+#: A load inside a force jump is warned about only when the jump or the returned state's
+#: ``|force_error|`` exceeds this fraction of the load (1 %); a smaller one, the first touch
+#: of one summit among many in contact, is recorded in ``info`` only.
+JUMP_WARNING_THRESHOLD = 0.01
+
 _COLUMNS = ["i", "j", "x", "y", "height", "delta", "a", "b", "beta", "p_m", "F"]
 
 
@@ -277,7 +282,8 @@ def _jump_state(
     jump: str, warn: bool,
 ) -> ContactResult:
     """The result when the load falls inside a jump of F(d) between the planes at ``lo`` and
-    ``hi`` (m): one of the two states (warned when ``warn``), or their blend."""
+    ``hi`` (m): one of the two states (warned when ``warn`` and the jump or the force error
+    exceeds :data:`JUMP_WARNING_THRESHOLD`), or their blend."""
     # The deeper state (plane at lo) carries more than the load, the shallower one (plane at
     # hi, a hair higher) less.
     tab_lo, tab_hi = model.table(lo), model.table(hi)
@@ -301,6 +307,12 @@ def _jump_state(
     )
     d, tab, other_f, other_d = (lo, tab_lo, f_hi, hi) if deeper else (hi, tab_hi, f_lo, lo)
     force = float(tab[:, 5].sum())
+    if max(abs(force_jump), abs(force - target) / target) <= JUMP_WARNING_THRESHOLD:
+        return model.result(
+            d, [tab], [1.0], target, float(nominal_pressure), "asperity", n_iterations=it,
+            jump=jump, in_jump=True, blend_weight=1.0, force_jump=force_jump,
+            other_force=other_f, other_separation=other_d, separation_bracket=bracket,
+        )
     message = (
         f"the requested load {target:.6g} N ({nominal_pressure:.6g} Pa nominal) falls inside "
         f"a jump of the asperity model's force at separation {lo:.10g} m: F jumps from "
@@ -374,7 +386,7 @@ def solve(
         state (NaN outside a jump), ``separation_bracket`` (m, in a jump), ``jump`` and
         ``blend_weight`` (the deeper state's weight with ``jump="blend"``, else 1), and
         ``warning``, the text of the :class:`~contact.ContactWarning` of a load inside a
-        jump (empty otherwise).
+        jump (empty otherwise, and for a jump too small to warn about).
 
     Raises
     ------
@@ -385,9 +397,11 @@ def solve(
     Warns
     -----
     contact.ContactWarning
-        The load falls inside a jump of F(d) and a state of the model is returned
-        (``jump`` is ``"nearest"`` or ``"deeper"``): its force differs from the load by
-        ``force_error``; the message gives the jump.
+        The load falls inside a jump of F(d), a state of the model is returned (``jump``
+        is ``"nearest"`` or ``"deeper"``) and the jump or ``|force_error|`` exceeds
+        :data:`JUMP_WARNING_THRESHOLD` (1 % of the load): the state's force differs from the
+        load by ``force_error``; the message gives the jump. A smaller jump is recorded in
+        ``info`` (``in_jump``, ``force_jump``) only.
 
     Notes
     -----
@@ -408,11 +422,14 @@ def solve(
     precision) and no state of the model carries the load: the pressure map, ``samples``
     and ``asperities`` are those of one state (by default the one with the force closest to
     the load), ``force_error`` is that state's honest error, of order the jump, and a
-    :class:`~contact.ContactWarning` is issued. With ``jump="blend"`` the map is instead
-    ``theta * (deeper state) + (1 - theta) * (shallower state)`` with the weight ``theta``
-    that balances the force; its samples (e.g. ``theta * 1.5 p_m`` at a summit that
-    just touched) are not pressures of the model, and the table's geometry and ``p_m`` are
-    those of the deeper state with the blended ``F``.
+    :class:`~contact.ContactWarning` is issued when the jump or the error exceeds 1 % of
+    the load. A smaller jump (typically one summit's first touch among many in contact) is
+    recorded in ``info`` only: the returned state then carries the load to within 1 %.
+    With ``jump="blend"`` the map is instead ``theta * (deeper state) + (1 - theta) *
+    (shallower state)`` with the weight ``theta`` that balances the force; its samples
+    (e.g. ``theta * 1.5 p_m`` at a summit that just touched) are not pressures of the model,
+    and the table's geometry and ``p_m`` are those of the deeper state with the blended
+    ``F``.
     """
     nominal_pressure, tol, max_iter = _check_options(jump, nominal_pressure, tol, max_iter, warn)
     model = _Model(surface, E, nu, cone_factor, counter_face)

@@ -138,15 +138,27 @@ class ContactResult:
         return pf / self.force if self.force > 0 else 0.0
 
     def summary(self) -> pd.Series:
-        """Key figures: separation (m), force and target (N), force error, alpha, contact
-        fraction, mean and maximal contact pressure (Pa), number of asperities in contact;
-        for an elastic-perfectly-plastic surface also the hardness (Pa), the plastic area
-        fraction and the plastic force (N)."""
+        """Key figures as a float Series named after the solver (``method``).
+
+        Returns
+        -------
+        pandas.Series
+            dtype float64, name ``method`` (e.g. ``"asperity"``, ``"bem"``): ``separation``
+            (m), ``force`` and ``target_force`` (N), ``nominal_pressure``, ``mean_pressure``
+            and ``max_pressure`` (Pa), ``force_error``, ``alpha``, ``contact_fraction``,
+            ``n_asperities`` (NaN without an asperity table) and ``converged`` (1.0 or 0.0);
+            for an elastic-perfectly-plastic surface also ``hardness`` (Pa),
+            ``plastic_area_fraction`` and ``plastic_force`` (N). Missing values (no target
+            under displacement control) are NaN. Values are exact, in SI units; pandas
+            prints them in scientific notation.
+        """
         import pandas as pd
+
+        def number(value) -> float:
+            return float("nan") if value is None else float(value)
 
         n = None if self.asperities is None else len(self.asperities)
         figures = {
-            "method": self.method,
             "nominal_pressure": self.nominal_pressure,
             "separation": self.separation,
             "force": self.force,
@@ -165,7 +177,8 @@ class ContactResult:
                 plastic_area_fraction=self.plastic_area_fraction,
                 plastic_force=self.plastic_force,
             )
-        return pd.Series(figures, name="contact")
+        return pd.Series({k: number(v) for k, v in figures.items()}, name=self.method or "contact",
+                         dtype=float)
 
     def to_frame(self) -> pd.DataFrame:
         """Tidy table of the grid points in contact: ``i``, ``j`` and ``pressure`` (Pa)."""

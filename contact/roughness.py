@@ -8,20 +8,22 @@ numerics of the gradient, material-ratio and autocorrelation parameters are in
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
+# warns at the first frame outside the packages: the user's line, whichever entry point
+from _glstat_runtime.validation import implausible as _warn_at_caller
+
 from . import _iso25178 as iso
 from ._asperity_kernels import find_summits
-from .errors import ContactWarning
 
 if TYPE_CHECKING:
     import pandas as pd
 
 __all__ = [
+    "FORM_HINT_FRACTION",
     "GROUPS",
     "UNITS",
     "HurstFit",
@@ -67,6 +69,12 @@ GROUPS = {
     "material_ratio": ("Sk", "Spk", "Svk", "Smr1", "Smr2"),
     "spatial": ("Sal", "Str"),
 }
+
+
+#: A :class:`~contact.ContactWarning` suggests ``level="plane"`` when the roughness is
+#: computed about the mean height and a least-squares plane would explain more than this
+#: fraction of the height variance (Sq about the plane below ``Sq / sqrt(2)`` about the mean).
+FORM_HINT_FRACTION = 0.5
 
 
 def parameter_groups(groups: str | Iterable[str]) -> tuple[str, ...]:
@@ -204,9 +212,9 @@ def hurst_fit(
     )
 
 
-def _physical_hurst(fit: HurstFit, min_r2: float, warn: bool = True) -> float:
+def _physical_hurst(fit: HurstFit, min_r2: float, warn: bool = True, hint: str = "") -> float:
     """The fitted H when it is physical (in [0, 1]) with R² >= ``min_r2``; else NaN, warned
-    when ``warn``."""
+    (at the caller's line, with ``hint`` appended) when ``warn``."""
     in_range = 0.0 <= fit.slope_hurst <= 1.0
     if in_range and fit.r2 >= min_r2:
         return fit.slope_hurst
@@ -217,14 +225,12 @@ def _physical_hurst(fit: HurstFit, min_r2: float, warn: bool = True) -> float:
         if not in_range
         else f"from a poor fit (R² below {min_r2:g})"
     )
-    warnings.warn(
+    _warn_at_caller(
         f"Hurst exponent undefined: the structure-function fit gives H = "
         f"{fit.slope_hurst:.4g}, {why} (R² = {fit.r2:.3g} over lags "
         f"{fit.lag_min:.4g} m to {fit.lag_max:.4g} m); the surface is not self-affine "
         "over these lags (periodic, a remaining form, or uncorrelated noise), so hurst and "
-        "fractal_dimension are NaN",
-        ContactWarning,
-        stacklevel=3,
+        f"fractal_dimension are NaN{hint}"
     )
     return float("nan")
 
@@ -345,6 +351,30 @@ def _group_parameters(
     return values
 
 
+def _form_hint(h: np.ndarray, z: np.ndarray, valid: np.ndarray, dx: float, dy: float) -> str:
+    """Warn when a least-squares plane explains more than :data:`FORM_HINT_FRACTION` of the
+    variance of the heights ``z`` (m, about their mean); return the hint for the Hurst
+    warning."""
+    hint = "; the heights were not levelled: level=\"plane\" removes a remaining tilt"
+    zv = z[valid]
+    var_mean = float(np.mean(zv * zv))
+    if zv.size < 4 or var_mean == 0:  # a plane through 3 points explains everything
+        return hint
+    pv = level_heights(h, valid, dx, dy, "plane")[valid]
+    var_plane = float(np.mean(pv * pv))
+    explained = 1.0 - var_plane / var_mean
+    if explained > FORM_HINT_FRACTION:
+        _warn_at_caller(
+            f"the heights are dominated by a tilt: a least-squares plane explains all but "
+            f"{100 * (1 - explained):.2g} % of their variance (Sq = {math.sqrt(var_mean):.4g} m "
+            f"about the mean height, {math.sqrt(var_plane):.4g} m about the plane), so the "
+            "parameters describe the tilt rather than the roughness; unless the tilt belongs "
+            "to the surface, pass level=\"plane\" (surface.roughness(level=\"plane\")) to "
+            "remove it"
+        )
+    return hint
+
+
 def roughness_parameters(
     h: np.ndarray,
     dx: float,
@@ -373,8 +403,9 @@ def roughness_parameters(
     hurst_min_r2 : float, default 0.5
         Smallest R² of the structure-function fit for which ``hurst`` is reported.
     warn : bool, default True
-        Warn when the surface has no physical Hurst exponent; False leaves ``hurst`` NaN
-        silently (for worker threads, where changing the warning filters is not safe).
+        Warn when the surface has no physical Hurst exponent or (with ``level="mean"``) is
+        dominated by a tilt; False leaves ``hurst`` NaN silently (for worker threads, where
+        changing the warning filters is not safe).
     groups : str or iterable of str, default "basic"
         Parameter groups (:data:`GROUPS`): ``"basic"`` (always), ``"material_ratio"`` (the
         Sk family), ``"spatial"`` (Sal, Str), or ``"all"``. The last two cost a sort of
@@ -406,10 +437,18 @@ def roughness_parameters(
     -----
     contact.ContactWarning
         The structure-function fit gives a Hurst exponent outside [0, 1] or has an R²
-        below ``hurst_min_r2`` (``hurst`` and ``fractal_dimension`` are then NaN).
+        below ``hurst_min_r2`` (``hurst`` and ``fractal_dimension`` are then NaN); with
+        ``level="mean"`` the message suggests ``level="plane"``.
+    contact.ContactWarning
+        With ``level="mean"``, a least-squares plane explains more than
+        :data:`FORM_HINT_FRACTION` (one half) of the height variance: the message gives Sq
+        about the mean and about the plane and suggests ``level="plane"``. The default
+        stays ``"mean"``; the parameters are those of the heights about their mean.
 
     Notes
     -----
+    Warnings point at the caller's line (the first frame outside the package).
+
     ISO 25178-2 defines Sdq and Sdr on the continuous gradient and leaves its discrete
     evaluation open. By default the gradient is the 7-point formula that ISO 4287:1997
     gives for the local slope of a profile, applied along each axis at the points whose
@@ -440,7 +479,8 @@ def roughness_parameters(
         valid = np.ones(h.shape, dtype=bool)
     z = level_heights(h, valid, dx, dy, level)
     values = _field_parameters(z, valid, dx, dy, stencil)
+    hint = _form_hint(h, z, valid, dx, dy) if warn and level == "mean" else ""
     fit = hurst_fit(z, dx, dy, valid)
-    values.update(_hurst_parameters(fit, _physical_hurst(fit, hurst_min_r2, warn)))
+    values.update(_hurst_parameters(fit, _physical_hurst(fit, hurst_min_r2, warn, hint)))
     values.update(_group_parameters(chosen, z, valid, dx, dy, acf_threshold))
     return pd.Series(values, name="roughness", dtype=float)

@@ -63,6 +63,22 @@ class ContactSpots:
     def __len__(self) -> int:
         return int(self.peak_pressure.size)
 
+    def __repr__(self) -> str:
+        """One line: the number of spots, those cut by the border (not on a periodic map),
+        the largest peak pressure (MPa), the total area (µm², or mm² from 0.1 mm² on) and
+        whether the map is periodic; the arrays are in the fields."""
+        n = len(self)
+        parts = [f"{n} spot{'' if n == 1 else 's'}"]
+        if n and not self.periodic:
+            parts.append(f"{int(np.count_nonzero(self.touches_border))} touching the border")
+        if n:
+            total = float(np.sum(self.area))
+            area = f"{total * 1e6:.4g} mm²" if total >= 1e-7 else f"{total * 1e12:.4g} µm²"
+            parts += [f"largest peak {float(np.max(self.peak_pressure)) / 1e6:.4g} MPa",
+                      f"total area {area}"]
+        parts.append("periodic" if self.periodic else "not periodic")
+        return f"ContactSpots({', '.join(parts)})"
+
     @property
     def n_spots(self) -> int:
         """Number of spots."""

@@ -154,8 +154,9 @@ class Surface:
         hurst_min_r2 : float, default 0.5
             Smallest R² of the structure-function fit for which ``hurst`` is reported.
         warn : bool, default True
-            Warn when there is no physical Hurst exponent (False: NaN without a warning, for
-            worker threads, where changing the warning filters is not safe).
+            Warn when there is no physical Hurst exponent or (with ``level="mean"``) the
+            heights are dominated by a tilt (False: NaN without a warning, for worker
+            threads, where changing the warning filters is not safe).
         groups : str or iterable of str, default "basic"
             ``"basic"``, ``"material_ratio"`` (adds the Sk family), ``"spatial"`` (adds Sal,
             Str) or ``"all"`` (:data:`contact.roughness.GROUPS`).
@@ -179,8 +180,11 @@ class Surface:
         Warns
         -----
         contact.ContactWarning
-            The Hurst fit is outside [0, 1] or has R² below ``hurst_min_r2`` (unless
-            ``warn=False``).
+            The Hurst fit is outside [0, 1] or has R² below ``hurst_min_r2``; with
+            ``level="mean"``, a least-squares plane explains more than half of the height
+            variance (the message gives Sq with and without the plane and suggests
+            ``roughness(level="plane")``; :data:`contact.roughness.FORM_HINT_FRACTION`).
+            Not with ``warn=False``; both point at the caller's line.
         """
         h, valid = height_map(self.heights, self.mask)
         return roughness_parameters(h, self.dx, self.dy, valid, level=level,
