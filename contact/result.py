@@ -138,7 +138,8 @@ class ContactResult:
         return pf / self.force if self.force > 0 else 0.0
 
     def summary(self) -> pd.Series:
-        """Key figures as a float Series named after the solver (``method``).
+        """Key figures in SI units (separation, force, pressures, alpha, ...) as a float
+        Series named after the solver.
 
         Returns
         -------
