@@ -32,7 +32,9 @@ def _axes(ax):
     return ax
 
 
-def plot_maximum_density(max_dist, interval: float = 0.9, ax=None) -> Any:
+def plot_maximum_density(max_dist, interval: float = 0.9, ax=None, *,
+                         bounds: tuple[float, float] | None = None,
+                         label: str | None = None) -> Any:
     """Density of the maximal value with its central interval shaded.
 
     Parameters
@@ -45,28 +47,45 @@ def plot_maximum_density(max_dist, interval: float = 0.9, ax=None) -> Any:
         Default 0.9.
     ax : matplotlib.axes.Axes, optional
         Axes to draw on.
+    bounds : (float, float), optional
+        Ends of the shaded interval, e.g. the calibrated interval of a prediction; default
+        the central ``interval`` of ``max_dist``.
+    label : str, optional
+        Legend text of the shaded interval, before its ends; default ``"<interval %>
+        interval"``.
 
     Returns
     -------
     matplotlib.axes.Axes
         Lines: the density (label ``"density"``), the mean and the median (vertical lines);
-        the shaded interval has label ``"<interval %> interval"``.
+        the shaded interval has label ``"<interval %> interval [lo, hi]"``. The x axis runs
+        from the 1e-4 to the 1 - 1e-4 quantile, at most twice the interval's width beyond
+        either end (a heavy tail would squeeze the density into a spike); a mean beyond
+        the axis is named in the legend without a line.
     """
     if not 0 < float(interval) < 1:
         raise ValueError(f"interval must be strictly between 0 and 1, got {interval!r}")
     ax = _axes(ax)
     tail = (1.0 - float(interval)) / 2.0
-    lo, hi = float(max_dist.ppf(tail)), float(max_dist.isf(tail))
-    x0, x1 = float(max_dist.ppf(1e-4)), float(max_dist.isf(1e-4))
+    if bounds is None:
+        lo, hi = float(max_dist.ppf(tail)), float(max_dist.isf(tail))
+    else:
+        lo, hi = (float(v) for v in bounds)
+    width = hi - lo
+    x0 = max(float(max_dist.ppf(1e-4)), lo - 2.0 * width)
+    x1 = min(float(max_dist.isf(1e-4)), hi + 2.0 * width)
     x = np.linspace(x0, x1, 400)
     y = np.asarray(max_dist.pdf(x), dtype=float)
     ax.plot(x, y, color="C0", label="density")
     inside = (x >= lo) & (x <= hi)
+    name = f"{100 * float(interval):g}% interval" if label is None else label
     ax.fill_between(x, 0, y, where=inside, color="C0", alpha=0.25,
-                    label=f"{100 * float(interval):g}% interval [{lo:.4g}, {hi:.4g}]")
+                    label=f"{name} [{lo:.4g}, {hi:.4g}]")
     mean = float(max_dist.mean())
-    if np.isfinite(mean):
+    if x0 <= mean <= x1:
         ax.axvline(mean, color="C1", linestyle="--", label=f"mean {mean:.4g}")
+    elif np.isfinite(mean):
+        ax.plot([], [], color="C1", linestyle="--", label=f"mean {mean:.4g} (beyond the axis)")
     median = float(max_dist.ppf(0.5))
     ax.axvline(median, color="C2", linestyle=":", label=f"median {median:.4g}")
     ax.set_xlabel("maximal value")

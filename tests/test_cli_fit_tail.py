@@ -59,8 +59,8 @@ def test_tail_none_reproduces_the_gld_alone(sample, tmp_path):
     np.testing.assert_array_equal(res.damage["high"], want.damage.high)
     assert _is_the_gld_fit(res) and res.tail_size is None
     # nothing new is said: the GLD alone, the plain percentile interval
-    assert (f"maximum of 1000 values: mean {want.maximum.mean:.6g}, 90 % interval [{lo:.6g}, {hi:.6g}] "
-            "(one draw per bootstrap GLD)") in out
+    assert (f"maximum of 1000 values: median {np.median(want.maximum.draws):.6g}, 90 % interval "
+            f"[{lo:.6g}, {hi:.6g}] (one draw per bootstrap GLD)") in out
     assert "90 % bootstrap interval:" in out
     for word in ("Pareto", "calibrated", "model of the maximum"):
         assert word not in out
@@ -117,7 +117,7 @@ def test_without_bootstrap_the_model_is_pareto_tail_gld_fit(sample, tmp_path, mo
     want = glstat.damage_probability(model, HARDNESS, N_MAX, FACTORS)
     np.testing.assert_allclose(res.damage["estimate"], want, rtol=1e-12)
     m = glstat.maximum(model, N_MAX)
-    assert f"maximum of 1000 values (full-sample model, no bootstrap): mean {float(m.mean()):.6g}" in out
+    assert f"maximum of 1000 values (full-sample model, no bootstrap): median {float(m.median()):.6g}" in out
     assert "model of the maximum and the damage: the GLD with a generalized Pareto tail" in out
     assert "calibrated" not in out and doc["model"]["tail_size"] == 20
     # --tail none: the GLD itself, no tail fitted
@@ -192,7 +192,8 @@ def test_the_answer_closes_the_report(sample, tmp_path):
     def value(v):  # 4 significant digits, no exponent from 1000 on (the data are in MPa)
         return f"{v:.0f}" if 1e3 <= abs(v) < 1e7 else f"{v:.4g}"
 
-    assert block[0] == (f"  maximum of {N_MAX} values: {value(m['mean'])} [{value(m['low'])}, "
+    assert m["median"] == np.median(res.prediction.maximum.draws)
+    assert block[0] == (f"  maximum of {N_MAX} values: median {value(m['median'])} [{value(m['low'])}, "
                         f"{value(m['high'])}]")
     for j, k in enumerate(FACTORS):
         d = res.damage
@@ -208,3 +209,33 @@ def test_the_answer_closes_the_report(sample, tmp_path):
                                               "0", "--out", str(tmp_path / "q")])
     cli_fit.run(args, lines_q.append)
     assert not any(line.startswith("answer") for line in lines_q)
+
+
+def test_a_damage_the_data_cannot_determine_is_said_so(tmp_path):
+    """2000 Weibull values (k = 1.5, scale 300 MPa; largest about 1100) asked for the maximum
+    of 1e6 and a hardness of 1500: the bootstrap tails disagree there (exact damage from the
+    Weibull law: 99.99991 %). An interval covering 90 % or more of [0, 1] is reported as not
+    determined, not as a three-digit estimate; the check's scope is named."""
+    from scipy import stats
+
+    x = stats.weibull_min(1.5, scale=300.0).rvs(2000, random_state=np.random.default_rng(5))
+    path = tmp_path / "w.csv"
+    np.savetxt(path, x, header="pressure_MPa", comments="")
+    lines: list[str] = []
+    args = cli_fit.build_parser().parse_args(
+        [str(path), "--n-max", "1e6", "--hardness", "1500", "--area-factor", "1", "1e-4",
+         "--bootstrap", "200", "--gof-resamples", "0", "--seed", "1", "--out", str(tmp_path / "o")])
+    res = cli_fit.run(args, lines.append)
+    d = res.damage
+    wide = np.asarray(d["high"]) - np.asarray(d["low"]) >= 0.9
+    assert wide[0] and not wide[1]  # the case this test is about, and one that is determined
+    start = next(i for i, line in enumerate(lines) if line.startswith("answer ("))
+    answer = lines[start + 1:start + 5]
+    assert answer[1] == (f"  damage P(max > 1500) on n = 1000000 points: not determined by the data: "
+                         f"anywhere in [{100 * d['low'][0]:.3g} %, {100 * d['high'][0]:.3g} %] "
+                         f"(full-sample model {100 * d['estimate'][0]:.3g} %)")
+    assert "not determined" not in answer[2] and f"{100 * d['estimate'][1]:.3g} %" in answer[2]
+    assert answer[3].startswith("  check by block cross-validation: ")
+    assert answer[3].endswith(f" (on maxima of {res.cross_validation.block_size} values, not of 1000000)")
+    assert any(line.startswith("  area factor 1: the interval spans ") and
+               "the data do not determine the damage at this hardness" in line for line in lines)

@@ -19,10 +19,13 @@ from .sample_files import Sample
 if TYPE_CHECKING:  # pragma: no cover
     from ..resampling import BootstrapFit
 
-__all__ = ["indent", "interval_words", "model_doc", "print_answer", "print_bootstrap",
+__all__ = ["UNDETERMINED", "indent", "interval_words", "model_doc", "print_answer", "print_bootstrap",
            "print_cross_validation",
            "print_damage", "print_fit", "print_gof", "print_header", "print_maximum", "print_model",
-           "write_figures", "write_tables"]
+           "undetermined", "write_figures", "write_tables"]
+
+#: A damage interval at least this wide (of [0, 1]) is reported as not determined by the data.
+UNDETERMINED = 0.9
 
 
 def fmt_g(v: float, digits: int = 6) -> str:
@@ -137,16 +140,16 @@ def print_maximum(m: dict[str, Any], emit: Callable[[str], None]) -> None:
     level = 100 * m["confidence_level"]
     emit("")
     if "table" in m:
-        head = (f"maximum of {how_many(m)}: mean {fmt_g(m['mean'])}, {level:g} % interval "
+        head = (f"maximum of {how_many(m)}: median {fmt_g(m['median'])}, {level:g} % interval "
                 f"[{fmt_g(m['low'])}, {fmt_g(m['high'])}]")
-        calibrated = interval_words(m) is not None
-        emit(f"{head} (calibrated; one draw per bootstrap model)" if calibrated
-             else f"{head} (one draw per bootstrap GLD)")
-        emit(indent(text_table(m["table"][["quantity", "center", "low", "high"]])))
+        calibrated = "calibrated; " if interval_words(m) is not None else ""
+        what = "model" if calibrated else "GLD"
+        emit(f"{head} ({calibrated}one draw per bootstrap {what})")
+        emit(indent(text_table(m["table"][["quantity", "median", "low", "high"]])))
     else:
         what = "fit" if m.get("tail_size") is None else "model"
-        emit(f"maximum of {how_many(m)} (full-sample {what}, no bootstrap): mean {fmt_g(m['mean'])}, "
-             f"{level:g} % interval [{fmt_g(m['low'])}, {fmt_g(m['high'])}]")
+        emit(f"maximum of {how_many(m)} (full-sample {what}, no bootstrap): median "
+             f"{fmt_g(m['median'])}, {level:g} % interval [{fmt_g(m['low'])}, {fmt_g(m['high'])}]")
 
 
 def how_many(d: dict, unit: str = "values") -> str:
@@ -180,6 +183,18 @@ def print_damage(d: dict[str, Any], args: argparse.Namespace, emit: Callable[[st
     if above or below:
         emit(f"  in the bootstrap, {above} fit(s) have the hardness above their support (damage 0) and "
              f"{below} below it (damage 1)")
+    for j in np.flatnonzero(undetermined(d)):
+        emit(f"  area factor {d['area_factors'][j]:g}: the interval spans {_percent(d['low'][j])} to "
+             f"{_percent(d['high'][j])}: the data do not determine the damage at this hardness "
+             "(the bootstrap models disagree there: too few values near or above it)")
+
+
+def undetermined(d: dict[str, Any]) -> np.ndarray:
+    """Per area factor of a damage summary: True where its interval covers at least 90 % of
+    [0, 1], so that the data cannot tell a rare damage from a certain one."""
+    if d["low"] is None:
+        return np.zeros(np.size(d["estimate"]), dtype=bool)
+    return np.asarray(d["high"], dtype=float) - np.asarray(d["low"], dtype=float) >= UNDETERMINED
 
 
 def _percent(p: float) -> str:
@@ -214,18 +229,27 @@ def print_answer(res: FitResults, emit: Callable[[str], None]) -> None:
     emit("")
     emit(f"answer ({100 * level:g} % intervals; {model}):")
     if m is not None:
-        emit(f"  maximum of {how_many(m)}: {_value(m['mean'])} [{_value(m['low'])}, "
+        emit(f"  maximum of {how_many(m)}: median {_value(m['median'])} [{_value(m['low'])}, "
              f"{_value(m['high'])}]")
     if d is not None:
+        loose = undetermined(d)
         for j, k in enumerate(np.atleast_1d(d["area_factors"])):
             where = how_many({**d, "n": d["n"] * k}, "points")
+            head = f"  damage P(max > {d['hardness']:g}) on {where}: "
+            if loose[j]:
+                emit(f"{head}not determined by the data: anywhere in [{_percent(d['low'][j])}, "
+                     f"{_percent(d['high'][j])}] (full-sample model {_percent(d['estimate'][j])})")
+                continue
             interval = ("" if d["low"] is None else
                         f" [{_percent(d['low'][j])}, {_percent(d['high'][j])}]")
-            emit(f"  damage P(max > {d['hardness']:g}) on {where}: "
-                 f"{_percent(d['estimate'][j])}{interval}")
+            emit(f"{head}{_percent(d['estimate'][j])}{interval}")
     cv = res.cross_validation
     if cv is not None:
-        emit(f"  check by block cross-validation: {cv.verdict}")
+        scope = ""
+        n_max = m["n"] if m is not None else (d["n"] if d is not None else None)
+        if n_max is not None and n_max > cv.block_size:
+            scope = f" (on maxima of {cv.block_size} values, not of {n_max:.10g})"
+        emit(f"  check by block cross-validation: {cv.verdict}{scope}")
 
 
 def print_cross_validation(res: FitResults, emit: Callable[[str], None]) -> None:
@@ -333,7 +357,11 @@ def write_figures(res: FitResults, out: Path) -> None:
     if res.maximum is not None:
         fig = new_figure()
         ax = fig.add_subplot()
-        plot_maximum_density(res.maximum["dist"], interval=res.maximum["confidence_level"], ax=ax)
+        m = res.maximum
+        level = m["confidence_level"]
+        name = f"{100 * level:g} % interval" + (" (calibrated)" if interval_words(m) else "")
+        plot_maximum_density(m["dist"], interval=level, bounds=(m["low"], m["high"]), label=name,
+                             ax=ax)
         ax.set_xlabel(f"maximum of {how_many(res.maximum)}")
         save_figure(fig, out, "maximum_density.png", res)
     if res.damage is not None:

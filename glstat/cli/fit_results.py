@@ -171,12 +171,12 @@ def prediction_rows(res: FitResults, quantity: str) -> Any:
 
 
 def maximum_summary(res: FitResults, n_max: float, level: float, count=None) -> dict[str, Any]:
-    """The maximum of ``--n-max`` values: with a bootstrap, the prediction's own numbers (mean
-    and interval of one random maximum per bootstrap model, the mixture and the full-sample
-    maximum); without, the maximum of the full-sample model (:attr:`FitResults.model`)
-    alone. ``tail_size`` is k of the model's Pareto tail (None for the GLD alone) and
-    ``interval_level`` the level of the bootstrap percentile pair read for ``level`` (None
-    without a bootstrap)."""
+    """The maximum of ``--n-max`` values: with a bootstrap, the prediction's own numbers (median,
+    mean and interval of one random maximum per bootstrap model, the mixture and the
+    full-sample maximum; the table gives the median of each); without, the maximum of the
+    full-sample model (:attr:`FitResults.model`) alone. ``tail_size`` is k of the model's
+    Pareto tail (None for the GLD alone) and ``interval_level`` the level of the bootstrap
+    percentile pair read for ``level`` (None without a bootstrap)."""
     from ..extremes.order_statistics import maximum
 
     bm = None if res.prediction is None else res.prediction.maximum
@@ -193,12 +193,16 @@ def maximum_summary(res: FitResults, n_max: float, level: float, count=None) -> 
     row = prediction_rows(res, "maximum")
     if bm is not None and row is not None:
         mlo, mhi = bm.mixture_interval()
-        out.update(mean=float(row["estimate"].iloc[0]), low=float(row["low"].iloc[0]),
+        median = float(np.median(bm.draws))
+        # one column of medians: the draws' row of the prediction's table holds their mean
+        table = bm.summary().rename(columns={"center": "median"})
+        table.loc[table["quantity"] == "draws", "median"] = median
+        out.update(mean=float(row["estimate"].iloc[0]), median=median, low=float(row["low"].iloc[0]),
                    high=float(row["high"].iloc[0]), mixture_low=mlo, mixture_high=mhi,
-                   table=bm.summary(), dist=bm.mixture)
+                   table=table, dist=bm.mixture)
     else:
-        mean = float(full.mean())
-        out.update(mean=mean, low=out["full_fit_low"], high=out["full_fit_high"])
+        out.update(mean=float(full.mean()), median=out["full_fit_median"], low=out["full_fit_low"],
+                   high=out["full_fit_high"])
     return out
 
 
