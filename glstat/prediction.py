@@ -165,7 +165,8 @@ class MaximumPrediction:
             probabilities for the damage and the integrity), ``confidence_level``, ``param``,
             ``method`` and ``n_resamples`` (B) of the fit used, ``tail_size`` (k of the
             Pareto tails; NaN for the GLDs alone). The maximum's ``estimate`` is
-            the mean of one random maximum per bootstrap GLD and ``low``/``high`` their
+            the median of one random maximum per bootstrap GLD (their mean follows the
+            heaviest bootstrap tail: :attr:`glstat.BootstrapMaximum.mean`) and ``low``/``high`` their
             equal-tailed interval (:meth:`glstat.BootstrapMaximum.interval`); a
             probability's ``estimate`` is that of the full-sample fit and ``low``/``high``
             its bootstrap percentile interval. No rows without a fit, and none for a quantity
@@ -191,7 +192,7 @@ class MaximumPrediction:
             lo, hi = self.maximum.interval()
             parts.append(pd.DataFrame({
                 "quantity": ["maximum"], "threshold": [np.nan], "area_factor": [1.0],
-                "n": [float(self.maximum.n)], "estimate": [self.maximum.mean], "low": [lo],
+                "n": [float(self.maximum.n)], "estimate": [self.maximum.median], "low": [lo],
                 "high": [hi], "confidence_level": [self.maximum.confidence_level]}))
         for prob in (self.damage, self.integrity):
             if prob is not None:
@@ -253,9 +254,9 @@ class MaximumPrediction:
         what = "model" if self.tail_size is not None else "GLD"
         if m is not None:
             lo, hi = m.interval()
-            lines.append(f"maximum of {self._draws_text(m.n)}: {m.mean:.6g}{u}, "
+            lines.append(f"maximum of {self._draws_text(m.n)}: median {m.median:.6g}{u}, "
                          f"{100 * m.confidence_level:g} % interval [{lo:.6g}, {hi:.6g}]{u} "
-                         f"(mean and interval of one random maximum per bootstrap {what})")
+                         f"(median and interval of one random maximum per bootstrap {what})")
         d = self.damage
         if d is not None:
             how = "bootstrap interval"

@@ -81,7 +81,7 @@ def test_rectangular_scans_give_their_shape_and_spacing(rect_dir):
     truth = contact.self_affine((NX, NY), (NX * DX, NY * DY), hurst=0.7, rq=0.3e-6, rng=3)
     np.testing.assert_allclose(surface.heights, remove_form(truth, "poly2").heights,
                                atol=1e-9 * 0.3e-6 * 1e3)
-    assert "96 × 56 points (spacing 2 µm along x, 3 µm along y) on 0.192 × 0.168 mm²" in \
+    assert "96 × 56 points (spacing 2 µm along x, 3 µm along y) on 0.192 mm × 0.168 mm" in \
         scene_sentence(settings)
     rows = dict((r[0], r[1]) for r in surface_rows(settings))
     assert rows["grid"] == "96 × 56" and rows["spacing (µm)"] == "2 × 3"
@@ -163,7 +163,7 @@ def test_like_simulates_the_rectangular_template(rect_dir, tmp_path):
         res = run_study(settings, FAST, tmp_path / "like", workers=1, progress=False, compare_bem=0)
     text = res.report_md.read_text()
     assert "## Measured template and simulated surfaces" in text
-    assert "96 × 64 points (spacing" not in text and "96 × 64 points on 0.192 × 0.128 mm²" in text
+    assert "96 × 64 points (spacing" not in text and "96 × 64 points on 0.192 mm × 0.128 mm" in text
     # unequal spacings are put on the coarser one (3 µm) on both axes
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", contact.ContactWarning)

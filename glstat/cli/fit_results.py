@@ -193,11 +193,11 @@ def maximum_summary(res: FitResults, n_max: float, level: float, count=None) -> 
     row = prediction_rows(res, "maximum")
     if bm is not None and row is not None:
         mlo, mhi = bm.mixture_interval()
-        median = float(np.median(bm.draws))
-        # one column of medians: the draws' row of the prediction's table holds their mean
+        median = float(row["estimate"].iloc[0])  # the median of the draws
+        # one column of medians: the draws' row of the bootstrap's table holds their mean
         table = bm.summary().rename(columns={"center": "median"})
         table.loc[table["quantity"] == "draws", "median"] = median
-        out.update(mean=float(row["estimate"].iloc[0]), median=median, low=float(row["low"].iloc[0]),
+        out.update(mean=bm.mean, median=median, low=float(row["low"].iloc[0]),
                    high=float(row["high"].iloc[0]), mixture_low=mlo, mixture_high=mhi,
                    table=table, dist=bm.mixture)
     else:

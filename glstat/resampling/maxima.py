@@ -278,8 +278,14 @@ class BootstrapMaximum:
 
     @property
     def mean(self) -> float:
-        """Mean of the per-GLD draws (units of the data)."""
+        """Mean of the per-GLD draws (units of the data); it follows the heaviest of the
+        bootstrap tails, :attr:`median` is the stable centre."""
         return float(np.mean(self.draws))
+
+    @property
+    def median(self) -> float:
+        """Median of the per-GLD draws (units of the data)."""
+        return float(np.median(self.draws))
 
     def _level(self, confidence_level):
         """The level of the percentile pair read for the nominal ``confidence_level``."""

@@ -50,6 +50,7 @@ from .analysis_settings import (
     sample_rng,
     surface_values,
 )
+from .answer import case_label
 from .campaign_settings import CampaignSettings
 from .fit_choice import FitChoice, choose_fit
 from .plasticity import plastic_summary
@@ -304,8 +305,8 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
             case: dict[str, SampleAnalysis | dict[str, float]] = {}
             for sample in MODEL_SAMPLES[model]:
                 if progress is not None:
-                    progress(f"analysis ({MODEL_NAMES[model]}): H = {settings.hurst[ih]:g}, "
-                             f"{settings.pressures[il] / 1e6:g} MPa, {SAMPLE_LABELS[sample]}")
+                    progress(f"analysis ({MODEL_NAMES[model]}): {case_label(settings, ih, il)}, "
+                             f"{SAMPLE_LABELS[sample]}")
                 case[sample] = analyse_sample(results, keys, sample, a, ih + slot, il,
                                               area_m2=settings.size[0] * settings.size[1],
                                               advice=settings.more_surfaces_advice())

@@ -24,9 +24,9 @@ _ISO_DISPLAY = {"Sq": ("Sq (µm)", 1e6), "Ssk": ("Ssk", 1.0), "Sku": ("Sku", 1.0
 
 
 def area_text(settings) -> str:
-    """The side lengths of one surface, ``"Lx × Ly mm²"`` (three significant digits)."""
+    """The side lengths of one surface, ``"Lx mm × Ly mm"`` (three significant digits)."""
     lx, ly = settings.size
-    return f"{lx * 1e3:.3g} × {ly * 1e3:.3g} mm²"
+    return f"{lx * 1e3:.3g} mm × {ly * 1e3:.3g} mm"
 
 
 def grid_text(settings) -> str:
@@ -86,7 +86,8 @@ def surface_rows(settings) -> list[list[Any]]:
                      *(v * 1e6 for v in settings.file_spacing))]] if settings.file_spacing else []),
                  *([["length unit given (--unit)", settings.file_unit]] if settings.file_unit
                    else []),
-                 ["Hurst exponent (median structure-function estimate; a label only)",
+                 ["Hurst exponent (median of the areas' structure-function estimates in [0, 1]; "
+                  "a label only, 0.5 when no area has one: column H below)",
                   f"{settings.hurst[0]:.3g}"]]
     else:
         rows.append(["Hurst exponents H", ", ".join(f"{h:.4g}" for h in settings.hurst)])
