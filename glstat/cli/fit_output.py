@@ -415,7 +415,7 @@ def summary_frame(res: FitResults) -> Any:
                      "confidence_level": None})
     if res.maximum is not None:
         m = res.maximum
-        rows.append({"quantity": "maximum", "area_factor": np.nan, "n": m["n"], "estimate": m["mean"],
+        rows.append({"quantity": "maximum", "area_factor": np.nan, "n": m["n"], "estimate": m["median"],
                      "low": m["low"], "high": m["high"], "confidence_level": m["confidence_level"]})
     if res.damage is not None:
         d = res.damage

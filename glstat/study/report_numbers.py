@@ -165,8 +165,8 @@ def maximum_records(analysis: dict) -> list[dict[str, Any]]:
     -------
     list of dict
         Grid samples first, then contact-spot samples: ``ih``, ``il``, ``sample``, ``n`` (the
-        reference count), ``maximum`` (the bootstrap maximum), ``mean``, ``low``, ``high``
-        (its mixture's mean and interval), ``observed_max`` (the largest value of the sample,
+        reference count), ``maximum`` (the bootstrap maximum), ``median``, ``low``, ``high``
+        (its mixture's median and interval), ``observed_max`` (the largest value of the sample,
         MPa: beyond it the prediction extrapolates the fitted tail).
     """
     out = []
@@ -175,7 +175,7 @@ def maximum_records(analysis: dict) -> list[dict[str, Any]]:
             bm = sa.maximum
             lo, hi = bm.mixture_interval()
             out.append({"ih": ih, "il": il, "sample": sample, "n": sa.n_ref, "maximum": bm,
-                        "mean": bm.mean, "low": lo, "high": hi,
+                        "median": float(bm.mixture.median()), "low": lo, "high": hi,
                         "observed_max": float(np.max(sa.data)) if sa.data.size else math.nan})
     return out
 

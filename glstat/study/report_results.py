@@ -85,8 +85,8 @@ def maximum_section(settings, asettings, analysis: dict) -> Blocks:
     out.figure("maximum_density", maximum_figure(settings, asettings, records),
                f"Density of the maximal pressure over one analysed area, per H, with its {lvl} % "
                f"interval (shaded).")
-    out.table(["case", "sample", "n", "mean maximum", f"{lvl} % low", f"{lvl} % high"],
-              [[case_label(settings, m["ih"], m["il"]), SAMPLE_LABELS[m["sample"]], m["n"], m["mean"],
+    out.table(["case", "sample", "n", "median maximum", f"{lvl} % low", f"{lvl} % high"],
+              [[case_label(settings, m["ih"], m["il"]), SAMPLE_LABELS[m["sample"]], m["n"], m["median"],
                 m["low"], m["high"]] for m in records],
               "Maximal pressure (MPa) over one analysed area.")
     return out
