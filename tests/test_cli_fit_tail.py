@@ -239,3 +239,28 @@ def test_a_damage_the_data_cannot_determine_is_said_so(tmp_path):
     assert answer[3].endswith(f" (on maxima of {res.cross_validation.block_size} values, not of 1000000)")
     assert any(line.startswith("  area factor 1: the interval spans ") and
                "the data do not determine the damage at this hardness" in line for line in lines)
+
+
+def test_a_rejected_goodness_of_fit_is_said_so(tmp_path):
+    """Two modes (not a GLD): the parametric-bootstrap tests reject at 5 %, and
+    a line under the table names them and what models the largest values; a line appears
+    exactly when a p-value is below 0.05."""
+    rng = np.random.default_rng(2)
+    x = np.r_[rng.normal(100.0, 10.0, 400), rng.normal(140.0, 10.0, 200)]
+    path = tmp_path / "two.csv"
+    np.savetxt(path, x, header="pressure", comments="")
+    for tail, words in (("pareto", "the maximum and the damage use the generalized Pareto tail"),
+                        ("none", "--tail pareto models the largest values on their own")):
+        lines: list[str] = []
+        args = cli_fit.build_parser().parse_args(
+            [str(path), "--bootstrap", "0", "--gof-resamples", "39", "--seed", "1", "--tail", tail,
+             "--out", str(tmp_path / tail)])
+        res = cli_fit.run(args, lines.append)
+        row = res.gof.iloc[0]
+        low = [name for name, col in (("Kolmogorov–Smirnov", "ks_pvalue"), ("Anderson–Darling", "ad_pvalue"),
+                                      ("Cramér–von Mises", "cvm_pvalue"), ("chi-squared", "chi2_pvalue"))
+               if row[col] < 0.05]
+        assert low  # the case this test is about
+        said = [line for line in lines if line.startswith("  rejected at 5 % by ")]
+        assert said == [f"  rejected at 5 % by {', '.join(low)}: the GLD does not describe all of these "
+                        f"data; {words}" + (" above it" if tail == "pareto" else "")]

@@ -41,6 +41,11 @@ def indent(text: str, pad: str = "  ") -> str:
     return "\n".join(pad + line for line in text.splitlines())
 
 
+#: How the report names the goodness-of-fit statistics with a p-value.
+GOF_NAMES = {"ks": "Kolmogorov–Smirnov", "ad": "Anderson–Darling", "cvm": "Cramér–von Mises",
+             "chi2": "chi-squared"}
+
+
 def gof_table(gof) -> Any:
     import pandas as pd
 
@@ -84,7 +89,9 @@ def print_fit(res: FitResults, emit: Callable[[str], None]) -> None:
     emit(indent(text_table(sol)))
 
 
-def print_gof(res: FitResults, emit: Callable[[str], None]) -> None:
+def print_gof(res: FitResults, emit: Callable[[str], None], tail: bool = False) -> None:
+    """The goodness-of-fit table and, where a test rejects at 5 %, a line that says so and
+    what models the largest values: the Pareto tail (``tail``) or nothing."""
     row = res.gof.iloc[0]
     emit("")
     emit(f"goodness of fit (n = {int(row['n'])}; p-values: {row['pvalue_method']}):")
@@ -93,6 +100,13 @@ def print_gof(res: FitResults, emit: Callable[[str], None]) -> None:
     emit(indent(text_table(tab)))
     if res.gof_note is not None:
         emit(f"  {res.gof_note}")
+    rejected = [GOF_NAMES.get(s, s) for s, p in zip(tab["statistic"], gof_table(res.gof)["p_value"],
+                                                   strict=True) if np.isfinite(p) and p < 0.05]
+    if rejected:
+        then = ("the maximum and the damage use the generalized Pareto tail above it" if tail
+                else "--tail pareto models the largest values on their own")
+        emit(f"  rejected at 5 % by {', '.join(rejected)}: the GLD does not describe all of these data; "
+             f"{then}")
 
 
 def print_bootstrap(bf: BootstrapFit, summary: Any, emit: Callable[[str], None]) -> None:
