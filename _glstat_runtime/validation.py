@@ -286,10 +286,13 @@ PLAUSIBLE_ROUGHNESS = 1e-3
 def implausible_roughness(rq: float, length: float | None = None, name: str = "rq") -> str | None:
     """Why ``rq`` (m) looks like micrometres given as metres (above a millimetre, or above a
     tenth of the surface's side ``length`` in m), in words; None when it is plausible."""
-    if rq > PLAUSIBLE_ROUGHNESS or (length is not None and rq > 0.1 * length):
+    if rq > PLAUSIBLE_ROUGHNESS:
         where = "" if length is None else f" on a {length:g} m long surface"
         return (f"{name} = {rq:g} m{where} is implausible for an RMS roughness in metres; "
                 f"did you mean {rq:g}e-6 ({rq:g} µm)?")
+    if length is not None and rq > 0.1 * length:
+        return (f"{name} = {rq:g} m is more than a tenth of the surface's side ({length:g} m), "
+                "implausibly rough for an RMS roughness; give both in metres")
     return None
 
 

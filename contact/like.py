@@ -290,7 +290,9 @@ def weierstrass_like(
     p = weierstrass_parameters(surface, gamma=gamma, shape=shape)
     rng = np.random.default_rng(rng)
     return [
-        _levelled(weierstrass(p.shape, p.length, p.hurst, gamma=p.gamma, rq=p.rq, rng=rng,
-                              n_terms=p.n_terms), p.rq)
+        # generated at 1e-3 of the shorter side (a plausible roughness in metres, whatever the
+        # measured one), then scaled to the measured Rq
+        _levelled(weierstrass(p.shape, p.length, p.hurst, gamma=p.gamma,
+                              rq=1e-3 * min(p.length), rng=rng, n_terms=p.n_terms), p.rq)
         for _ in range(n)
     ]

@@ -354,12 +354,12 @@ def _group_parameters(
 def _form_hint(h: np.ndarray, z: np.ndarray, valid: np.ndarray, dx: float, dy: float) -> str:
     """Warn when a least-squares plane explains more than :data:`FORM_HINT_FRACTION` of the
     variance of the heights ``z`` (m, about their mean); return the hint for the Hurst
-    warning."""
+    warning where the plane explains a noticeable share (a tenth), else ""."""
     hint = "; the heights were not levelled: level=\"plane\" removes a remaining tilt"
     zv = z[valid]
     var_mean = float(np.mean(zv * zv))
     if zv.size < 4 or var_mean == 0:  # a plane through 3 points explains everything
-        return hint
+        return ""
     pv = level_heights(h, valid, dx, dy, "plane")[valid]
     var_plane = float(np.mean(pv * pv))
     explained = 1.0 - var_plane / var_mean
@@ -372,7 +372,7 @@ def _form_hint(h: np.ndarray, z: np.ndarray, valid: np.ndarray, dx: float, dy: f
             "to the surface, pass level=\"plane\" (surface.roughness(level=\"plane\")) to "
             "remove it"
         )
-    return hint
+    return hint if explained > 0.1 else ""
 
 
 def roughness_parameters(

@@ -56,8 +56,8 @@ def main() -> None:
 
     settings = measured_settings(folder, form="poly2", pressures=(20e6,))
     (nx, ny), (lx, ly) = settings.shape, settings.size
-    print(f"{settings.n_surfaces} measured files, {nx} × {ny} points on {lx * 1e3:g} × "
-          f"{ly * 1e3:g} mm², mean Rq {settings.rq * 1e6:.3g} µm about the quadratic form")
+    print(f"{settings.n_surfaces} measured files, {nx} × {ny} points on {lx * 1e3:g} mm × "
+          f"{ly * 1e3:g} mm, mean Rq {settings.rq * 1e6:.3g} µm about the quadratic form")
     res = run_study(settings, analysis, Path(args.out) / "measured", workers=1,
                     progress=False, compare_bem=0)
     row = res.summary().query("sample == 'asperity'").iloc[0]

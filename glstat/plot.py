@@ -72,8 +72,9 @@ def plot_maximum_density(max_dist, interval: float = 0.9, ax=None, *,
     else:
         lo, hi = (float(v) for v in bounds)
     width = hi - lo
-    x0 = max(float(max_dist.ppf(1e-4)), lo - 2.0 * width)
-    x1 = min(float(max_dist.isf(1e-4)), hi + 2.0 * width)
+    x0, x1 = float(max_dist.ppf(1e-4)), float(max_dist.isf(1e-4))
+    if width > 0:
+        x0, x1 = max(x0, lo - 2.0 * width), min(x1, hi + 2.0 * width)
     x = np.linspace(x0, x1, 400)
     y = np.asarray(max_dist.pdf(x), dtype=float)
     ax.plot(x, y, color="C0", label="density")

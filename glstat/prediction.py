@@ -36,9 +36,21 @@ if TYPE_CHECKING:
     from .resampling import BootstrapFit
     from .resampling.maxima import BootstrapMaximum, BootstrapProbability
 
-__all__ = ["MaximumPrediction", "collect_warnings", "predict_maximum"]
+__all__ = ["UNDETERMINED_WIDTH", "MaximumPrediction", "collect_warnings", "predict_maximum",
+           "undetermined"]
 
 T = TypeVar("T")
+
+#: A probability interval at least this wide (of [0, 1]) is not determined by the data: it
+#: cannot tell a rare damage from a certain one.
+UNDETERMINED_WIDTH = 0.9
+
+
+def undetermined(low, high) -> np.ndarray:
+    """Where the interval ``[low, high]`` of a probability covers at least
+    :data:`UNDETERMINED_WIDTH` of [0, 1] (boolean array of their broadcast shape)."""
+    return np.asarray(high, dtype=float) - np.asarray(low, dtype=float) >= UNDETERMINED_WIDTH
+
 
 #: The columns of :meth:`MaximumPrediction.to_frame`, in order.
 FRAME_COLUMNS = ("quantity", "threshold", "area_factor", "n", "count", "estimate", "low", "high",
@@ -269,7 +281,11 @@ class MaximumPrediction:
             k = np.broadcast_to(d.area_factor, np.shape(d.estimate)).ravel()
             for kj, e, lo, hi in zip(k, np.ravel(d.estimate), np.ravel(d.low), np.ravel(d.high),
                                      strict=True):
-                lines.append(f"  area factor {kj:.6g}: {e:.6g} [{lo:.6g}, {hi:.6g}]")
+                if undetermined(lo, hi):
+                    lines.append(f"  area factor {kj:.6g}: not determined by the data, anywhere in "
+                                 f"[{lo:.6g}, {hi:.6g}] (full-sample {what} {e:.6g})")
+                else:
+                    lines.append(f"  area factor {kj:.6g}: {e:.6g} [{lo:.6g}, {hi:.6g}]")
         if self.note:
             lines.append(f"note: {self.note}")
         if self.notes:

@@ -249,12 +249,15 @@ def test_a_rejected_goodness_of_fit_is_said_so(tmp_path):
     x = np.r_[rng.normal(100.0, 10.0, 400), rng.normal(140.0, 10.0, 200)]
     path = tmp_path / "two.csv"
     np.savetxt(path, x, header="pressure", comments="")
-    for tail, words in (("pareto", "the maximum and the damage use the generalized Pareto tail"),
-                        ("none", "--tail pareto models the largest values on their own")):
+    for tail, extra, words in (
+            ("pareto", ["--hardness", "150"],
+             "; the maximum and the damage use a generalized Pareto tail on the largest values"),
+            ("none", ["--hardness", "150"], "; --tail pareto would model the largest values on their own"),
+            ("pareto", [], "")):  # neither a maximum nor a damage asked for: nothing about them
         lines: list[str] = []
         args = cli_fit.build_parser().parse_args(
             [str(path), "--bootstrap", "0", "--gof-resamples", "39", "--seed", "1", "--tail", tail,
-             "--out", str(tmp_path / tail)])
+             "--no-cross-validate", *extra, "--out", str(tmp_path / f"{tail}{len(extra)}")])
         res = cli_fit.run(args, lines.append)
         row = res.gof.iloc[0]
         low = [name for name, col in (("Kolmogorov–Smirnov", "ks_pvalue"), ("Anderson–Darling", "ad_pvalue"),
@@ -263,4 +266,15 @@ def test_a_rejected_goodness_of_fit_is_said_so(tmp_path):
         assert low  # the case this test is about
         said = [line for line in lines if line.startswith("  rejected at 5 % by ")]
         assert said == [f"  rejected at 5 % by {', '.join(low)}: the GLD does not describe all of these "
-                        f"data; {words}" + (" above it" if tail == "pareto" else "")]
+                        f"data{words}"]
+    # a GLD sample whose tests all pass at 5 % gets no such line
+    g = glstat.GLD(100.0, 0.02, 0.1, 0.2).rvs(600, random_state=np.random.default_rng(4))
+    np.savetxt(path, g, header="pressure", comments="")
+    lines = []
+    args = cli_fit.build_parser().parse_args(
+        [str(path), "--bootstrap", "0", "--gof-resamples", "39", "--seed", "1", "--out",
+         str(tmp_path / "gld")])
+    res = cli_fit.run(args, lines.append)
+    row = res.gof.iloc[0]
+    assert min(row[c] for c in ("ks_pvalue", "ad_pvalue", "cvm_pvalue", "chi2_pvalue")) >= 0.05
+    assert not any(line.startswith("  rejected at 5 %") for line in lines)

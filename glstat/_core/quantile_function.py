@@ -744,7 +744,7 @@ def solve_lower(fam, a, b, y, y_lo=0.0):
             t_new = t - 65536.0 * max(1.0, abs(t))
         # a Newton step that leaves t where it is (below half an ulp of t: |y| beyond 1e16
         # with a low part from loc and scale) has found the root to the precision of t
-        newton = (t_new > t_lo and t_new < t_hi) or t_new == t
+        newton = (t_new > t_lo and t_new < t_hi) or (t_new == t and math.isfinite(dr))
         # a Newton iteration creeping along an exponential (same side of the root, step small
         # against the distance already travelled) is replaced by a bisection / expansion step
         sign = 1.0 if r > 0.0 else -1.0

@@ -166,7 +166,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
     finally:
         bar.close()
     collect_notes(caught, notes)
-    print_gof(res, emit, tail=library_tail(args.tail) is not None)
+    asked = args.n_max is not None or args.hardness is not None
+    print_gof(res, emit, tail=(library_tail(args.tail) is not None) if asked else None)
     n = args.n_max if args.n_max is not None else float(x.size)
     factors = np.asarray(args.area_factor if args.area_factor is not None else [1.0], dtype=float)
     if args.bootstrap:

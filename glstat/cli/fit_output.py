@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..formatting import fmt_number
+from ..prediction import undetermined as interval_undetermined
 from .fit_options import GOF_ROWS, METHOD_NAMES
 from .fit_results import FitResults
 from .sample_files import Sample
@@ -19,13 +20,11 @@ from .sample_files import Sample
 if TYPE_CHECKING:  # pragma: no cover
     from ..resampling import BootstrapFit
 
-__all__ = ["UNDETERMINED", "indent", "interval_words", "model_doc", "print_answer", "print_bootstrap",
+__all__ = ["indent", "interval_words", "model_doc", "print_answer", "print_bootstrap",
            "print_cross_validation",
            "print_damage", "print_fit", "print_gof", "print_header", "print_maximum", "print_model",
            "undetermined", "write_figures", "write_tables"]
 
-#: A damage interval at least this wide (of [0, 1]) is reported as not determined by the data.
-UNDETERMINED = 0.9
 
 
 def fmt_g(v: float, digits: int = 6) -> str:
@@ -89,9 +88,10 @@ def print_fit(res: FitResults, emit: Callable[[str], None]) -> None:
     emit(indent(text_table(sol)))
 
 
-def print_gof(res: FitResults, emit: Callable[[str], None], tail: bool = False) -> None:
-    """The goodness-of-fit table and, where a test rejects at 5 %, a line that says so and
-    what models the largest values: the Pareto tail (``tail``) or nothing."""
+def print_gof(res: FitResults, emit: Callable[[str], None], tail: bool | None = None) -> None:
+    """The goodness-of-fit table and, where a test rejects at 5 %, a line that says so and,
+    when a maximum or a damage is asked for (``tail`` not None), what models the largest
+    values: a generalized Pareto tail (``tail``) or the GLD alone."""
     row = res.gof.iloc[0]
     emit("")
     emit(f"goodness of fit (n = {int(row['n'])}; p-values: {row['pvalue_method']}):")
@@ -103,10 +103,11 @@ def print_gof(res: FitResults, emit: Callable[[str], None], tail: bool = False) 
     rejected = [GOF_NAMES.get(s, s) for s, p in zip(tab["statistic"], gof_table(res.gof)["p_value"],
                                                    strict=True) if np.isfinite(p) and p < 0.05]
     if rejected:
-        then = ("the maximum and the damage use the generalized Pareto tail above it" if tail
-                else "--tail pareto models the largest values on their own")
-        emit(f"  rejected at 5 % by {', '.join(rejected)}: the GLD does not describe all of these data; "
-             f"{then}")
+        then = ("" if tail is None else
+                "; the maximum and the damage use a generalized Pareto tail on the largest values"
+                if tail else "; --tail pareto would model the largest values on their own")
+        emit(f"  rejected at 5 % by {', '.join(rejected)}: the GLD does not describe all of these "
+             f"data{then}")
 
 
 def print_bootstrap(bf: BootstrapFit, summary: Any, emit: Callable[[str], None]) -> None:
@@ -204,11 +205,11 @@ def print_damage(d: dict[str, Any], args: argparse.Namespace, emit: Callable[[st
 
 
 def undetermined(d: dict[str, Any]) -> np.ndarray:
-    """Per area factor of a damage summary: True where its interval covers at least 90 % of
-    [0, 1], so that the data cannot tell a rare damage from a certain one."""
+    """Per area factor of a damage summary: True where its interval is not determined by the
+    data (:func:`glstat.prediction.undetermined`)."""
     if d["low"] is None:
         return np.zeros(np.size(d["estimate"]), dtype=bool)
-    return np.asarray(d["high"], dtype=float) - np.asarray(d["low"], dtype=float) >= UNDETERMINED
+    return interval_undetermined(d["low"], d["high"])
 
 
 def _percent(p: float) -> str:

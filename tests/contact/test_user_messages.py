@@ -72,14 +72,21 @@ def test_the_tilt_hint_needs_the_plane_to_explain_more_than_half_the_variance(fr
     assert len(tilt) == int(fraction > FORM_HINT_FRACTION)
 
 
-def test_the_hurst_warning_suggests_a_plane_only_when_the_heights_were_not_levelled():
-    noise = np.random.default_rng(0).standard_normal((64, 64)) * 1e-7  # no Hurst exponent
-    s = contact.Surface(noise, DX)
+def test_the_hurst_warning_suggests_a_plane_only_for_unlevelled_heights_with_a_tilt():
+    """Noise has no Hurst exponent: with a tilt that a plane explains a noticeable share of
+    (30 %, below the tilt warning's half), the Hurst warning suggests level="plane"; without
+    a tilt, or once levelled, it does not."""
+    rng = np.random.default_rng(0)
+    noise = rng.standard_normal((64, 64)) * 1e-7
+    x = np.arange(64)[:, None] * np.ones((1, 64))
+    tilt = x - x.mean()
+    tilted = noise + np.sqrt(0.3 / 0.7 * np.mean(noise**2) / np.mean(tilt**2)) * tilt
     with pytest.warns(contact.ContactWarning, match=r'Hurst exponent undefined.*level="plane"'):
-        s.roughness()
-    with pytest.warns(contact.ContactWarning, match="Hurst exponent undefined") as record:
-        s.roughness(level="plane")
-    assert not any("level=" in m for m in _messages(record))
+        contact.Surface(tilted, DX).roughness()
+    for h, level in ((noise, "mean"), (tilted, "plane")):
+        with pytest.warns(contact.ContactWarning, match="Hurst exponent undefined") as record:
+            contact.Surface(h, DX).roughness(level=level)
+        assert not any("level=" in m for m in _messages(record))
 
 
 def test_roughness_warnings_point_at_the_callers_line():
@@ -150,3 +157,18 @@ def test_summary_is_a_float_series_that_prints_small_lengths():
     assert abs(res.separation) < 1e-5  # a length that a fixed-point printout shows as 0.0
     shown = contact.solve_displacement(s, res.separation, E, NU).summary()
     assert np.isnan(shown["target_force"]) and shown.name == "asperity-displacement"
+
+
+def test_a_rough_small_scan_is_named_without_a_unit_guess_and_like_adds_no_warning():
+    """Sq 7.4 µm on a 64 µm scan is more than a tenth of the side: the message says so and does
+    not suggest micrometres (the value already is some); surfaces like it are generated at a
+    plausible roughness first, so weierstrass_like itself warns of nothing."""
+    with pytest.warns(contact.ContactWarning) as caught:
+        scan = contact.self_affine((64, 64), 64e-6, hurst=0.7, rq=7.4e-6, rng=3)
+    text = " ".join(str(w.message) for w in caught)
+    assert "more than a tenth of the surface's side (6.4e-05 m)" in text and "did you mean" not in text
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", contact.ContactWarning)
+        like = contact.weierstrass_like(scan, 1, rng=1)[0]
+    assert float(like.roughness(level="plane", warn=False)["Sq"]) == pytest.approx(
+        contact.fit_spectrum(scan).rq, rel=1e-10)
