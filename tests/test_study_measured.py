@@ -22,9 +22,9 @@ from glstat.study.measured import (
 )
 from glstat.study.topography import read_topography
 
-# Many inputs here are unit-free (heights of order 1 on a micrometre or millimetre grid, files of
-# small integers); contact's check of the units warns about them, which these tests do not examine.
-pytestmark = pytest.mark.filterwarnings("ignore:the RMS of the heights:contact.errors.ContactWarning")
+# The tests that read unit-free heights (small integers, or micrometres as metres) say so: the
+# units check warns about them, which those tests do not examine.
+UNIT_FREE = pytest.mark.filterwarnings("ignore:the RMS of the heights:contact.errors.ContactWarning")
 
 FAST = AnalysisSettings(n_resamples=20, grid_resamples=10)
 TILT = 0.05  # a form (plane) of 50 µm per mm, which the study must remove
@@ -199,6 +199,7 @@ def test_cli_names_a_missing_topography(tmp_path):
 # -- one scan as many areas (--tile) ---------------------------------------------------------
 
 
+@UNIT_FREE
 def test_tiles_cut_a_grid_into_equal_areas_and_drop_the_rest():
     from glstat.study.topography import cut_tile, tile_bounds
 
@@ -269,6 +270,7 @@ def test_one_scan_without_tiles_says_to_cut_it_and_never_names_refused_options(m
 
 # the scan holds micrometres read as metres (the file states no unit): the roughness check warns
 @pytest.mark.filterwarnings("ignore:rq = .* is implausible:contact.errors.ContactWarning")
+@UNIT_FREE
 def test_cli_reads_files_without_spacing_with_spacing_and_unit(tmp_path, capsys):
     from glstat.cli.commands import main
 
@@ -357,6 +359,7 @@ def test_report_markdown_quotes_names_from_files_literally():
     assert "<script>" not in rep.to_html()
 
 
+@UNIT_FREE
 def test_a_scan_in_another_length_unit_is_refused_by_name(measured_dir, tmp_path):
     for i in range(3):
         (tmp_path / f"scan_{i:02d}.npz").write_bytes((measured_dir / f"scan_{i:02d}.npz").read_bytes())
