@@ -231,7 +231,7 @@ def test_a_damage_the_data_cannot_determine_is_said_so(tmp_path):
     assert wide[0] and not wide[1]  # the case this test is about, and one that is determined
     start = next(i for i, line in enumerate(lines) if line.startswith("answer ("))
     answer = lines[start + 1:start + 5]
-    assert answer[1] == (f"  damage P(max > 1500) on n = 1000000 points: not determined by the data: "
+    assert answer[1] == (f"  damage P(max > 1500 MPa) on n = 1000000 points: not determined by the data: "
                          f"anywhere in [{100 * d['low'][0]:.3g} %, {100 * d['high'][0]:.3g} %] "
                          f"(full-sample model {100 * d['estimate'][0]:.3g} %)")
     assert "not determined" not in answer[2] and f"{100 * d['estimate'][1]:.3g} %" in answer[2]
@@ -278,3 +278,27 @@ def test_a_rejected_goodness_of_fit_is_said_so(tmp_path):
     row = res.gof.iloc[0]
     assert min(row[c] for c in ("ks_pvalue", "ad_pvalue", "cvm_pvalue", "chi2_pvalue")) >= 0.05
     assert not any(line.startswith("  rejected at 5 %") for line in lines)
+
+
+@pytest.mark.parametrize(("column", "extra", "unit"), [
+    ("pressure_MPa", [], "MPa"), ("p [µm]", [], "µm"), ("pressure (MPa)", ["--unit", "kPa"], "kPa"),
+    ("pressure", [], None), ("speed_ms", [], None)])
+def test_the_unit_of_the_values_is_shown_beside_the_maximum_and_the_hardness(tmp_path, column, extra,
+                                                                            unit):
+    """From the column name when it ends in a unit, or --unit; nothing when neither says one."""
+    x = np.random.default_rng(11).gamma(4.0, 350.0, 300)
+    path = tmp_path / "p.csv"
+    np.savetxt(path, x, header=column, comments="")
+    lines: list[str] = []
+    args = cli_fit.build_parser().parse_args(
+        [str(path), "--n-max", "1000", "--hardness", "3500", "--bootstrap", "30", "--gof-resamples",
+         "0", "--no-cross-validate", "--seed", "1", "--out", str(tmp_path / "o"), *extra])
+    res = cli_fit.run(args, lines.append)
+    doc = json.loads((tmp_path / "o" / "fit.json").read_text())
+    assert res.unit == unit and doc["input"]["unit"] == unit
+    start = next(i for i, line in enumerate(lines) if line.startswith("answer ("))
+    maximum_line, damage_line = lines[start + 1], lines[start + 2]
+    if unit is None:
+        assert maximum_line.endswith("]") and "P(max > 3500) on" in damage_line
+    else:
+        assert maximum_line.endswith(f"] {unit}") and f"P(max > 3500 {unit}) on" in damage_line

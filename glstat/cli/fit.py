@@ -40,6 +40,7 @@ from .fit_options import (
     check_options,
     check_output_dir,
     check_sample,
+    column_unit,
     cross_validation_plan,
     gof_resamples_for,
 )
@@ -149,7 +150,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
                        "no distribution to report")
     lo, hi = (float(v) for v in f.dist.support())
     res = FitResults(sample=sample, fit=f, gof=None, seed=seed, support=(lo, hi), notes=notes,
-                     tail=args.tail)
+                     tail=args.tail,
+                     unit=args.unit if args.unit is not None else column_unit(sample.column))
     print_fit(res, emit)
     res.gof_resamples, res.gof_note = gof_resamples_for(x.size, args.gof_resamples)
     from tqdm import tqdm

@@ -16,6 +16,7 @@ from .._fit_engine.sample_statistics import MIN_N
 from .sample_files import InputError, Sample, quoted
 
 __all__ = [
+    "COLUMN_UNITS",
     "CV_BLOCKS",
     "CV_LIKELIHOOD_RESAMPLES",
     "CV_MIN_BLOCK",
@@ -30,6 +31,7 @@ __all__ = [
     "check_options",
     "check_output_dir",
     "check_sample",
+    "column_unit",
     "cross_validation_plan",
     "gof_resamples_for",
     "parse_n_max",
@@ -57,6 +59,21 @@ CV_LIKELIHOOD_RESAMPLES = 50
 TAIL_CHOICES = ("pareto", "none")
 GOF_ROWS = (("loglik", None), ("aic", None), ("bic", None), ("ks", "ks_pvalue"), ("ad", "ad_pvalue"),
              ("cvm", "cvm_pvalue"), ("chi2", "chi2_pvalue"), ("max_qdev_iqr", None))
+
+
+#: Units recognised at the end of a column name ("pressure_MPa", "p [MPa]", "p (MPa)").
+COLUMN_UNITS = ("Pa", "kPa", "MPa", "GPa", "N", "mN", "m", "mm", "µm", "um", "nm")
+
+
+def column_unit(column: str) -> str | None:
+    """The unit a column name ends in (:data:`COLUMN_UNITS`), after ``_``, a space, ``[`` or
+    ``(``; None when it names none ("pressure_MPa" -> "MPa", "p [µm]" -> "µm")."""
+    import re
+
+    found = re.search(r"(?:^|[_\s\[(])([A-Za-zµ]+)[\])]?\s*$", column)
+    if found is None or found.group(1) not in COLUMN_UNITS:
+        return None
+    return "µm" if found.group(1) == "um" else found.group(1)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -99,6 +116,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "in contact per surface)")
     p.add_argument("--area-factor", type=float, nargs="+", default=None, metavar="K",
                    help="area(s) of interest as multiples of the analysed area (default 1)")
+    p.add_argument("--unit", default=None, metavar="U",
+                   help="unit of the values, shown beside the maximum and the hardness (default: "
+                        "read from the column name when it ends in one, e.g. 'pressure_MPa' or "
+                        "'pressure [MPa]'; none otherwise)")
     p.add_argument("--hardness", type=float, default=None, metavar="P",
                    help="hardness / yield pressure, in the units of the data: report the damage "
                         "probability P(max > P)")

@@ -155,16 +155,24 @@ def print_maximum(m: dict[str, Any], emit: Callable[[str], None]) -> None:
     level = 100 * m["confidence_level"]
     emit("")
     if "table" in m:
-        head = (f"maximum of {how_many(m)}: median {fmt_g(m['median'])}, {level:g} % interval "
-                f"[{fmt_g(m['low'])}, {fmt_g(m['high'])}]")
+        u = _unit(m)
+        head = (f"maximum of {how_many(m)}: median {fmt_g(m['median'])}{u}, {level:g} % interval "
+                f"[{fmt_g(m['low'])}, {fmt_g(m['high'])}]{u}")
         calibrated = "calibrated; " if interval_words(m) is not None else ""
         what = "model" if calibrated else "GLD"
         emit(f"{head} ({calibrated}one draw per bootstrap {what})")
         emit(indent(text_table(m["table"][["quantity", "median", "low", "high"]])))
     else:
         what = "fit" if m.get("tail_size") is None else "model"
+        u = _unit(m)
         emit(f"maximum of {how_many(m)} (full-sample {what}, no bootstrap): median "
-             f"{fmt_g(m['median'])}, {level:g} % interval [{fmt_g(m['low'])}, {fmt_g(m['high'])}]")
+             f"{fmt_g(m['median'])}{u}, {level:g} % interval [{fmt_g(m['low'])}, "
+             f"{fmt_g(m['high'])}]{u}")
+
+
+def _unit(d: dict[str, Any]) -> str:
+    """" MPa" for a summary whose values have a unit, else ""."""
+    return f" {d['unit']}" if d.get("unit") else ""
 
 
 def how_many(d: dict, unit: str = "values") -> str:
@@ -185,7 +193,7 @@ def print_damage(d: dict[str, Any], args: argparse.Namespace, emit: Callable[[st
     calibrated = "calibrated " if interval_words(d) is not None else ""
     interval = (f", {level:g} % {calibrated}bootstrap interval:" if with_ci
                 else " (no bootstrap: no interval):")
-    emit(f"damage probability P(max > {d['hardness']:g}) for {how_many(d, 'points')} ({src})"
+    emit(f"damage probability P(max > {d['hardness']:g}{_unit(d)}) for {how_many(d, 'points')} ({src})"
          + interval)
     tab = pd.DataFrame({"area_factor": d["area_factors"], "points": [f"{v:.10g}" for v in d["points"]],
                         "integrity": d["integrity"], "damage": d["estimate"]})
@@ -245,12 +253,12 @@ def print_answer(res: FitResults, emit: Callable[[str], None]) -> None:
     emit(f"answer ({100 * level:g} % intervals; {model}):")
     if m is not None:
         emit(f"  maximum of {how_many(m)}: median {_value(m['median'])} [{_value(m['low'])}, "
-             f"{_value(m['high'])}]")
+             f"{_value(m['high'])}]{_unit(m)}")
     if d is not None:
         loose = undetermined(d)
         for j, k in enumerate(np.atleast_1d(d["area_factors"])):
             where = how_many({**d, "n": d["n"] * k}, "points")
-            head = f"  damage P(max > {d['hardness']:g}) on {where}: "
+            head = f"  damage P(max > {d['hardness']:g}{_unit(d)}) on {where}: "
             if loose[j]:
                 emit(f"{head}not determined by the data: anywhere in [{_percent(d['low'][j])}, "
                      f"{_percent(d['high'][j])}] (full-sample model {_percent(d['estimate'][j])})")
@@ -377,7 +385,7 @@ def write_figures(res: FitResults, out: Path) -> None:
         name = f"{100 * level:g} % interval" + (" (calibrated)" if interval_words(m) else "")
         plot_maximum_density(m["dist"], interval=level, bounds=(m["low"], m["high"]), label=name,
                              ax=ax)
-        ax.set_xlabel(f"maximum of {how_many(res.maximum)}")
+        ax.set_xlabel(f"maximum of {how_many(res.maximum)}" + (f" ({res.unit})" if res.unit else ""))
         save_figure(fig, out, "maximum_density.png", res)
     if res.damage is not None:
         fig = new_figure()
@@ -465,7 +473,7 @@ def write_tables(res: FitResults, args: argparse.Namespace, out: Path) -> None:
         "glstat_version": __version__,
         "input": {"file": str(s.path), "format": s.fmt, "column": s.column, "n_entries": s.n_total,
                   "n_used": int(s.values.size), "n_nan": s.n_nan, "n_inf": s.n_inf,
-                  "nan_policy": s.nan_policy},
+                  "nan_policy": s.nan_policy, "unit": res.unit},
         "settings": {"param": args.param, "method": args.method, "bootstrap": args.bootstrap,
                      "confidence_level": args.confidence_level, "n_max": args.n_max,
                      "count": None if args.count is None else repr(args.count),

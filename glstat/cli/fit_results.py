@@ -82,6 +82,9 @@ class FitResults:
         The generalized Pareto tail's prediction (``--pareto-tail``).
     cross_validation_note : str or None
         Why it was skipped, or why it used fewer blocks than asked.
+    unit : str or None
+        Unit of the values (``--unit``, or read from the column name), shown beside the
+        maximum and the hardness; None when unknown.
     """
 
     sample: Sample
@@ -104,6 +107,7 @@ class FitResults:
     cross_validation: MaximumCrossValidation | None = None
     cross_validation_note: str | None = None
     pareto_tail: Any = None
+    unit: str | None = None
 
     def __post_init__(self) -> None:
         if self.model is None:
@@ -185,7 +189,7 @@ def maximum_summary(res: FitResults, n_max: float, level: float, count=None) -> 
     else:
         full = maximum(res.model, count=count) if count is not None else maximum(res.model, n_max)
     a = (1.0 - level) / 2.0
-    out: dict[str, Any] = {"n": float(n_max), "count": count, "confidence_level": level,
+    out: dict[str, Any] = {"n": float(n_max), "count": count, "confidence_level": level, "unit": res.unit,
                            "interval_level": res.interval_level(level), "tail_size": res.tail_size,
                            "full_fit_median": float(full.median()),
                            "full_fit_low": float(full.ppf(a)), "full_fit_high": float(full.isf(a)),
@@ -226,7 +230,8 @@ def damage_summary(res: FitResults, hardness: float, n: float, factors: np.ndarr
     (:attr:`FitResults.model`)."""
     reason = support_reason(hardness, res.model_support)
     damage, integrity = prediction_rows(res, "damage"), prediction_rows(res, "integrity")
-    out: dict[str, Any] = {"hardness": hardness, "n": float(n), "count": count, "area_factors": factors,
+    out: dict[str, Any] = {"hardness": hardness, "unit": res.unit, "n": float(n), "count": count,
+                           "area_factors": factors,
                            "points": factors * n, "estimate": None, "integrity": None,
                            "low": None, "high": None,
                            "confidence_level": level, "interval_level": res.interval_level(level),
