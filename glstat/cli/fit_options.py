@@ -135,7 +135,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="model of the maximum and the damage: 'pareto' (default) puts a "
                         "generalized Pareto tail on the GLD above its k largest values, k = "
                         "max(20, ceil(sqrt(n))), and reads the calibrated bootstrap percentiles "
-                        "(2.5-97.5 %% for a 90 %% interval), whose coverage holds on data that are "
+                        "(3.5-96.5 %% for a 90 %% interval), whose coverage holds on data that are "
                         "not GLD-distributed (docs/benchmarks.md); 'none': the GLD alone with the "
                         "plain percentile interval (the paper's method)")
     p.add_argument("--pareto-tail", action="store_true",

@@ -83,9 +83,15 @@ class BinomialCheck:
         miss = ("no miss" if not math.isfinite(self.detectable_miss) else
                 f"only a miss of {_points(self.detectable_miss)} or more")
         if self.verdict == NOT_CHECKABLE:
+            if math.isfinite(self.detectable_miss) and _points(self.detectable_miss) == _points(
+                    self.max_miss):  # just above the limit: one more digit tells them apart
+                miss = f"only a miss of {_points(self.detectable_miss, 3)} or more"
+                need = _points(self.max_miss, 3)
+            else:
+                need = _points(self.max_miss)
             return (f"not checkable with {self.n} outcome{'s' if self.n != 1 else ''}: "
                     f"{miss} would be detected (power {100 * self.power:.0f} %), where the check needs "
-                    f"{_points(self.max_miss)}")
+                    f"{need}")
         return (f"passed: {obs} against {_percent(self.predicted)} predicted (p = "
                 f"{self.p_value:.2g}); a miss of {_points(self.detectable_miss)} or more "
                 f"would have been detected")
@@ -98,9 +104,9 @@ def _percent(p: float) -> str:
     return f"{v:.2g} %" if v < 10 else f"{v:.3g} %"
 
 
-def _points(d: float) -> str:
+def _points(d: float, digits: int = 2) -> str:
     """A difference of probabilities in percentage points."""
-    return f"{100 * d:.2g} percentage points"
+    return f"{100 * d:.{digits}g} percentage points"
 
 
 def _two_sided_pvalues(p: float, n: int) -> np.ndarray:

@@ -71,3 +71,13 @@ def test_detectable_miss_quoted_in_the_method():
     # docs/method.md §9: for a predicted 50 %, 42 points with 10 surfaces, 25 with 30, 15 with 100
     got = [glstat.binomial_check(0.5, n // 2, n).detectable_miss for n in (10, 30, 100)]
     assert [round(100 * g) for g in got] == [42, 25, 15]
+
+
+def test_a_detectable_miss_just_above_the_limit_is_told_apart_from_it():
+    """13 outcomes at 1 %: a miss of 20.3 points would be detected, just above the 20 the check
+    needs; at two digits both read "20", which said "not checkable" for equal numbers."""
+    c = glstat.binomial_check(0.01, 0, 13)
+    assert c.verdict == "not checkable" and 0.2 < c.detectable_miss < 0.205
+    text = c.text()
+    assert "only a miss of 20.3 percentage points or more" in text
+    assert text.endswith("where the check needs 20 percentage points")
