@@ -446,7 +446,8 @@ def test_failed_bootstrap_resamples_are_reported(tmp_path, capsys):
     code, out, err = _run(capsys, [npy, "--bootstrap", 60, "--gof-resamples", 0, "--out", tmp_path / "o",
                                    "--seed", 1])
     assert code == 0, err
-    assert f"bootstrap: 60 resamples (nonparametric), {bf.n_failed} failed;" in out
+    reasons = ", ".join(f"{c} {r}" for r, c in bf.failed["reason"].value_counts().items())
+    assert f"bootstrap: 60 resamples (nonparametric), {bf.n_failed} failed ({reasons});" in out
     assert f"note: bootstrap fits failed: {bf.n_failed} of 60 resamples" in out
     doc = json.loads((tmp_path / "o" / "fit.json").read_text())
     assert doc["bootstrap"]["n_failed"] == bf.n_failed

@@ -74,13 +74,14 @@ __all__ = ["main", "run"]
 
 
 def gof_refit(f: GLDFit, bar) -> Callable[[np.ndarray], Any]:
-    """Refit of one goodness-of-fit replicate (as :func:`glstat.gof_report` does for a fit)
+    """Refit of one goodness-of-fit replicate (as :func:`glstat.gof_report` does for a fit:
+    without the fit's own warnings, which would speak of simulated samples, not of the data)
     that advances ``bar`` by one."""
     from ..fitting import fit
 
     def refit(sample: np.ndarray):
         try:
-            return fit(sample, f.param, f.method, **dict(f.options)).dist
+            return fit(sample, f.param, f.method, warn=False, **dict(f.options)).dist
         finally:
             bar.update(1)
 

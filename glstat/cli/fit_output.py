@@ -115,8 +115,16 @@ def print_bootstrap(bf: BootstrapFit, summary: Any, emit: Callable[[str], None])
     cols = [c for c in ("quantity", "estimate", "bootstrap_mean", "low", "high", "standard_error")
             if c in s.columns]
     emit("")
-    emit(f"bootstrap: {bf.n_resamples} resamples ({bf.kind}), {bf.n_failed} failed; "
+    failed = f"{bf.n_failed} failed"
+    reasons = bf.failed["reason"].value_counts() if bf.n_failed and "reason" in bf.failed else None
+    if reasons is not None and len(reasons):
+        failed += " (" + ", ".join(f"{count} {reason}" for reason, count in reasons.items()) + ")"
+    emit(f"bootstrap: {bf.n_resamples} resamples ({bf.kind}), {failed}; "
          f"{100 * bf.confidence_level:g} % percentile intervals of the lambdas:")
+    if reasons is not None and "no Pareto tail" in reasons.index:
+        detail = bf.failed.loc[bf.failed["reason"] == "no Pareto tail", "detail"].iloc[0]
+        emit(f"  {reasons['no Pareto tail']} resample(s) have a GLD but no Pareto tail, e.g. {detail}; "
+             "the intervals use the others")
     emit(indent(text_table(s[cols])))
 
 

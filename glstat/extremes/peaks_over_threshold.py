@@ -37,7 +37,8 @@ def fit_gpd(exceedances) -> tuple[np.ndarray, np.ndarray]:
 
     The profile likelihood in ``theta = -xi / sigma`` averaged over a fixed grid of
     ``30 + sqrt(k)`` points (their empirical-Bayes estimator): no optimiser, vectorised over
-    the rows, defined for every sample with at least two distinct values.
+    the rows, defined for every sample with at least two distinct values (exceedances tied at
+    0, as rounded data give, scale the grid by the first quartile of the positive ones).
 
     Parameters
     ----------
@@ -69,6 +70,13 @@ def fit_gpd(exceedances) -> tuple[np.ndarray, np.ndarray]:
     m = 30 + int(math.sqrt(k))
     j = np.arange(1, m + 1, dtype=float)
     xstar = y[:, math.floor(k / 4 + 0.5) - 1]  # the first quartile
+    for r in np.flatnonzero(~(xstar > 0)):
+        # values tied at the threshold (rounded data) make the first quartile 0, which would
+        # put the whole grid at infinity: the first quartile of the positive exceedances
+        # sets its scale instead (none positive: no fit)
+        positive = y[r][y[r] > 0]
+        if positive.size:
+            xstar[r] = positive[max(math.floor(positive.size / 4 + 0.5) - 1, 0)]
     with np.errstate(divide="ignore", invalid="ignore"):
         theta = 1.0 / y[:, -1:] + (1.0 - np.sqrt(m / (j - 0.5)))[None, :] / (3.0 * xstar[:, None])
         kk = np.mean(np.log1p(-theta[:, :, None] * y[:, None, :]), axis=2)

@@ -84,3 +84,20 @@ def test_too_few_values_and_non_finite_data_are_refused():
     x = np.arange(100.0)
     glstat.predict_maximum_pot(x, n=10, n_resamples=20, rng=1)
     assert np.array_equal(x, np.arange(100.0))  # the caller's data are not changed
+
+
+def test_exceedances_tied_at_the_threshold_are_fitted():
+    """Rounded data put many exceedances at exactly 0, so the first quartile that scales the
+    Zhang-Stephens grid is 0: the positive exceedances scale it instead. 200 samples of 60
+    GPD(0.1, 1) exceedances rounded to integers all fit, with a mean sigma / (1 - xi) within
+    10 % of the sample's mean at the median over the samples; all zeros still give no fit."""
+    rng = np.random.default_rng(0)
+    y = np.sort(np.round(stats.genpareto.rvs(0.1, scale=1.0, size=(200, 60), random_state=rng)),
+                axis=1)
+    assert np.mean(y[:, 14] == 0) > 0.9  # the first quartile is 0: the case this test is about
+    xi, sigma = fit_gpd(y)
+    assert np.all(np.isfinite(xi) & np.isfinite(sigma) & (sigma > 0) & (xi < 1))
+    ratio = sigma / (1 - xi) / y.mean(axis=1)
+    assert abs(np.median(ratio) - 1) < 0.1
+    xi0, sigma0 = fit_gpd(np.zeros(20))
+    assert not (np.isfinite(xi0) and np.isfinite(sigma0) and sigma0 > 0)
