@@ -302,3 +302,16 @@ def test_the_unit_of_the_values_is_shown_beside_the_maximum_and_the_hardness(tmp
         assert maximum_line.endswith("]") and "P(max > 3500) on" in damage_line
     else:
         assert maximum_line.endswith(f"] {unit}") and f"P(max > 3500 {unit}) on" in damage_line
+
+
+def test_a_tail_holding_most_of_a_small_sample_is_said_so(tmp_path):
+    """30 values: the tail takes its 20 largest (at least 20), two thirds of the sample."""
+    path = tmp_path / "small.csv"
+    np.savetxt(path, np.random.default_rng(3).lognormal(0.0, 0.5, 30), header="p", comments="")
+    lines: list[str] = []
+    args = cli_fit.build_parser().parse_args(
+        [str(path), "--n-max", "1000", "--bootstrap", "0", "--gof-resamples", "0", "--out",
+         str(tmp_path / "o")])
+    cli_fit.run(args, lines.append)
+    assert ("  the tail holds 20 of the 30 values (at least 20 are fitted): the maximum and the damage "
+            "come from the Pareto fit more than from the GLD") in lines

@@ -143,6 +143,10 @@ def print_model(res: FitResults, level: float, emit: Callable[[str], None]) -> N
          "largest values")
     emit(f"  tail above {fmt_g(u)}: shape xi {fmt_g(xi, 3)}, scale {fmt_g(sigma, 4)}, {end} "
          "(--tail none: the GLD alone)")
+    n = res.sample.values.size
+    if k > n / 4:
+        emit(f"  the tail holds {k} of the {n} values (at least 20 are fitted): the maximum and the "
+             "damage come from the Pareto fit more than from the GLD")
     pair = interval_words({"confidence_level": level, "interval_level": res.interval_level(level)})
     if pair is not None:
         emit(f"  {100 * level:g} % intervals: {pair}")
