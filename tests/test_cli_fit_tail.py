@@ -315,3 +315,20 @@ def test_a_tail_holding_most_of_a_small_sample_is_said_so(tmp_path):
     cli_fit.run(args, lines.append)
     assert ("  the tail holds 20 of the 30 values (at least 20 are fitted): the maximum and the damage "
             "come from the Pareto fit more than from the GLD") in lines
+
+
+def test_a_damage_of_zero_from_a_bounded_model_says_why(tmp_path):
+    """Uniform values on [0, 1000 MPa]: the fitted tail is bounded near 1000, and a hardness of
+    1200 gives damage 0, which the answer attributes to the model's end point."""
+    path = tmp_path / "u.csv"
+    np.savetxt(path, np.random.default_rng(8).uniform(0.0, 1000.0, 500), header="p_MPa", comments="")
+    lines: list[str] = []
+    args = cli_fit.build_parser().parse_args(
+        [str(path), "--n-max", "1000", "--hardness", "1200", "--bootstrap", "100", "--gof-resamples",
+         "0", "--no-cross-validate", "--seed", "1", "--out", str(tmp_path / "o")])
+    res = cli_fit.run(args, lines.append)
+    top = res.model_support[1]
+    assert top < 1200 and res.damage["estimate"][0] == 0.0
+    xi = float(res.model.tail[0][2])
+    assert (f"  (the full-sample model ends at {top:.4g} MPa, below the hardness: its fitted tail is "
+            f"bounded, xi = {xi:.3g}; its damage is 0 for that reason alone)") in lines

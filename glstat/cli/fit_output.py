@@ -278,6 +278,12 @@ def print_answer(res: FitResults, emit: Callable[[str], None]) -> None:
             interval = ("" if d["low"] is None else
                         f" [{_percent(d['low'][j])}, {_percent(d['high'][j])}]")
             emit(f"{head}{_percent(d['estimate'][j])}{interval}")
+        top = res.model_support[1]
+        if top <= d["hardness"] and not loose.all():
+            why = ("its fitted tail is bounded, xi = " + fmt_g(float(res.model.tail[0][2]), 3)
+                   if res.tail_size is not None else "its GLD is bounded above")
+            emit(f"  (the full-sample model ends at {_value(top)}{_unit(d)}, below the hardness: "
+                 f"{why}; its damage is 0 for that reason alone)")
     cv = res.cross_validation
     if cv is not None:
         scope = ""
