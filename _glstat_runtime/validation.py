@@ -33,7 +33,6 @@ __all__ = [
     "frequency_ratio",
     "grid_shape",
     "height_map",
-    "implausible",
     "implausible_height_scale",
     "implausible_modulus",
     "implausible_pressure",
@@ -46,6 +45,7 @@ __all__ = [
     "real_scalar",
     "real_values",
     "tolerance",
+    "warn_at_caller",
 ]
 
 
@@ -254,10 +254,11 @@ def real_scalar(value) -> float | None:
     return None
 
 
-def implausible(message: str) -> None:
-    """Warn (:class:`contact.ContactWarning`) that a value is implausible for its unit: valid,
-    but more likely a unit mix-up (MPa given as Pa, µm as m) than meant. The warning points at
-    the caller's line: the first frame outside the ``contact`` and ``glstat`` packages."""
+def warn_at_caller(message: str) -> None:
+    """Warn (:class:`contact.ContactWarning`) at the caller's line: the first frame outside
+    the ``contact`` and ``glstat`` packages, whichever entry point led there. Used for values
+    that are valid but implausible for their unit (MPa given as Pa, µm as m) and for results
+    that hold but should not be read as they stand (a roughness dominated by a tilt)."""
     import os
     import sys
     import warnings
@@ -330,7 +331,7 @@ def plausible_roughness(rq: float, length: float | None = None, name: str = "rq"
     millimetre, or above a tenth of the surface's side ``length`` (m)."""
     note = implausible_roughness(rq, length, name)
     if note:
-        implausible(note)
+        warn_at_caller(note)
     return rq
 
 
@@ -360,7 +361,7 @@ def positive_pressure(value, warn: bool = True) -> float:
         raise ValueError(f"{exc}; a compressive load is positive") from None
     note = implausible_pressure(p) if warn else None
     if note:
-        implausible(note)
+        warn_at_caller(note)
     return p
 
 
@@ -418,7 +419,7 @@ def elastic_constants(E, nu, which: str = "") -> tuple[float, float]:
     e = positive_finite(E, f"E{which}", "Young's modulus in pascals")
     note = implausible_modulus(e, f"E{which}")
     if note:
-        implausible(note)
+        warn_at_caller(note)
     n = real_scalar(nu)
     if n is None or not (-1.0 < n <= 0.5):
         raise ValueError(

@@ -307,13 +307,8 @@ def _jump_state(
     )
     d, tab, other_f, other_d = (lo, tab_lo, f_hi, hi) if deeper else (hi, tab_hi, f_lo, lo)
     force = float(tab[:, 5].sum())
-    if max(abs(force_jump), abs(force - target) / target) <= JUMP_WARNING_THRESHOLD:
-        return model.result(
-            d, [tab], [1.0], target, float(nominal_pressure), "asperity", n_iterations=it,
-            jump=jump, in_jump=True, blend_weight=1.0, force_jump=force_jump,
-            other_force=other_f, other_separation=other_d, separation_bracket=bracket,
-        )
-    message = (
+    small = max(abs(force_jump), abs(force - target) / target) <= JUMP_WARNING_THRESHOLD
+    message = "" if small else (
         f"the requested load {target:.6g} N ({nominal_pressure:.6g} Pa nominal) falls inside "
         f"a jump of the asperity model's force at separation {lo:.10g} m: F jumps from "
         f"{f_hi:.6g} N to {f_lo:.6g} N ({force_jump:.3g} of the load) as the plane passes "
@@ -322,7 +317,7 @@ def _jump_state(
         f"(force_error = {(force - target) / target:+.3g}); pass jump='blend' for a "
         "force-balanced mix of the two states that is not a state of the model"
     )
-    if warn:
+    if warn and message:
         # stacklevel 4: the caller of solve, past solve and its renamed_keywords wrapper
         warnings.warn(message, ContactWarning, stacklevel=4)
     return model.result(

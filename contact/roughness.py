@@ -13,8 +13,7 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-# warns at the first frame outside the packages: the user's line, whichever entry point
-from _glstat_runtime.validation import implausible as _warn_at_caller
+from _glstat_runtime.validation import warn_at_caller
 
 from . import _iso25178 as iso
 from ._asperity_kernels import find_summits
@@ -225,7 +224,7 @@ def _physical_hurst(fit: HurstFit, min_r2: float, warn: bool = True, hint: str =
         if not in_range
         else f"from a poor fit (R² below {min_r2:g})"
     )
-    _warn_at_caller(
+    warn_at_caller(
         f"Hurst exponent undefined: the structure-function fit gives H = "
         f"{fit.slope_hurst:.4g}, {why} (R² = {fit.r2:.3g} over lags "
         f"{fit.lag_min:.4g} m to {fit.lag_max:.4g} m); the surface is not self-affine "
@@ -364,7 +363,7 @@ def _form_hint(h: np.ndarray, z: np.ndarray, valid: np.ndarray, dx: float, dy: f
     var_plane = float(np.mean(pv * pv))
     explained = 1.0 - var_plane / var_mean
     if explained > FORM_HINT_FRACTION:
-        _warn_at_caller(
+        warn_at_caller(
             f"the heights are dominated by a tilt: a least-squares plane explains all but "
             f"{100 * (1 - explained):.2g} % of their variance (Sq = {math.sqrt(var_mean):.4g} m "
             f"about the mean height, {math.sqrt(var_plane):.4g} m about the plane), so the "

@@ -386,8 +386,8 @@ def require_surface(obj) -> Surface:
 def _warn_if_implausible(heights: np.ndarray, size: tuple[float, float]) -> None:
     """Warn when the heights' RMS exceeds the surface's shorter side (heights and spacing in
     different units)."""
-    from _glstat_runtime.validation import implausible, implausible_height_scale
+    from _glstat_runtime.validation import implausible_height_scale, warn_at_caller
 
     note = implausible_height_scale(float(np.std(heights)), min(size))
     if note:
-        implausible(note)
+        warn_at_caller(note)

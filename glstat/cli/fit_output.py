@@ -26,7 +26,6 @@ __all__ = ["indent", "interval_words", "model_doc", "print_answer", "print_boots
            "undetermined", "write_figures", "write_tables"]
 
 
-
 def fmt_g(v: float, digits: int = 6) -> str:
     """``v`` with ``digits`` significant digits ("nan" when missing)."""
     return fmt_number(v, f".{digits}g", missing="nan")
@@ -96,12 +95,12 @@ def print_gof(res: FitResults, emit: Callable[[str], None], tail: bool | None = 
     emit("")
     emit(f"goodness of fit (n = {int(row['n'])}; p-values: {row['pvalue_method']}):")
     tab = gof_table(res.gof)
+    rejected = [GOF_NAMES.get(s, s) for s, p in zip(tab["statistic"], tab["p_value"], strict=True)
+                if np.isfinite(p) and p < 0.05]
     tab["p_value"] = [("" if not np.isfinite(p) else fmt_g(p, 4)) for p in tab["p_value"]]
     emit(indent(text_table(tab)))
     if res.gof_note is not None:
         emit(f"  {res.gof_note}")
-    rejected = [GOF_NAMES.get(s, s) for s, p in zip(tab["statistic"], gof_table(res.gof)["p_value"],
-                                                   strict=True) if np.isfinite(p) and p < 0.05]
     if rejected:
         then = ("" if tail is None else
                 "; the maximum and the damage use a generalized Pareto tail on the largest values"
@@ -123,8 +122,8 @@ def print_bootstrap(bf: BootstrapFit, summary: Any, emit: Callable[[str], None])
          f"{100 * bf.confidence_level:g} % percentile intervals of the lambdas:")
     if reasons is not None and "no Pareto tail" in reasons.index:
         detail = bf.failed.loc[bf.failed["reason"] == "no Pareto tail", "detail"].iloc[0]
-        emit(f"  {reasons['no Pareto tail']} resample(s) have a GLD but no Pareto tail, e.g. {detail}; "
-             "the intervals use the others")
+        emit(f"  {reasons['no Pareto tail']} resample(s) have a GLD but {detail}; the intervals use "
+             "the others")
     emit(indent(text_table(s[cols])))
 
 

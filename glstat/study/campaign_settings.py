@@ -202,10 +202,10 @@ class CampaignSettings:
         if self.length_y is not None:
             object.__setattr__(self, "length_y", float(self.length_y))
         _check_material(self)
-        from _glstat_runtime.validation import implausible
+        from _glstat_runtime.validation import warn_at_caller
 
         for note in self.implausible_values():
-            implausible(note)
+            warn_at_caller(note)
 
     def implausible_values(self) -> list[str]:
         """Values that are valid but implausible for their SI unit, in words (a unit mix-up is
