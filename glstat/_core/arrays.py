@@ -12,8 +12,9 @@ def writeable_input(v: np.ndarray) -> np.ndarray:
 
     The kernels only read these inputs, but numba compiles a kernel once more for read-only
     arrays (broadcast views, arrays of the user): one array type per argument keeps the
-    first call's compilation (and the cached kernel) the only one. The read-only bit of the
-    array interface is asked instead of ``flags.writeable``, which warns (FutureWarning) for
-    the views ``numpy.broadcast_arrays`` returns; they count as read-only here.
+    first call's compilation (and the cached kernel) the only one. The read-only bit of a
+    read-only buffer is asked instead of ``flags.writeable``, which warns (FutureWarning) for
+    the views ``numpy.broadcast_arrays`` returns (about 0.15 µs: the array interface, which
+    does not warn either, costs 1 µs, a tenth of a scalar cdf).
     """
-    return v.copy() if v.__array_interface__["data"][1] else v
+    return v.copy() if memoryview(v).readonly else v
