@@ -13,8 +13,8 @@ def writeable_input(v: np.ndarray) -> np.ndarray:
     The kernels only read these inputs, but numba compiles a kernel once more for read-only
     arrays (broadcast views, arrays of the user): one array type per argument keeps the
     first call's compilation (and the cached kernel) the only one. The read-only bit of a
-    read-only buffer is asked instead of ``flags.writeable``, which warns (FutureWarning) for
+    read-only buffer (``v.data``) is asked instead of ``flags.writeable``, which warns (FutureWarning) for
     the views ``numpy.broadcast_arrays`` returns (about 0.15 µs: the array interface, which
     does not warn either, costs 1 µs, a tenth of a scalar cdf).
     """
-    return v.copy() if memoryview(v).readonly else v
+    return v.copy() if v.data.readonly else v
