@@ -132,6 +132,7 @@ def _study_parser() -> argparse.ArgumentParser:
     _add_run_options(p)
     _add_model_options(p)
     _add_measured_options(p)
+    _add_criterion_options(p)
     _add_report_options(p)
     return p
 
@@ -274,6 +275,49 @@ def _add_measured_options(p: argparse.ArgumentParser) -> None:
                    help="form removed from each measured file (--topographies, --like), fitted by "
                         "least squares on its measured points: the plane, a polynomial of degree 2 "
                         "or 3 in x and y, the mean, or nothing")
+    p.add_argument("--s-filter", type=_s_filter_arg, metavar="UM",
+                   help="nesting index λs in µm of the ISO 16610-61 Gaussian S-filter applied to "
+                        "every surface before it is solved: the lateral scale at which the answer "
+                        "holds ('none': no filter). Default for measured files: the ISO 25178-3 "
+                        "choice for their spacing (the smallest preferred λs of at least 3 grid "
+                        "spacings); for simulated surfaces: none. With a λs the elastic BEM also "
+                        "solves every surface at 2λs and 4λs (the answer against the scale)")
+    p.add_argument("--despike", action="store_true",
+                   help="replace the outlier points of measured files (one or a few pixels "
+                        "standing out from their neighbourhood; always found and reported) by the "
+                        "local median of their neighbours before the S-filter")
+
+
+def _s_filter_arg(text: str) -> float | str:
+    """``--s-filter``: a positive length in µm, or "none"."""
+    if text.strip().lower() == "none":
+        return "none"
+    return _positive(float)(text)
+
+
+def _s_filter_m(args) -> float | str | None:
+    """``--s-filter`` in metres: None for "none", "default" when not given."""
+    if args.s_filter is None:
+        return "default"
+    return None if args.s_filter == "none" else args.s_filter * 1e-6
+
+
+def _add_criterion_options(p: argparse.ArgumentParser) -> None:
+    """What damages a surface: the criterion and its thresholds."""
+    p.add_argument("--criterion", choices=("surface", "subsurface", "plastic-zone"),
+                   default="surface",
+                   help="what damages a surface under the elastic BEM: 'surface' (default, the "
+                        "paper's): the contact pressure reaches the hardness; 'subsurface': the "
+                        "von Mises stress beneath the surface reaches the yield stress; "
+                        "'plastic-zone': a connected zone of the solution capped at the hardness "
+                        "reaches --min-plastic-area (docs/method.md §15)")
+    p.add_argument("--yield-stress", type=_positive(float), metavar="MPA",
+                   help="yield stress Y in MPa of --criterion subsurface (default: hardness / "
+                        "2.8, after Tabor)")
+    p.add_argument("--min-plastic-area", type=_positive(float), metavar="UM2",
+                   help="smallest plastic zone in µm² that damages a surface under --criterion "
+                        "plastic-zone (default: a disc of diameter λs, or of 3 grid spacings "
+                        "without an S-filter)")
 
 
 def _add_report_options(p: argparse.ArgumentParser) -> None:
@@ -315,14 +359,16 @@ def _study_settings(args, argv: list[str]):
         n_surfaces=surfaces, grid=args.grid or base["grid"], length=length,
         rq=tuple(v * 1e-6 for v in args.rq),
         gamma=args.gamma, n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
-        cone_factor=args.cone_factor, seed=args.seed, n_examples=1)
+        cone_factor=args.cone_factor, seed=args.seed, n_examples=1,
+        s_filter=None if _s_filter_m(args) in ("default", None) else _s_filter_m(args))
     if args.paper_table is not None and (args.topographies or args.like):
         raise StudyInputError("--paper-table compares the simulated Weierstrass scene with the "
                               "paper's Table 1; it does not apply to measured files "
                               "(--topographies, --like)")
     if not (args.topographies or args.like):
         given = [o for o, v in (("--tile", args.tile), ("--tile-size", args.tile_size),
-                                ("--spacing", args.spacing), ("--unit", args.unit)) if v is not None]
+                                ("--spacing", args.spacing), ("--unit", args.unit),
+                                ("--despike", args.despike or None)) if v is not None]
         if given:
             raise StudyInputError(f"{', '.join(given)}: options of measured files; use them with "
                                   f"--topographies (or --spacing/--unit with --like)")
@@ -350,6 +396,11 @@ def _study_settings(args, argv: list[str]):
         print(f"glstat study: Rq = {settings.rq_text} µm" + (" (per H)" if per_h else ""),
               file=sys.stderr, flush=True)
     asettings = AnalysisSettings(hardness=args.hardness * 1e6,
+                                 criterion=args.criterion,
+                                 yield_stress=None if args.yield_stress is None
+                                 else args.yield_stress * 1e6,
+                                 min_plastic_area=None if args.min_plastic_area is None
+                                 else args.min_plastic_area * 1e-12,
                                  n_resamples=args.bootstrap or base["bootstrap"], seed=args.seed,
                                  damage_areas=(*AnalysisSettings().damage_areas,
                                                *(a * 1e-6 for a in args.area or ())),
@@ -513,10 +564,17 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
     def _damage(p) -> str:
         return "no fit" if p is None or p != p else fmt_probability(p)
 
+    from ..study.report_scale import elastic_validity_note
+    from ..study.scales import scale_text
+    from ..study.surface_table import resolution_note
+
     table = res.summary()
     lvl = round(100 * asettings.confidence_level)
+    crit = asettings.criterion_of(settings)
     print(f"Probability that the contact pressure exceeds {hardness:g} MPa somewhere on one "
-          f"{area_text(settings)} area ({lvl} % interval):")
+          f"{area_text(settings)} area ({lvl} % interval), at {scale_text(settings, short=True)}"
+          + ("" if crit.name == "surface" else
+             f"; the elastic BEM under the criterion {crit.text()}") + ":")
     rows = table[table["sample"] == PRIMARY_SAMPLE]
     with_bem = res.bem_analysis is not None
     # the elastic BEM on every surface is the reference: its row first in each case
@@ -545,9 +603,16 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
             if why:
                 what = "no prediction" if not sa.ok else "not checked"
                 print(f"  {case_name(settings, ih)}, {model}: {what}: {why}")
+    zone = table[table["sample"] == "areas"]
+    for _, r in zone.iterrows():
+        print(f"  {'measured' if settings.measured else f'H = {r.hurst:g}'}, elastic BEM, "
+              f"{crit.text()}: {fmt_probability(r['damage'])} of {r['n_surfaces']} areas "
+              f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}] (exact)")
     if len(settings.pressures) > 1:
         _print_allowable(res, settings, asettings)
-    for warn in (degenerate_scene(res.analysis, settings), overlap_note(settings, res.analysis)):
+    for warn in (degenerate_scene(res.analysis, settings), overlap_note(settings, res.analysis),
+                 elastic_validity_note(settings, crit, res.bem_analysis),
+                 resolution_note(settings, res.scales())):
         if warn:
             print(f"warning: {warn}")
     if res.bem:
@@ -646,12 +711,18 @@ def _measured_settings(args, argv: list[str], settings, surfaces: int):
                 raise ValueError(f"--tile-size takes one or two lengths in mm, got "
                                  f"{len(args.tile_size)} values")
             scene["tile_size"] = (args.tile_size[0] * 1e-3, args.tile_size[-1] * 1e-3)
-        measured = measured_settings(args.topographies, form=args.form, tiles=tiles, **scene)
+        measured = measured_settings(args.topographies, form=args.form, tiles=tiles,
+                                     s_filter=_s_filter_m(args), despike=args.despike, **scene)
         return measured, measured.n_surfaces
     if args.target_pressure is not None:
         raise ValueError("--target-pressure chooses Rq, which --like takes from the measured file")
+    if args.despike:
+        raise ValueError("--despike replaces outlier points of measured files solved as they are "
+                         "(--topographies); --like simulates surfaces from a file's spectrum")
     like, _ = like_settings(args.like, surfaces, form=args.form, gamma=args.gamma, **scene)
-    return dataclasses.replace(like, n_examples=min(1, like.n_surfaces)), surfaces
+    lam = _s_filter_m(args)
+    return dataclasses.replace(like, n_examples=min(1, like.n_surfaces),
+                               s_filter=None if lam == "default" else lam), surfaces
 
 
 def main(argv: list[str] | None = None) -> int:

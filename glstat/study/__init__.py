@@ -209,7 +209,8 @@ class StudyResult:
     """
 
     def __init__(self, out, report_html, report_md, analysis, timings, campaign, bem=None,
-                 bem_run=None, bem_analysis=None, analysis_settings=None):
+                 bem_run=None, bem_analysis=None, analysis_settings=None, *, results=None,
+                 bem_records=None, left_out=None):
         self.out = Path(out)
         self.report_html = report_html
         self.report_md = report_md
@@ -220,6 +221,9 @@ class StudyResult:
         self.bem_run = bem_run
         self.bem_analysis = bem_analysis
         self.analysis_settings = analysis_settings
+        self.results = results or {}
+        self.bem_records = bem_records
+        self.left_out = list(left_out or ())
 
     def bem_summary(self):
         """One row per (H, load, quantity) of the BEM comparison: both models' means and the
@@ -254,7 +258,31 @@ class StudyResult:
     def summary(self):
         """``summary.csv`` as a pandas DataFrame: one row per H × load × model × sample (the
         columns are documented in :func:`glstat.study.answer.summary_frame`)."""
-        return summary_frame(self.campaign.settings, self.analysis, self.bem, self.bem_analysis)
+        a = self.analysis_settings or AnalysisSettings()
+        return summary_frame(self.campaign.settings, self.analysis, self.bem, self.bem_analysis,
+                             criterion=self._criterion(), bem_records=self.bem_records,
+                             confidence_level=a.confidence_level)
+
+    def _criterion(self):
+        a = self.analysis_settings or AnalysisSettings()
+        return a.criterion_of(self.campaign.settings)
+
+    def surfaces(self):
+        """``surfaces.csv`` as a pandas DataFrame: one row per surface (or area) and load
+        (:func:`glstat.study.surface_table.surfaces_frame`)."""
+        from .surface_table import surfaces_frame
+
+        return surfaces_frame(self.campaign.settings, self._criterion(), self.results,
+                              self.bem_records, self.left_out)
+
+    def scales(self):
+        """The answer against the scale as a pandas DataFrame (``scales.csv``; empty without an
+        S-filter: :func:`glstat.study.surface_table.scale_frame`)."""
+        from .surface_table import scale_frame
+
+        a = self.analysis_settings or AnalysisSettings()
+        return scale_frame(self.campaign.settings, self._criterion(), self.bem_records or {},
+                           a.confidence_level)
 
     def damage_calibration(self):
         """``damage_calibration.csv`` as a pandas DataFrame: predicted against observed damage
@@ -341,7 +369,8 @@ def run_study(
     say("loading the surfaces' results")
     results = _load_study_results(out, settings)
     t2 = time.perf_counter()
-    an, bem_an, left_out = _analyse_models(results, out, settings, analysis, bsettings, model, say)
+    an, bem_an, left_out, bem_records = _analyse_models(results, out, settings, analysis, bsettings,
+                                                        model, say)
     bem, bem_seconds = _compare_models(out, settings, bsettings, analysis, results, say)
     t3 = time.perf_counter()
     from .report import build_report
@@ -350,6 +379,8 @@ def run_study(
     info = _report_info(settings, timings, an, results, say, command=command, executor=executor,
                         workers=workers, workers_label=workers_label, paper_table=paper_table)
     _add_bem_info(info, out, settings, bem_an, left_out, bem, bsettings)
+    info.criterion = analysis.criterion_of(settings)
+    info.bem_records = bem_records
     rep = build_report(settings, analysis, results, an, info.as_dict(), progress=say)
     timings["report"] = time.perf_counter() - t3
     timings["total"] = time.perf_counter() - t0
@@ -357,7 +388,8 @@ def run_study(
 
     try:
         html, md = rep.write(out)
-        result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an, analysis)
+        result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an, analysis,
+                             results=results, bem_records=bem_records, left_out=left_out)
         _write_tables(out, settings, result)
     except OSError as exc:  # disk full or read-only at the end: the computed results are kept
         raise CampaignError(
@@ -384,6 +416,8 @@ def _bem_settings(settings: CampaignSettings, analysis: AnalysisSettings,
                                     guard=bsettings.guard_points(settings))
     if bsettings.hardness is None:  # the capped solve at the analysis' hardness
         bsettings = dataclasses.replace(bsettings, hardness=analysis.hardness)
+    if analysis.criterion == "subsurface":
+        bsettings = dataclasses.replace(bsettings, subsurface=True)
     cap = float(bsettings.hardness or analysis.hardness)
     if max(settings.pressures) >= cap:
         raise ValueError(
@@ -431,16 +465,30 @@ def _load_study_results(out, settings: CampaignSettings) -> dict:
 
 def _analyse_models(results, out, settings, analysis, bsettings, model, say):
     """The analysis of the asperity model, and with ``model`` "bem" or "both" that of the
-    elastic model and the surfaces it leaves out (None and [] otherwise)."""
+    elastic model under the study's criterion, the surfaces it leaves out and its per-surface
+    records (None, [] and None otherwise). Under the subsurface criterion the elastic sample
+    is the largest von Mises stress beneath each contact spot and its threshold the yield
+    stress; under the others the spots' peak pressures and the hardness."""
     an = analyse(results, settings, analysis, progress=say)
     if model == "asperity":
-        return an, None, []
+        eres = None
+        if bsettings is not None:  # the first surfaces, for surfaces.csv
+            from .bem import elastic_results
+
+            eres, _ = elastic_results(out, settings, bsettings)
+        return an, None, [], eres
     from .bem import elastic_results
 
     if bsettings is None:  # set for every model but "asperity"
         raise AssertionError(f"model {model!r} without BEM settings")
-    eres, left_out = elastic_results(out, settings, bsettings)
-    return an, analyse(eres, settings, analysis, progress=say, model="bem"), left_out
+    crit = analysis.criterion_of(settings)
+    eres, left_out = elastic_results(out, settings, bsettings, crit.name)
+    if crit.name == "subsurface":
+        sub = dataclasses.replace(analysis, hardness=crit.yield_stress, yield_stress=None)
+        bem_an = analyse(eres, settings, sub, progress=say, model="bem", samples=("spot",))
+    else:
+        bem_an = analyse(eres, settings, analysis, progress=say, model="bem")
+    return an, bem_an, left_out, eres
 
 
 def _compare_models(out, settings, bsettings, analysis, results, say):
@@ -494,6 +542,8 @@ class _ReportInfo:
     bem: dict | None = None
     bem_settings: BEMSettings | None = None
     bem_maps: dict | None = None
+    criterion: Any = None
+    bem_records: dict | None = None
 
     def as_dict(self) -> dict[str, Any]:
         """The entries by name (the same objects, not copies); ``like`` only with a measured
@@ -506,6 +556,8 @@ class _ReportInfo:
             info["like"] = self.like
         info["bem_analysis"] = self.bem_analysis
         info["bem_left_out"] = self.bem_left_out
+        info["criterion"] = self.criterion
+        info["bem_records"] = self.bem_records
         if self.bem is not None:
             info.update(bem=self.bem, bem_settings=self.bem_settings, bem_maps=self.bem_maps)
         return info
@@ -561,8 +613,9 @@ def _add_bem_info(info: _ReportInfo, out, settings: CampaignSettings, bem_an, le
 
 
 def _write_tables(out, settings: CampaignSettings, result: StudyResult) -> None:
-    """Write ``summary.csv``, ``allowable_load.csv`` (with several loads) and
-    ``damage_calibration.csv`` into ``out``."""
+    """Write ``summary.csv``, ``allowable_load.csv`` (with several loads),
+    ``damage_calibration.csv``, ``surfaces.csv`` and, with an S-filter, ``scales.csv`` into
+    ``out``."""
     from .campaign import atomic_write
 
     atomic_write(Path(out) / "summary.csv", result.summary().to_csv(index=False).encode())
@@ -571,3 +624,7 @@ def _write_tables(out, settings: CampaignSettings, result: StudyResult) -> None:
                      result.allowable_load().to_csv(index=False).encode())
     atomic_write(Path(out) / "damage_calibration.csv",
                  result.damage_calibration().to_csv(index=False).encode())
+    atomic_write(Path(out) / "surfaces.csv", result.surfaces().to_csv(index=False).encode())
+    scales = result.scales()
+    if len(scales):
+        atomic_write(Path(out) / "scales.csv", scales.to_csv(index=False).encode())

@@ -256,7 +256,7 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
 
 
 def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, progress=None,
-            model: str = "asperity") -> dict:
+            model: str = "asperity", samples: tuple[str, ...] | None = None) -> dict:
     """Analyse every (H, load) of a campaign, every sample of its model.
 
     ``progress``, when given, is called with a one-line description before each case and
@@ -264,6 +264,7 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
     ("asperity", or "bem" for :func:`glstat.study.bem.elastic_results`, which has no per-asperity
     sample); the surfaces missing from ``results`` (e.g.
     elastic solves that did not converge) are left out. Each model has its own seeds.
+    ``samples`` narrows the samples analysed (default: every sample of the model).
 
     Returns
     -------
@@ -271,7 +272,8 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
         ``(ih, il) -> {"spot": SampleAnalysis, "asperity": SampleAnalysis, "grid": SampleAnalysis,
         "summary": dict}`` (no ``"asperity"`` for the BEM)
         where the summary holds the per-surface means of mean pressure (MPa), 1 − α, points
-        and asperities in contact and the maximal pressure (MPa).
+        and asperities in contact and the maximal pressure (MPa), and
+        ``observed_max_pressure`` (MPa, the median of the surfaces' maximal surface pressures).
     """
     out = {}
     for ih in range(len(settings.hurst)):
@@ -287,6 +289,8 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                 "n_asperities": float(np.mean([r["n_asperities"] for r in rs])),
                 "n_spots": float(np.mean([r["n_spots"] for r in rs])),
                 "max_pressure": float(np.mean([r["max_pressure"] for r in rs])) / 1e6,
+                "observed_max_pressure": float(np.median(
+                    [r.get("max_surface_pressure", r["max_pressure"]) for r in rs])) / 1e6,
                 "observed_damage": float(np.mean([float(r["max_pressure"]) / 1e6 > a.hardness_mpa
                                                   for r in rs])),
                 "overlap_fraction": float(np.mean([overlap_sets_maximum(r) for r in rs])),
@@ -303,7 +307,7 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                     [r["plastic_load_fraction"] for r in rs if "plastic_load_fraction" in r]))
             slot = MODEL_SLOTS[model]
             case: dict[str, SampleAnalysis | dict[str, float]] = {}
-            for sample in MODEL_SAMPLES[model]:
+            for sample in (MODEL_SAMPLES[model] if samples is None else samples):
                 if progress is not None:
                     progress(f"analysis ({MODEL_NAMES[model]}): {case_label(settings, ih, il)}, "
                              f"{SAMPLE_LABELS[sample]}")

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .criteria import CRITERIA, Criterion
+
 __all__ = ["GROUPED_SAMPLES", "MODEL_SAMPLES", "MORE_SURFACES", "PRIMARY_SAMPLE", "SEED_SLOTS",
            "AnalysisSettings",
            "fit_order", "overlap_sets_maximum", "pool", "predict_sample",
@@ -109,6 +111,16 @@ class AnalysisSettings:
         on the ceil(sqrt(N)) largest values of its sample and the calibrated intervals; None,
         the GLDs alone. The grid-point sample, the paper's predictor, always uses the GLD
         alone, as the paper did.
+    criterion : {"surface", "subsurface", "plastic-zone"}
+        What damages a surface (:mod:`glstat.study.criteria`): the elastic surface pressure
+        reaching the hardness (the paper's, default), the von Mises stress beneath the surface
+        reaching ``yield_stress``, or a connected plastic zone of the capped solution of at
+        least ``min_plastic_area``. The asperity model answers under the surface criterion.
+    yield_stress : float or None
+        Yield stress Y in Pa of the subsurface criterion; None: hardness / 2.8 (Tabor).
+    min_plastic_area : float or None
+        Smallest plastic zone in m² of the plastic-zone criterion; None: a disc of diameter λs
+        (the S-filter's nesting index), or of three grid spacings without an S-filter.
     """
 
     hardness: float = 2050e6
@@ -125,6 +137,23 @@ class AnalysisSettings:
     damage_areas: tuple[float, ...] = (1e-6, 1e-4, 1e-3)
     target_damage: float = 0.01
     tail: str | None = "pareto"
+    criterion: str = "surface"
+    yield_stress: float | None = None
+    min_plastic_area: float | None = None
+
+    def criterion_of(self, settings) -> Criterion:
+        """The damage criterion with its thresholds resolved against the campaign ``settings``
+        (the default minimum plastic area depends on λs or the grid spacing)."""
+        from .criteria import TABOR_FACTOR
+
+        area = self.min_plastic_area
+        if area is None:
+            lam = settings.s_filter if settings.s_filter is not None else 3 * max(settings.spacing)
+            area = math.pi * lam ** 2 / 4
+        return Criterion(self.criterion, self.hardness,
+                         self.hardness / TABOR_FACTOR if self.yield_stress is None
+                         else self.yield_stress, area, self.yield_stress is not None,
+                         self.min_plastic_area is not None)
 
     @property
     def hardness_mpa(self) -> float:
@@ -163,6 +192,19 @@ class AnalysisSettings:
                              f"{self.target_damage!r}")
         if self.tail not in ("pareto", None):
             raise ValueError(f"tail must be 'pareto' or None, got {self.tail!r}")
+        if self.criterion not in CRITERIA:
+            raise ValueError(f"criterion must be one of {', '.join(map(repr, CRITERIA))}, got "
+                             f"{self.criterion!r}")
+        if self.yield_stress is not None:
+            y = positive_finite(self.yield_stress, "yield_stress", "yield stress in Pa")
+            if y >= self.hardness:
+                raise ValueError(f"yield_stress {y / 1e6:g} MPa is not below the hardness "
+                                 f"{self.hardness / 1e6:g} MPa (H ≈ 2.8 Y for metals); check the "
+                                 f"units (Pa)")
+            object.__setattr__(self, "yield_stress", float(y))
+        if self.min_plastic_area is not None:
+            object.__setattr__(self, "min_plastic_area", positive_finite(
+                self.min_plastic_area, "min_plastic_area", "area in square metres"))
 
 
 

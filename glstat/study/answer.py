@@ -34,7 +34,9 @@ SUMMARY_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "mean_pressure_mp
                    "coverage", "coverage_low", "coverage_high", "coverage_p_value",
                    "detectable_miss", "bias_p_value", "theta", "damage_levels_inside", "check",
                    "passes_check", "upper_end_mpa", "n_surfaces", "plastic_area_fraction",
-                   "plastic_area_fraction_low", "plastic_area_fraction_high", "plastic_check")
+                   "plastic_area_fraction_low", "plastic_area_fraction_high", "plastic_check",
+                   "spacing_um", "s_filter_um", "criterion", "threshold",
+                   "observed_max_pressure_mpa")
 #: The plastic area fraction's columns of ``summary.csv`` (the capped BEM; NaN otherwise).
 PLASTIC_COLUMNS = ("plastic_area_fraction", "plastic_area_fraction_low",
                    "plastic_area_fraction_high")
@@ -109,11 +111,13 @@ def _analysis_rows(settings, analysis: dict, model: str) -> list[dict]:
                 "passes_check": v.passes() if sa.ok else False,
                 "upper_end_mpa": sa.upper_end, "n_surfaces": s["n_surfaces"],
                 **{k: s.get(k, math.nan) for k in PLASTIC_COLUMNS},
-                "plastic_check": s.get("plastic_check", "")})
+                "plastic_check": s.get("plastic_check", ""),
+                "observed_max_pressure_mpa": s.get("observed_max_pressure", math.nan)})
     return rows
 
 
-def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysis: dict | None = None):
+def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysis: dict | None = None,
+                  criterion=None, bem_records: dict | None = None, confidence_level: float = 0.9):
     """``summary.csv``: one row per H × load × model × sample (pandas DataFrame).
 
     Columns (pressures in MPa, probabilities as fractions): ``hurst``, ``pressure_mpa`` (nominal),
@@ -171,7 +175,45 @@ def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysi
                 "coverage_p_value": math.nan, "detectable_miss": math.nan,
                 "check": "not checked", "passes_check": False, "upper_end_mpa": math.nan,
                 "n_surfaces": len(surf)})
+    _scale_columns(rows, settings, criterion, bool(bem_analysis))
+    if criterion is not None and criterion.name == "plastic-zone" and bem_records:
+        rows += _plastic_zone_rows(settings, criterion, bem_records, confidence_level)
     return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
+
+
+def _scale_columns(rows: list[dict], settings, criterion, bem_on_all: bool) -> None:
+    """Add the scale (spacing, λs) and the criterion of each row of ``summary.csv``: the asperity
+    model and the elastic rows answer under the surface criterion, but for the subsurface
+    criterion of the elastic model run on every surface."""
+    from .criteria import Criterion
+    from .scales import s_filter_um, spacing_um
+
+    crit = criterion or Criterion()
+    surface = Criterion("surface", crit.hardness)
+    for row in rows:
+        own = crit if (row["model"] == "bem" and bem_on_all and crit.name == "subsurface") else surface
+        row.update(spacing_um=spacing_um(settings), s_filter_um=s_filter_um(settings),
+                   criterion=own.name, threshold=own.threshold_text())
+    for row in rows:
+        row.setdefault("observed_max_pressure_mpa", math.nan)
+
+
+def _plastic_zone_rows(settings, criterion, bem_records: dict, level: float) -> list[dict]:
+    """The plastic-zone criterion's rows of ``summary.csv`` (elastic BEM, sample "areas")."""
+    from .scales import s_filter_um, spacing_um
+    from .surface_table import criteria_frame
+
+    frame = criteria_frame(settings, criterion, bem_records, level)
+    rows = []
+    for _, r in frame[frame["criterion"] == "plastic-zone"].iterrows():
+        rows.append({"hurst": r["hurst"], "pressure_mpa": r["pressure_mpa"], "model": "bem",
+                     "sample": "areas", "damage": r["fraction"], "damage_low": r["low"],
+                     "damage_high": r["high"], "observed_damage": r["fraction"],
+                     "n_surfaces": int(r["n_surfaces"]), "fit": "none (exact binomial)",
+                     "check": "not checked", "passes_check": False,
+                     "spacing_um": spacing_um(settings), "s_filter_um": s_filter_um(settings),
+                     "criterion": "plastic-zone", "threshold": r["threshold"]})
+    return rows
 
 
 def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None):
@@ -249,7 +291,8 @@ def overlap_note(settings, analysis: dict, threshold: float = 0.1) -> str:
 
 
 def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
-                      bem_analysis: dict | None = None) -> tuple[list[list[Any]], list[str]]:
+                      bem_analysis: dict | None = None, criterion=None
+                      ) -> tuple[list[list[Any]], list[str]]:
     """Rows of the report's first table, one per (H, load) and model: with the elastic BEM on
     every surface (``bem_analysis``) its row, the reference answer, comes first and the
     asperity model (the paper's) follows; otherwise the asperity model with the BEM's damage
@@ -259,7 +302,10 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
     simulated = not getattr(settings, "topographies", ())
     rows = []
     plastic = any("plastic_area_fraction" in r["summary"] for r in (bem_analysis or {}).values())
-    cases = _model_cases(analysis, bem_analysis, ", elastic BEM (reference)",
+    elastic = ", elastic BEM (reference)"
+    if criterion is not None and criterion.name == "subsurface":
+        elastic += f", von Mises ≥ Y = {criterion.yield_stress / 1e6:.4g} MPa beneath the surface"
+    cases = _model_cases(analysis, bem_analysis, elastic,
                          f", asperity model (c = {settings.cone_factor:g}, the paper's)")
     for (ih, il), r, label in cases:
         h = settings.hurst[ih]

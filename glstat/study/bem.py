@@ -18,6 +18,7 @@ comparison resumes like the campaign. The comparison itself is
 from __future__ import annotations
 
 import json
+import math
 import os
 import time
 from concurrent.futures import Executor
@@ -32,7 +33,6 @@ from .both_models import MODELS, contact_record, interior, solve_both, split_mod
 from .campaign import (
     MANIFEST,
     atomic_write,
-    campaign_surface,
     compute_and_save,
     measured_rq,
     npz_has,
@@ -42,6 +42,7 @@ from .campaign import (
     write_failure,
 )
 from .campaign_settings import CampaignSettings
+from .criteria import criterion_arrays, default_depths, plastic_zone_areas
 from .errors import CampaignError
 from .lock import lock_directory
 from .model_comparison import (
@@ -49,7 +50,8 @@ from .model_comparison import (
     compare_records,
 )
 from .results import surface_path
-from .surface_task import weierstrass_surface
+from .scales import prepared_surface, scale_factors
+from .surface_task import raw_surface, weierstrass_surface
 
 __all__ = [
     "BEMRun",
@@ -65,7 +67,7 @@ __all__ = [
 ]
 
 #: Version of the ``bem_<i>.npz`` layout; part of the manifest's ``compare_bem`` section.
-BEM_FORMAT_VERSION = 1
+BEM_FORMAT_VERSION = 2
 #: Members of ``bem_<i>.npz`` holding full pressure maps (example surfaces only).
 _MAP_KEYS = tuple(f"{m}_pressure" for m in MODELS)
 
@@ -112,6 +114,10 @@ class BEMSettings:
         they carry are stored. None: elastic solves only. The elastic solve stays the one the
         damage probability is predicted from: a surface is damaged when any point reaches H,
         the same event in the elastic and the capped solution.
+    subsurface : bool, default False
+        Also compute the subsurface stress of every elastic solution (the largest von Mises
+        stress beneath each contact spot, for the subsurface damage criterion,
+        :mod:`glstat.study.criteria`).
     """
 
     n_compare: int = 5
@@ -121,10 +127,12 @@ class BEMSettings:
     grid: int | None = None
     guard: int = 0
     hardness: float | None = None
+    subsurface: bool = False
 
     def __post_init__(self) -> None:
         from _glstat_runtime.validation import flag, positive_finite, positive_integer, tolerance
 
+        object.__setattr__(self, "subsurface", flag(self.subsurface, "subsurface"))
         if self.hardness is not None:
             object.__setattr__(self, "hardness", positive_finite(self.hardness, "hardness",
                                                                  "hardness in pascals"))
@@ -150,6 +158,8 @@ class BEMSettings:
             out["guard"] = int(self.guard)
         if self.hardness is not None:  # absent: elastic solves only, as before
             out["hardness"] = float(self.hardness)
+        if self.subsurface:
+            out["subsurface"] = True
         return out
 
     def guard_points(self, settings: CampaignSettings) -> int:
@@ -187,33 +197,109 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
         ``asperity_pressure`` and ``bem_pressure`` (Pa, float32).
     """
 
+    import contact
+
     grid = bsettings.solve_grid(settings)
     guard = bsettings.guard_points(settings)
-    surf = (campaign_surface(settings, ih, il, i) if grid is None and not guard
-            else weierstrass_surface(settings, ih, il, i, grid=grid, pad=guard))
+    raw = (raw_surface(settings, ih, il, i) if grid is None and not guard
+           else weierstrass_surface(settings, ih, il, i, grid=grid, pad=guard))
+    surf = prepared_surface(settings, raw)
     asp, bem, ta, tb = solve_both(surf, settings.pressures[il], settings.E, settings.nu,
                                    settings.cone_factor, None, bsettings.periodic, bsettings.tol,
                                    bsettings.max_iter, 1, True)
+    capped, tp = _capped_solve(surf, settings, bsettings, il)
     out: dict[str, np.ndarray | np.generic] = {}
     for model, res in (("asperity", asp), ("bem", bem)):
-        out.update({f"{model}_{k}": v for k, v in contact_record(res, guard).items()})
+        spots = contact.contact_spots(res)
+        extra = {}
+        if model == "bem":
+            crit = criterion_arrays(res, capped, spots, settings.nu, bsettings.subsurface, guard)
+            if "spot_von_mises" in crit:
+                extra["von_mises"] = crit.pop("spot_von_mises")
+            out.update({f"bem_{k}": v for k, v in crit.items()})
+        out.update({f"{model}_{k}": v
+                    for k, v in contact_record(res, guard, spots=spots, spot_values=extra).items()})
         if i < settings.n_examples:
             n0, n1 = res.pressure.shape
             out[f"{model}_pressure"] = res.pressure[guard:n0 - guard, guard:n1 - guard].astype(np.float32)
     out["seconds_asperity"] = np.float64(ta)
     out["seconds_bem"] = np.float64(tb)
     out["rq"] = np.float64(measured_rq(surf))
-    if bsettings.hardness is not None:
-        import contact
-
-        t0 = time.perf_counter()
-        capped = contact.solve_bem(surf, settings.pressures[il], settings.E, settings.nu,
-                                   periodic=bool(bsettings.periodic), tol=bsettings.tol,
-                                   max_iter=bsettings.max_iter, workers=1, warn=False,
-                                   hardness=bsettings.hardness)
+    if capped is not None:
         out.update({f"plastic_{k}": v for k, v in plastic_record(capped, guard).items()})
-        out["seconds_plastic"] = np.float64(time.perf_counter() - t0)
+        out["seconds_plastic"] = np.float64(tp)
+    if settings.measured:
+        out["max_on_spike"] = np.bool_(_max_on_spike(settings, raw, bem))
+    out.update(_scale_arrays(settings, bsettings, il, raw, bem, capped, out, guard))
     return out
+
+
+def _capped_solve(surf: Any, settings: CampaignSettings, bsettings: BEMSettings, il: int,
+                  ) -> tuple[Any, float]:
+    """The elastic–perfectly-plastic solve of ``surf`` at the BEM settings' hardness (None
+    without one) and its seconds."""
+    if bsettings.hardness is None:
+        return None, 0.0
+    import contact
+
+    t0 = time.perf_counter()
+    capped = contact.solve_bem(surf, settings.pressures[il], settings.E, settings.nu,
+                               periodic=bool(bsettings.periodic), tol=bsettings.tol,
+                               max_iter=bsettings.max_iter, workers=1, warn=False,
+                               hardness=bsettings.hardness)
+    return capped, time.perf_counter() - t0
+
+
+def _max_on_spike(settings: CampaignSettings, raw: Any, bem: Any) -> bool:
+    """Whether the largest elastic pressure of a measured surface lies on or next to one of its
+    outlier points (within one grid spacing, or within λs with an S-filter)."""
+    spikes = raw.spikes()
+    if not spikes.count:
+        return False
+    dx = min(settings.spacing)
+    radius = 1 if settings.s_filter is None else max(1, math.ceil(settings.s_filter / dx))
+    index = np.unravel_index(int(np.argmax(bem.pressure)), bem.pressure.shape)
+    return bool(spikes.near(index, radius))
+
+
+def _scale_arrays(settings: CampaignSettings, bsettings: BEMSettings, il: int, raw: Any, bem: Any,
+                  capped: Any, record: dict, guard: int) -> dict[str, np.ndarray]:
+    """The answer against the scale: the surface solved again at every multiple of λs of
+    :func:`glstat.study.scales.scale_factors` (elastic and capped), its largest pressure of the
+    spots inside the patch (Pa), its plastic area and largest plastic zone (m²) and, with the
+    subsurface stress, its largest von Mises stress (Pa); entry 0 is the study's own scale
+    (nothing without an S-filter)."""
+    import contact
+
+    factors = scale_factors(settings)
+    if len(factors) < 2:
+        return {}
+
+    def figures(res, cap, vm):
+        inner = interior(contact_record(res, guard))
+        zones = (plastic_zone_areas(cap.plastic, cap.cell_area, guard) if cap is not None
+                 else np.zeros(0))
+        return (inner["max_pressure"], float(zones.sum()), float(zones[0]) if zones.size else 0.0,
+                vm, bool(res.converged) and (cap is None or bool(cap.converged)))
+
+    rows = [figures(bem, capped, float(record.get("bem_max_von_mises", math.nan)))]
+    for k in factors[1:]:
+        s = prepared_surface(settings, raw, k)
+        res = contact.solve_bem(s, settings.pressures[il], settings.E, settings.nu,
+                                periodic=bool(bsettings.periodic), tol=bsettings.tol,
+                                max_iter=bsettings.max_iter, workers=1, warn=False)
+        cap, _ = _capped_solve(s, settings, bsettings, il)
+        vm = math.nan
+        if bsettings.subsurface:
+            vm = float(np.max(res.max_von_mises(depths=default_depths(res), nu=settings.nu).von_mises))
+        rows.append(figures(res, cap, vm))
+    cols = list(zip(*rows, strict=True))
+    return {"scale_factors": np.asarray(factors, dtype=np.int64),
+            "scale_max_pressure": np.asarray(cols[0], dtype=np.float64),
+            "scale_plastic_area": np.asarray(cols[1], dtype=np.float64),
+            "scale_largest_zone": np.asarray(cols[2], dtype=np.float64),
+            "scale_max_von_mises": np.asarray(cols[3], dtype=np.float64),
+            "scale_converged": np.asarray(cols[4], dtype=bool)}
 
 
 def plastic_record(res: Any, guard: int = 0) -> dict[str, np.generic]:
@@ -436,19 +522,25 @@ def load_bem_maps(out: str | os.PathLike, settings: CampaignSettings,
 
 
 def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsettings: BEMSettings,
+                    criterion: str = "surface",
                     ) -> tuple[dict[tuple[int, int, int], dict[str, Any]], list[tuple[int, int, int]]]:
     """The stored elastic (BEM) solutions in the form the study's analysis reads.
 
     Every surface's record holds, for the contact spots inside the patch (spots touching its
     border carry the edge singularity of the isolated patch and are left out, see
     :func:`contact_record`): ``samples`` (their non-zero grid pressures, Pa), ``spot_peak``
-    (the peak pressure of every such spot, Pa), ``n_spots`` (their number), ``asperity_peak``
+    (the peak pressure of every such spot, Pa; under the ``"subsurface"`` criterion the
+    largest von Mises stress beneath it), ``n_spots`` (their number), ``asperity_peak``
     and ``n_asperities`` (the same, under the per-asperity names), ``n_contact`` (their grid
-    points), ``max_pressure`` (their largest pressure); and for the whole solution
-    ``mean_pressure``, ``alpha``, ``force_error`` and ``n_border_spots``; with a hardness
-    (:attr:`BEMSettings.hardness`) ``plastic_area_fraction`` and ``plastic_load_fraction`` of
-    the capped solution when it converged. A solve that did not converge within its iteration
-    limit is left out (never silently used) and listed.
+    points), ``max_pressure`` (their largest pressure, or von Mises stress under the
+    subsurface criterion), ``max_surface_pressure`` (their largest pressure); and for the
+    whole solution ``mean_pressure``, ``alpha``, ``force_error`` and ``n_border_spots``; with
+    a hardness (:attr:`BEMSettings.hardness`) ``plastic_area_fraction``,
+    ``plastic_load_fraction`` and ``plastic_zone_areas`` (m²) of the capped solution when it
+    converged; ``max_von_mises`` (Pa) with the subsurface stress, ``max_on_spike`` for
+    measured files and the ``scale_*`` figures with an S-filter (:func:`simulate_bem`). A
+    solve that did not converge within its iteration limit is left out (never silently used)
+    and listed.
 
     Returns
     -------
@@ -463,13 +555,21 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
             dropped.append(key)
             continue
         inner = interior(r)
+        peaks, top = inner["peaks"], inner["max_pressure"]
+        if criterion == "subsurface":
+            on_border = np.asarray(r["cluster_on_border"], dtype=bool)
+            peaks = np.asarray(r["cluster_von_mises"], dtype=float)[~on_border]
+            top = float(peaks.max()) if peaks.size else 0.0
         plastic = ({"plastic_area_fraction": float(z["plastic_area_fraction"]),
-                    "plastic_load_fraction": float(z["plastic_load_fraction"])}
+                    "plastic_load_fraction": float(z["plastic_load_fraction"]),
+                    "plastic_zone_areas": np.asarray(z["bem_plastic_zone_areas"], dtype=float)}
                    if "plastic_area_fraction" in z and bool(z["plastic_converged"]) else {})
-        res[key] = {**plastic, "samples": inner["samples"], "spot_peak": inner["peaks"],
-                    "n_spots": inner["n_spots"], "asperity_peak": inner["peaks"],
+        extra = {k: z[k] for k in z.files
+                 if k.startswith("scale_") or k in ("max_on_spike", "bem_max_von_mises")}
+        res[key] = {**plastic, **extra, "samples": inner["samples"], "spot_peak": peaks,
+                    "n_spots": inner["n_spots"], "asperity_peak": peaks,
                     "n_asperities": inner["n_spots"], "n_contact": int(inner["samples"].size),
-                    "max_pressure": inner["max_pressure"],
+                    "max_pressure": top, "max_surface_pressure": inner["max_pressure"],
                     "mean_pressure": float(r["mean_pressure"]),
                     "alpha": 1.0 - float(r["contact_fraction"]), "force_error": float(r["force_error"]),
                     "n_border_spots": inner["n_border_spots"]}

@@ -22,7 +22,9 @@ MODELS = ("asperity", "bem")
 MODEL_LABELS = {"asperity": "asperity model", "bem": "elastic BEM"}
 
 
-def contact_record(res: Any, guard: int = 0) -> dict[str, np.ndarray | np.generic]:
+def contact_record(res: Any, guard: int = 0, *, spots: Any = None,
+                   spot_values: Mapping[str, np.ndarray] | None = None
+                   ) -> dict[str, np.ndarray | np.generic]:
     """The figures of one contact solution that the comparison uses.
 
     Parameters
@@ -35,6 +37,11 @@ def contact_record(res: Any, guard: int = 0) -> dict[str, np.ndarray | np.generi
         ``pad=guard``), and only the central part is described. A spot belongs to the analysed
         area when its peak lies there; the guard band keeps the edge of the isolated patch
         (and its punch-edge singularity) away from it.
+    spots : contact.ContactSpots, optional
+        The contact spots of ``res`` when already computed.
+    spot_values : mapping of str to ndarray, optional
+        Further figures per spot (aligned with ``spots``), stored as ``cluster_<name>`` for the
+        same spots as ``cluster_peaks``.
 
     Returns
     -------
@@ -61,7 +68,8 @@ def contact_record(res: Any, guard: int = 0) -> dict[str, np.ndarray | np.generi
     import contact
 
     full = np.asarray(res.pressure, dtype=np.float64)
-    spots = contact.contact_spots(res)
+    if spots is None:
+        spots = contact.contact_spots(res)
     g = int(guard)
     if g < 0 or 2 * g >= min(full.shape):
         raise ValueError(f"guard must be an integer in [0, {min(full.shape) // 2}), got {guard!r}")
@@ -81,7 +89,9 @@ def contact_record(res: Any, guard: int = 0) -> dict[str, np.ndarray | np.generi
     border[[0, -1], :] = True
     border[:, [0, -1]] = True
     total = float(full.sum())
+    extra = {f"cluster_{name}": np.asarray(v)[in_area] for name, v in (spot_values or {}).items()}
     return {
+        **extra,
         "samples": p[inc],
         "max_pressure": np.float64(res.max_pressure if not g else p.max()),
         "mean_pressure": np.float64(res.mean_pressure if not g else

@@ -139,6 +139,16 @@ class CampaignSettings:
     file_unit : str or None
         Length unit of measured files that state none (``"m"``, ``"mm"``, ``"µm"``, ``"nm"``,
         ...); None: the files' own.
+    s_filter : float or None
+        Nesting index λs in metres of the ISO 16610-61 Gaussian S-filter applied to every
+        surface before it is solved (wavelengths shorter than λs removed; the lateral scale at
+        which the answer holds, :func:`contact.s_filter`); None: no S-filter (the surfaces as
+        generated or as the instrument sampled them). Measured files get the ISO 25178-3
+        default from :func:`glstat.study.measured.measured_settings` unless one is given.
+    despike : bool
+        Replace the outlier points of measured files (one or a few pixels standing out from
+        their neighbourhood, :func:`contact.find_spikes`) by the local median of their
+        neighbours before the S-filter; False: spikes are found and reported, not replaced.
 
     Notes
     -----
@@ -168,6 +178,8 @@ class CampaignSettings:
     tiles: tuple[int, int] | None = None
     file_spacing: tuple[float, float] | None = None
     file_unit: str | None = None
+    s_filter: float | None = None
+    despike: bool = False
 
     def __post_init__(self) -> None:
         if self.grid_y is not None and is_integer(self.grid_y) and self.grid_y == self.grid:
@@ -202,6 +214,7 @@ class CampaignSettings:
         if self.length_y is not None:
             object.__setattr__(self, "length_y", float(self.length_y))
         _check_material(self)
+        _check_scale(self)
         from _glstat_runtime.validation import warn_at_caller
 
         for note in self.implausible_values():
@@ -239,9 +252,11 @@ class CampaignSettings:
         """
         d = dataclasses.asdict(self)
         d.pop("n_surfaces")
-        for name in ("grid_y", "length_y", "tiles", "file_spacing", "file_unit"):
+        for name in ("grid_y", "length_y", "tiles", "file_spacing", "file_unit", "s_filter"):
             if d[name] is None:
                 d.pop(name)
+        if not d["despike"]:  # absent: the identity of campaigns before despiking existed
+            d.pop("despike")
         if not self.topographies:  # simulated surfaces: the identity of earlier versions
             for name in ("topographies", "digests", "form", "like"):
                 d.pop(name)
@@ -446,6 +461,31 @@ def _check_geometry(s: CampaignSettings) -> None:
                 f"n_terms must be between 1 and {limit} (the Nyquist limit of a {grid} "
                 f"grid with gamma={s.gamma}), got {v}; use None for the full spectrum"
             )
+
+
+def _check_scale(s: CampaignSettings) -> None:
+    """The S-filter (a nesting index of at least two grid spacings and at most half the
+    smaller side) and the despiking flag (measured files only)."""
+    from _glstat_runtime.validation import flag, positive_finite
+
+    object.__setattr__(s, "despike", flag(s.despike, "despike"))
+    if s.despike and not s.measured:
+        raise ValueError("despike replaces outlier points of measured files (topographies, "
+                         "without like); simulated surfaces have none")
+    if s.s_filter is None:
+        return
+    lam = positive_finite(s.s_filter, "s_filter", "S-filter nesting index λs in metres")
+    spacing, side = max(s.spacing), min(s.size)
+    if lam < 2 * spacing:
+        raise ValueError(f"s_filter λs = {lam * 1e6:.4g} µm is below two grid spacings "
+                         f"({2 * spacing * 1e6:.4g} µm): the grid cannot resolve it; give λs of at "
+                         f"least {2 * spacing * 1e6:.4g} µm (ISO 25178-3 suggests 3 spacings or "
+                         f"more), or none")
+    if 4 * lam > side:
+        raise ValueError(f"s_filter λs = {lam * 1e6:.4g} µm is more than a quarter of the "
+                         f"surface's side ({side * 1e6:.4g} µm): the filter would flatten the "
+                         f"surface; give a λs below {side / 4 * 1e6:.4g} µm")
+    object.__setattr__(s, "s_filter", lam)
 
 
 def _check_material(s: CampaignSettings) -> None:

@@ -217,6 +217,7 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
                       form: str = "plane", tiles: tuple[int, int] | None = None,
                       tile_size: tuple[float, float] | None = None,
                       spacing: tuple[float, float] | None = None, unit: str | None = None,
+                      s_filter: float | str | None = "default", despike: bool = False,
                       **scene: Any) -> CampaignSettings:
     """Campaign settings whose surfaces are measured files: one surface per file, or per area
     of a file cut into ``tiles``.
@@ -239,6 +240,15 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
         Grid spacing ``(dx, dy)`` in metres of files that store none.
     unit : str, optional
         Length unit of files that state none (``"m"``, ``"mm"``, ``"µm"``, ``"nm"``).
+    s_filter : float, "default" or None
+        Nesting index λs in metres of the Gaussian S-filter applied to every surface (the
+        lateral scale of the answer); ``"default"`` (the default): the ISO 25178-3 choice for
+        the files' spacing (:func:`contact.default_s_filter`: the smallest preferred λs of at
+        least three spacings); None: no S-filter (the answer then holds at the instrument's
+        sampling only).
+    despike : bool, default False
+        Replace outlier points (one or a few pixels standing out from their neighbourhood) by
+        the local median of their neighbours before the S-filter.
     **scene
         Other :class:`CampaignSettings` fields: ``pressures`` (Pa), ``E`` (Pa), ``nu``,
         ``cone_factor``, ``seed``.
@@ -252,6 +262,8 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
         the median of their structure-function estimates in [0, 1] (0.5 when none is physical)
         — a label of the group, not a simulation input.
     """
+    import contact
+
     paths = find_topographies(specs)
     if tile_size is not None:
         if tiles is not None:
@@ -263,12 +275,19 @@ def measured_settings(specs: str | os.PathLike | Iterable[str | os.PathLike], *,
     _check_units_agree(paths, rq, tiles)
     estimates = [h for h in (_hurst_estimate(s) for s in surfaces) if math.isfinite(h)]
     hurst = float(np.clip(np.median(estimates), 0.0, 1.0)) if estimates else 0.5
+    if isinstance(s_filter, str):
+        if s_filter != "default":
+            raise ValueError(f"s_filter must be a nesting index in metres, 'default' or None, got "
+                             f"{s_filter!r}")
+        s_filter = contact.default_s_filter(surfaces[0].dx, surfaces[0].dy)
+        if 4 * s_filter > min(surfaces[0].size):
+            s_filter = None  # an area too small for the default: solved at its sampling
     return CampaignSettings(
         hurst=(hurst,), n_surfaces=len(surfaces), **_grid_fields(surfaces[0]),
         rq=float(np.mean(rq)), n_terms=(None,),
         n_examples=min(1, len(surfaces)), topographies=tuple(os.fspath(p) for p in paths),
         digests=tuple(file_digest(p) for p in paths), form=form, tiles=tiles,
-        file_spacing=spacing, file_unit=unit, **scene)
+        file_spacing=spacing, file_unit=unit, s_filter=s_filter, despike=despike, **scene)
 
 
 #: Largest ratio of one measured surface's RMS height to the median of all of them before the

@@ -49,7 +49,9 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict,
         ``length``, ``rq``, ``pressure``, ``n_surfaces``, ``seed``), ``command`` (str),
         ``workers`` (str); optionally ``bem``, ``bem_settings``, ``bem_maps`` (the BEM
         comparison), ``bem_analysis`` and ``bem_left_out`` (the whole method on the elastic
-        BEM), ``paper_findings`` (list of str) and ``like`` (the measured template).
+        BEM), ``criterion`` (:class:`glstat.study.criteria.Criterion`) and ``bem_records`` (the
+        elastic solutions per surface, :func:`glstat.study.bem.elastic_results`),
+        ``paper_findings`` (list of str) and ``like`` (the measured template).
     progress : callable, optional
         Called with a short text before each group of sections (e.g. to print it).
 
@@ -63,7 +65,7 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict,
     # (progress label, whether the run has these sections, the sections)
     sections = [
         ("the answer and its checks", True,
-         lambda: (answer_section(settings, asettings, analysis, info),
+         lambda: (answer_section(settings, asettings, analysis, {**info, "results": results}),
                   checks_section(settings, asettings, analysis, info))),
         ("the paper and the main results", True,
          lambda: (paper_section(info, settings, analysis),

@@ -26,6 +26,7 @@ from .report_figures import (
     surfaces_figure,
 )
 from .report_numbers import SAMPLE_ORDER, model_error_factors
+from .report_scale import elastic_validity_note, scale_blocks, scale_paragraph, spike_note
 from .report_surfaces import area_text, scene_sentence, surface_rows
 from .report_text import (
     calibration_verdict,
@@ -34,6 +35,7 @@ from .report_text import (
     truncation_caption,
     truncation_paragraphs,
 )
+from .scales import scale_text
 
 __all__ = ["answer_section", "checks_section", "examples_section", "main_results_section",
            "paper_section", "settings_section"]
@@ -51,6 +53,12 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     hard, lvl = asettings.hardness_mpa, _level(asettings)
     out.heading("The answer")
     bem = info.get("bem")
+    crit = info.get("criterion") or asettings.criterion_of(settings)
+    bem_on_all = bool(info.get("bem_analysis"))
+    out.paragraph(scale_paragraph(settings, crit, bem_on_all))
+    validity = elastic_validity_note(settings, crit, info.get("bem_analysis"))
+    if validity:
+        out.paragraph("⚠ " + validity)
     odd: list[str] = getattr(settings, "implausible_values", list)()
     if odd:
         out.paragraph("⚠ Implausible values for their SI unit (a unit mix-up?): " + "; ".join(odd)
@@ -58,11 +66,21 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     for warn in (degenerate_scene(analysis, settings), overlap_note(settings, analysis)):
         if warn:
             out.paragraph("⚠ " + warn)
-    rows, columns = first_screen_rows(settings, asettings, analysis, bem, info.get("bem_analysis"))
+    quality = spike_note(settings, info.get("results") or {}, info.get("bem_records"))
+    if quality:
+        out.paragraph(("⚠ " if "lies on or next to one in 0 " not in quality else "") + quality)
+    rows, columns = first_screen_rows(settings, asettings, analysis, bem, info.get("bem_analysis"),
+                                      crit)
+    sub = (f" Under the subsurface criterion the elastic BEM's rows give the probability that the "
+           f"von Mises stress beneath the surface exceeds Y = {crit.yield_stress / 1e6:.4g} MPa, "
+           f"predicted in the same way from the largest von Mises stress beneath each contact spot."
+           if crit.name == "subsurface" and bem_on_all else "")
     out.table(columns, rows,
               f"Probability that the contact pressure exceeds the hardness Pd = {hard:g} MPa "
-              f"somewhere on one analysed area ({area_text(settings)}; H is the Hurst exponent of "
-              f"the surfaces, not the hardness), "
+              f"somewhere on one analysed area ({area_text(settings)}"
+              + ("" if settings.measured else "; H is the Hurst exponent of the surfaces, not the "
+                 "hardness")
+              + f"; {scale_text(settings, short=True)}),{sub} "
               f"predicted from the peak pressures of the connected contact spots of each surface's "
               f"pressure map with their number per surface as a random count (docs/method.md §6; "
               f"the largest spot peak of a surface is its maximal pressure), with its {lvl} % "
@@ -83,6 +101,10 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
                   f"k times the analysed one holds k independent analysed areas, docs/method.md §7; "
                   f"the figure \"Integrity against area\" below draws the integrity, 1 − damage, "
                   f"against k).")
+    resolution = scale_blocks(out, settings, asettings, crit, info.get("results") or {},
+                              info.get("bem_records"))
+    if resolution:
+        out.paragraph("⚠ " + resolution)
     if len(settings.pressures) > 1:
         _allowable_block(out, settings, asettings, analysis, info.get("bem_analysis"))
     if bem:

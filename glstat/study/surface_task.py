@@ -10,11 +10,14 @@ from typing import Any
 import numpy as np
 
 from .campaign_settings import CampaignSettings
+from .scales import prepared_surface
 from .topography import measured_rq, measured_surface
 
 __all__ = [
     "MEASURED_PARAMETERS",
     "campaign_surface",
+    "quality_arrays",
+    "raw_surface",
     "simulate_surface",
     "solve_asperity",
     "weierstrass_surface",
@@ -55,13 +58,21 @@ def weierstrass_surface(settings: CampaignSettings, ih: int, il: int, i: int, *,
                                n_terms=settings.n_terms[ih], pad=pad)
 
 
-def campaign_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> Any:
-    """Surface i of (H index ``ih``, load index ``il``): measured surface i (a file, or an area
-    of one: :func:`glstat.study.topography.measured_surface`), or the Weierstrass
-    surface of seed ``settings.seed_sequence(ih, il, i)`` (a :class:`contact.Surface`, metres)."""
+def raw_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> Any:
+    """Surface i of (H index ``ih``, load index ``il``) before its scale is set: measured
+    surface i (a file, or an area of one, its form removed:
+    :func:`glstat.study.topography.measured_surface`), or the Weierstrass surface of seed
+    ``settings.seed_sequence(ih, il, i)`` (a :class:`contact.Surface`, metres)."""
     if settings.measured:
         return measured_surface(settings, i)
     return weierstrass_surface(settings, ih, il, i)
+
+
+def campaign_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> Any:
+    """Surface i of (H index ``ih``, load index ``il``) as the study solves it: the
+    :func:`raw_surface` at the study's scale (outliers replaced with ``despike``, then the
+    S-filter: :func:`glstat.study.scales.prepared_surface`)."""
+    return prepared_surface(settings, raw_surface(settings, ih, il, i))
 
 
 def solve_asperity(settings: CampaignSettings, surface: Any, load: float) -> Any:
@@ -104,12 +115,28 @@ def _contact_arrays(res: Any) -> dict[str, Any]:
 
 
 def _measured_arrays(surface: Any) -> dict[str, Any]:
-    """The ISO 25178 parameters of a measured file (its form removed) and the fraction of its
-    points that were not measured."""
+    """The ISO 25178 parameters of a measured file (its form removed, at the study's scale) and
+    the fraction of its points that were not measured."""
     iso = surface.roughness(level="mean", warn=False)
     out = {f"iso_{k}": np.float64(iso[k]) for k in MEASURED_PARAMETERS}
     out["masked_fraction"] = np.float64(0.0 if surface.mask is None else np.mean(surface.mask))
     return out
+
+
+def quality_arrays(raw: Any) -> dict[str, Any]:
+    """The data quality of a measured surface as read (its form removed, before despiking and
+    filtering): ``spike_count`` (outlier points, :func:`contact.find_spikes`),
+    ``spike_clusters``, ``spike_positions`` (grid indices, shape (n, 2)),
+    ``spike_largest`` (m, the largest outlier's height above or below its neighbourhood, 0
+    without any), ``height_step`` (m, the smallest step between stored heights) and
+    ``steps_per_sq`` (Sq over that step: few steps mean quantised heights)."""
+    spikes = raw.spikes()
+    steps = raw.height_steps()
+    res = np.abs(np.asarray(spikes.residuals, dtype=float))
+    return {"spike_count": np.int64(spikes.count), "spike_clusters": np.int64(spikes.n_clusters),
+            "spike_positions": np.asarray(spikes.positions, dtype=np.int64).reshape(-1, 2),
+            "spike_largest": np.float64(res.max() if res.size else 0.0),
+            "height_step": np.float64(steps.step), "steps_per_sq": np.float64(steps.steps_per_sq)}
 
 
 def simulate_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> dict[str, np.ndarray]:
@@ -129,7 +156,8 @@ def simulate_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> di
         ``heights`` (m) and
         ``pressure`` (Pa) maps as float32.
     """
-    surf = campaign_surface(settings, ih, il, i)
+    raw = raw_surface(settings, ih, il, i)
+    surf = prepared_surface(settings, raw)
     # a load inside a jump of the model's force is recorded per surface (in_jump,
     # force_jump) and summarised once in the report, rather than warned about per surface
     res = solve_asperity(settings, surf, settings.pressures[il])
@@ -137,6 +165,7 @@ def simulate_surface(settings: CampaignSettings, ih: int, il: int, i: int) -> di
     out["rq"] = np.float64(measured_rq(surf))
     if settings.measured:
         out.update(_measured_arrays(surf))
+        out.update(quality_arrays(raw))
     if i < settings.n_examples:
         out["heights"] = surf.heights.astype(np.float32)
         out["pressure"] = res.pressure.astype(np.float32)

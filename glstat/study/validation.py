@@ -151,6 +151,9 @@ class Validation:
             return "failed: " + "; ".join(parts)
         miss = max(x.detectable_miss for x in (d, c))
         if v == "not checkable":
+            if not math.isfinite(miss):
+                return (f"not checkable with {d.n} held-out surfaces: no miss, however large, "
+                        f"would show")
             return (f"not checkable with {d.n} held-out surfaces: misses under "
                     f"{_pp(miss)} go undetected")
         return f"passed ({d.hits} of {d.n} damaged; a miss of {_pp(miss)} would show)"
