@@ -12,13 +12,16 @@ import _glstat_runtime  # noqa: F401  (first: numba caches outside the package)
 from . import reference  # noqa: F401  (contact.reference: analytic solutions)
 from .asperity import solve, solve_displacement
 from .errors import ContactWarning, TopographyFileError
+from .filtering import default_s_filter, s_filter
 from .generators import self_affine, weierstrass
 from .io import read, write
 from .like import WeierstrassParameters, self_affine_like, weierstrass_like, weierstrass_parameters
 from .material import effective_modulus
+from .quality import HeightSteps, height_steps
 from .resample import resample
 from .result import ContactResult
 from .spectrum import SpectrumFit, fit_spectrum
+from .spikes import Spikes, despike, find_spikes
 from .spots import contact_spots
 from .summits import Summits, summits
 from .surface import Surface
@@ -28,7 +31,9 @@ __all__ = [
     "BEMConvergenceWarning",
     "ContactResult",
     "ContactWarning",
+    "HeightSteps",
     "SpectrumFit",
+    "Spikes",
     "Summits",
     "Surface",
     "TopographyFileError",
@@ -36,12 +41,17 @@ __all__ = [
     "compare_models",
     "compare_surfaces",
     "contact_spots",
+    "default_s_filter",
+    "despike",
     "effective_modulus",
+    "find_spikes",
     "fit_spectrum",
+    "height_steps",
     "plot_psd_comparison",
     "psd_comparison",
     "read",
     "resample",
+    "s_filter",
     "self_affine",
     "self_affine_like",
     "solve",

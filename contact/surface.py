@@ -18,6 +18,8 @@ from .roughness import level_heights, roughness_parameters
 if TYPE_CHECKING:
     import pandas as pd
 
+    from .spikes import Spikes
+
 __all__ = ["Surface"]
 
 
@@ -277,6 +279,38 @@ class Surface:
         h, valid = height_map(self.heights, self.mask)
         return Surface(level_heights(h, valid, self.dx, self.dy, level), self.dx, self.dy,
                        mask=self.mask)
+
+    def s_filter(self, nesting_index: float, *, periodic: bool | None = None,
+                 edge_order: int = 1) -> Surface:
+        """A new surface low-pass filtered by the ISO 16610-61 Gaussian S-filter of nesting
+        index ``nesting_index`` (m); see :func:`contact.filtering.s_filter` (``periodic=None``
+        is False: a measured patch) and :func:`contact.filtering.default_s_filter` for the
+        usual nesting index of the grid."""
+        from .filtering import s_filter
+
+        return s_filter(self, nesting_index, periodic=periodic, edge_order=edge_order)
+
+    def spikes(self, *, threshold: float | None = None, max_pixels: int | None = None) -> Spikes:
+        """Outlier points (spikes and pits of one or a few pixels) standing out of their
+        neighbourhood; see :func:`contact.spikes.find_spikes` (None: its defaults).
+
+        Returns
+        -------
+        contact.spikes.Spikes
+        """
+        from .spikes import MAX_PIXELS, THRESHOLD, find_spikes
+
+        return find_spikes(self, threshold=THRESHOLD if threshold is None else threshold,
+                           max_pixels=MAX_PIXELS if max_pixels is None else max_pixels)
+
+    def despiked(self, spikes: Spikes | None = None, *, threshold: float | None = None,
+                 max_pixels: int | None = None) -> Surface:
+        """A new surface with the spike points replaced by the median of their measured,
+        non-spike neighbours; see :func:`contact.spikes.despike` (``spikes`` from
+        :meth:`spikes`, or found with ``threshold`` and ``max_pixels``)."""
+        from .spikes import despike
+
+        return despike(self, spikes, threshold=threshold, max_pixels=max_pixels)
 
     def write(self, path: str | os.PathLike, *, format: str | None = None) -> None:
         """Write the surface to ``path`` (.npz, .npy, text grid, .xyz or .x3p).

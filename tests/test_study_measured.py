@@ -13,6 +13,7 @@ import pytest
 import contact
 from glstat.study import AnalysisSettings, CampaignError, run_study
 from glstat.study.campaign import campaign_surface
+from glstat.study.surface_task import raw_surface
 from glstat.study.campaign_settings import CampaignSettings
 from glstat.study.measured import (
     find_topographies,
@@ -119,15 +120,21 @@ def test_measured_study_reads_every_file_as_one_surface(measured_study):
     table = res.summary()
     row = table[(table["model"] == "asperity") & (table["sample"] == "asperity")].iloc[0]
     assert row["n_surfaces"] == 10
-    # the contact of each file equals the asperity model on that file with its plane removed
+    # the default S-filter: ISO 25178-3's smallest preferred λs of at least 3 spacings
+    dx = 0.25e-3 / 128
+    assert settings.s_filter == contact.default_s_filter(dx) == 8e-6
+    # the contact of each file equals the asperity model on that file with its plane removed,
+    # at the study's scale (the S-filter applied after the form removal)
     for i in (0, 7):
         direct = contact.solve(campaign_surface(settings, 0, 0, i), 20e6, settings.E, settings.nu,
-                               settings.cone_factor)
+                               settings.cone_factor, warn=False)
         stored = np.load(res.out / f"H{settings.hurst[0]:g}_P20MPa" / f"surface_{i:04d}.npz")
         assert float(stored["mean_pressure"]) == pytest.approx(direct.mean_pressure, rel=1e-12)
         truth = contact.self_affine((128, 128), 0.25e-3, hurst=0.7, rq=0.5e-6, rng=i)
-        assert float(stored["iso_Sq"]) == pytest.approx(
-            float(truth.detrend("plane").roughness()["Sq"]), rel=1e-9)
+        scaled = truth.detrend("plane").s_filter(settings.s_filter, periodic=False)
+        assert float(stored["iso_Sq"]) == pytest.approx(float(scaled.roughness()["Sq"]), rel=1e-9)
+        # the filter removed the shortest wavelengths: a smaller Sq than the raw surface's
+        assert float(stored["iso_Sq"]) < float(truth.detrend("plane").roughness()["Sq"])
     text = res.report_md.read_text()
     assert "## Measured topographies" in text and "scan_09.npz" in text
     # full-spectrum surfaces: the maximum is mostly where asperity patches overlap and add up
@@ -233,7 +240,7 @@ def test_one_scan_is_studied_as_many_areas(measured_dir, tmp_path):
     for i in (0, 5, 7):
         a, b = divmod(i, 2)
         piece = contact.Surface(raw.heights[32 * a:32 * (a + 1), 64 * b:64 * (b + 1)], raw.dx)
-        np.testing.assert_allclose(campaign_surface(settings, 0, 0, i).heights,
+        np.testing.assert_allclose(raw_surface(settings, 0, 0, i).heights,
                                    piece.detrend("plane").heights, atol=1e-15)
     res = run_study(settings, FAST, tmp_path / "tiles", workers=1, progress=False, compare_bem=0)
     assert res.summary()["n_surfaces"].eq(8).all()

@@ -12,6 +12,7 @@ import pytest
 import contact
 from glstat.study import AnalysisSettings, run_study
 from glstat.study.campaign import campaign_surface
+from glstat.study.surface_task import raw_surface
 from glstat.study.campaign_settings import CampaignSettings
 from glstat.study.measured import like_settings, measured_settings, read_measured
 from glstat.study.report_surfaces import scene_sentence, surface_rows
@@ -75,7 +76,12 @@ def test_rectangular_scans_give_their_shape_and_spacing(rect_dir):
     assert settings.shape == (NX, NY) and (settings.grid, settings.grid_y) == (NX, NY)
     assert settings.size == pytest.approx((NX * DX, NY * DY))
     assert settings.spacing == pytest.approx((DX, DY)) and not settings.square
-    surface = campaign_surface(settings, 0, 0, 3)
+    surface = raw_surface(settings, 0, 0, 3)
+    # the study solves it at its scale: the default S-filter of the coarser spacing (3 µm)
+    assert settings.s_filter == contact.default_s_filter(DX, DY) == 10e-6
+    solved = campaign_surface(settings, 0, 0, 3)
+    np.testing.assert_allclose(solved.heights,
+                               surface.s_filter(settings.s_filter, periodic=False).heights, atol=0)
     assert surface.shape == (NX, NY) and (surface.dx, surface.dy) == pytest.approx((DX, DY))
     # the paraboloid is gone: what is left is the self-affine scan less its own quadratic
     truth = contact.self_affine((NX, NY), (NX * DX, NY * DY), hurst=0.7, rq=0.3e-6, rng=3)

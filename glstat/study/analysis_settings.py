@@ -153,7 +153,8 @@ class AnalysisSettings:
         return Criterion(self.criterion, self.hardness,
                          self.hardness / TABOR_FACTOR if self.yield_stress is None
                          else self.yield_stress, area, self.yield_stress is not None,
-                         self.min_plastic_area is not None)
+                         self.min_plastic_area is not None,
+                         "λs" if settings.s_filter is not None else "3 grid spacings")
 
     @property
     def hardness_mpa(self) -> float:

@@ -564,7 +564,7 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
                     "plastic_load_fraction": float(z["plastic_load_fraction"]),
                     "plastic_zone_areas": np.asarray(z["bem_plastic_zone_areas"], dtype=float)}
                    if "plastic_area_fraction" in z and bool(z["plastic_converged"]) else {})
-        extra = {k: z[k] for k in z.files
+        extra = {k: v for k, v in z.items()
                  if k.startswith("scale_") or k in ("max_on_spike", "bem_max_von_mises")}
         res[key] = {**plastic, **extra, "samples": inner["samples"], "spot_peak": peaks,
                     "n_spots": inner["n_spots"], "asperity_peak": peaks,

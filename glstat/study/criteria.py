@@ -53,7 +53,10 @@ class Criterion:
     min_plastic_area : float
         Smallest plastic zone in m² that counts as damage (the plastic-zone criterion).
     yield_stress_given, min_plastic_area_given : bool
-        Whether the values were given (False: the defaults, H / 2.8 and a disc of diameter λs).
+        Whether the values were given (False: the defaults, H / 2.8 and a disc of diameter
+        ``plastic_area_basis``).
+    plastic_area_basis : str
+        The diameter of the default minimum plastic area in words ("λs", "3 grid spacings").
     """
 
     name: str = "surface"
@@ -62,6 +65,7 @@ class Criterion:
     min_plastic_area: float = 0.0
     yield_stress_given: bool = False
     min_plastic_area_given: bool = False
+    plastic_area_basis: str = "λs"
 
     def __post_init__(self) -> None:
         if self.name not in CRITERIA:
@@ -87,7 +91,7 @@ class Criterion:
         if self.name == "subsurface":
             why = "" if self.yield_stress_given else f" (H / {TABOR_FACTOR:g}, after Tabor)"
             return f"yield stress Y = {self.yield_stress / 1e6:.4g} MPa{why}"
-        why = "" if self.min_plastic_area_given else " (a disc of diameter λs)"
+        why = "" if self.min_plastic_area_given else f" (a disc of diameter {self.plastic_area_basis})"
         return f"plastic zone of at least {self.min_plastic_area * 1e12:.3g} µm²{why}"
 
     def text(self) -> str:

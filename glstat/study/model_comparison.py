@@ -144,7 +144,8 @@ def compare_records(entries: Sequence[tuple[Any, Mapping[str, Mapping[str, np.nd
     for label, rec in entries:
         for m in MODELS:
             r = rec[m]
-            inner = model_spots(r, m)
+            # like for like: the maxima of both models over the spots inside the patch
+            inner = interior(r)
             spot_peaks = inner["peaks"]
             rows.append({"surface": label, "model": m,
                          "contact_fraction": float(r["contact_fraction"]),
@@ -163,7 +164,7 @@ def compare_records(entries: Sequence[tuple[Any, Mapping[str, Mapping[str, np.nd
     fits = {}
     for j, m in enumerate(MODELS):
         # the peak pressure of every contact spot, with the spots per surface as a random count:
-        # the study's primary predictor applied to each model alike
+        # the study's primary predictor applied to each model as the answer applies it
         peaks = [model_spots(rec[m], m)["peaks"] / 1e6 for _, rec in entries]
         data = np.concatenate(peaks)
         labels = np.repeat(np.arange(len(peaks)), [p.size for p in peaks])

@@ -13,6 +13,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
@@ -128,8 +129,7 @@ def criteria_frame(settings: Any, crit: Criterion, bem_records: dict, confidence
                 continue
             k, n = int(sum(hits)), len(hits)
             low, high = exact_interval(k, n, confidence_level)
-            c = Criterion(name, crit.hardness, crit.yield_stress, crit.min_plastic_area,
-                          crit.yield_stress_given, crit.min_plastic_area_given)
+            c = dataclasses.replace(crit, name=name)
             rows.append({"hurst": settings.hurst[ih], "pressure_mpa": settings.pressures[il] / 1e6,
                          "criterion": name, "threshold": c.threshold_text(), "damaged": k,
                          "n_surfaces": n, "fraction": k / n, "low": low, "high": high})

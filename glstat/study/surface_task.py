@@ -130,11 +130,13 @@ def quality_arrays(raw: Any) -> dict[str, Any]:
     ``spike_largest`` (m, the largest outlier's height above or below its neighbourhood, 0
     without any), ``height_step`` (m, the smallest step between stored heights) and
     ``steps_per_sq`` (Sq over that step: few steps mean quantised heights)."""
+    from contact.quality import height_steps
+
     spikes = raw.spikes()
-    steps = raw.height_steps()
+    steps = height_steps(raw)
     res = np.abs(np.asarray(spikes.residuals, dtype=float))
     return {"spike_count": np.int64(spikes.count), "spike_clusters": np.int64(spikes.n_clusters),
-            "spike_positions": np.asarray(spikes.positions, dtype=np.int64).reshape(-1, 2),
+            "spike_positions": np.asarray(spikes.indices, dtype=np.int64).reshape(-1, 2),
             "spike_largest": np.float64(res.max() if res.size else 0.0),
             "height_step": np.float64(steps.step), "steps_per_sq": np.float64(steps.steps_per_sq)}
 
