@@ -264,12 +264,13 @@ def _precondition(stencil, g, gbar, p, t, nx, ny, periodic, z, pmax):  # pragma:
     """z = S (g - gbar) on the free contact set, both ends restricted to it; 0 elsewhere.
 
     ``S`` is the local stencil of the inverse compliance (``(2R+1)`` square, centred).
-    Returns (sum of z, sum of (g - gbar) z, sum of (g - gbar) t) over the free set.
+    Returns (sum of z, sum of (g - gbar) z, sum of (g - gbar) t, sum of t) over the free set.
     """
     rad = stencil.shape[0] // 2
     zs = 0.0
     gz = 0.0
     gt = 0.0
+    ts = 0.0
     for i in range(nx):
         for j in range(ny):
             k = i * ny + j
@@ -294,14 +295,15 @@ def _precondition(stencil, g, gbar, p, t, nx, ny, periodic, z, pmax):  # pragma:
                 zs += acc
                 gz += (g[k] - gbar) * acc
                 gt += (g[k] - gbar) * t[k]
+                ts += t[k]
             else:
                 z[k] = 0.0
-    return zs, gz, gt
+    return zs, gz, gt, ts
 
 
 @nb.njit(cache=True, nogil=True)
-def _direction_preconditioned(t, z, zbar, g, gbar, p, beta, pmax):  # pragma: no cover - compiled
-    """t = (z - zbar) + beta t on the free contact set, 0 elsewhere; g -= gbar everywhere.
+def _direction_preconditioned(t, z, zbar, tbar, g, gbar, p, beta, pmax):  # pragma: no cover - compiled
+    """t = (z - zbar) + beta (t - tbar) on the free contact set, 0 elsewhere; g -= gbar everywhere.
 
     Returns sum((g - gbar) t) over the free contact set.
     """
@@ -310,7 +312,7 @@ def _direction_preconditioned(t, z, zbar, g, gbar, p, beta, pmax):  # pragma: no
         gi = g[i] - gbar
         g[i] = gi
         if p[i] > 0.0 and p[i] < pmax:
-            v = z[i] - zbar + beta * t[i]
+            v = z[i] - zbar + beta * (t[i] - tbar)
             t[i] = v
             s += gi * v
         else:
@@ -322,6 +324,55 @@ def _direction_preconditioned(t, z, zbar, g, gbar, p, beta, pmax):  # pragma: no
 def _unshift(g, gbar):  # pragma: no cover - compiled
     for i in range(g.size):
         g[i] += gbar
+
+
+@nb.njit(cache=True, nogil=True)
+def _flat_slopes(stencil, p, idx, nx, ny, periodic, tau, tau_enter, s):  # pragma: no cover - compiled
+    """Pressure lost per unit rise of the flat by the points ``idx`` of an elastic step.
+
+    Raising the flat opens the gap uniformly. On the contact set ``p > 0`` this changes the
+    step ``-tau S (g - gbar)`` by ``-tau S 1`` (the stencil restricted to the contact set at
+    both ends: the pressure of a flat punch as the local stencil sees it, largest at the rims
+    of the contact spots, positive since ``S`` is diagonally dominant); an entering point's
+    ``-tau_enter g`` changes by ``-tau_enter``. Writes ``s[m]`` for the point ``idx[m]``.
+    """
+    rad = stencil.shape[0] // 2
+    for m in range(idx.size):
+        k = idx[m]
+        if p[k] > 0.0:
+            i = k // ny
+            j = k - i * ny
+            acc = 0.0
+            for a in range(-rad, rad + 1):
+                ii = i + a
+                if ii < 0 or ii >= nx:
+                    if not periodic:
+                        continue
+                    ii %= nx
+                for b in range(-rad, rad + 1):
+                    jj = j + b
+                    if jj < 0 or jj >= ny:
+                        if not periodic:
+                            continue
+                        jj %= ny
+                    if p[ii * ny + jj] > 0.0:
+                        acc += stencil[a + rad, b + rad]
+            s[m] = tau * acc
+        else:
+            s[m] = tau_enter
+
+
+@nb.njit(cache=True, nogil=True)
+def _raised_load(q, s, delta):  # pragma: no cover - compiled
+    """Return (sum of max(q - delta s, 0), sum of s where it is positive)."""
+    f = 0.0
+    df = 0.0
+    for m in range(q.size):
+        v = q[m] - delta * s[m]
+        if v > 0.0:
+            f += v
+            df += s[m]
+    return f, df
 
 
 @nb.njit(cache=True, nogil=True)
@@ -672,6 +723,43 @@ def _projected_step(p, t, g, tau, tau_enter, vf, p_new, pmax, total_pressure):
     return out
 
 
+def _restore_load(stencil, p, p_new, tau, tau_enter, total_pressure, total, nx, ny, periodic
+                  ) -> tuple[float, int, int]:
+    """Bring the projected step ``p_new`` of an elastic contact back to the load by raising
+    the flat; return (its new sum, points that left its support, entering points among them).
+
+    The direction sums to zero on the contact set, so the step keeps the load there and
+    only projection adds to it: a point clipped to zero gives back its negative pressure,
+    an entering one brings ``-tau_enter g``. Scaling the whole field by ``P / sum(p)``
+    (the published iteration) then shares the excess out in proportion to the pressure:
+    a cell that carries a large part of the load (a tall isolated pixel) has its gap thrown
+    off by its share times its compliance, far beyond the gaps of the rest of the contact,
+    and the next step, spent on that cell, clips and adds thousands of other points again:
+    the iteration cycles. The load is balanced instead the way it is at the solution, by
+    the height of the flat. Raising it by ``delta >= 0`` takes ``delta s_i`` off each point
+    of the step (:func:`_flat_slopes`); points that reach zero leave. The load
+    ``sum max(p_new - delta s, 0)`` is piecewise linear, convex and decreasing in
+    ``delta``: Newton's iteration from ``delta = 0`` climbs to the root monotonically, in a
+    few passes over the support of the step, no convolution.
+    """
+    idx = np.flatnonzero(p_new > 0)
+    q = p_new[idx]
+    s = np.empty_like(q)
+    _flat_slopes(stencil, p, idx, nx, ny, periodic, tau, tau_enter, s)
+    delta = 0.0
+    f, df = total, float(s.sum())
+    for _ in range(100):
+        if not (f > total_pressure * (1.0 + 1e-12) and df > 0):
+            break
+        delta += (f - total_pressure) / df
+        f, df = _raised_load(q, s, delta)
+    q -= delta * s
+    gone = q <= 0.0
+    q[gone] = 0.0
+    p_new[idx] = q
+    return float(q.sum()), int(np.count_nonzero(gone)), int(np.count_nonzero(gone & (p[idx] <= 0)))
+
+
 def _empty_contact(vf: np.ndarray, g: np.ndarray, load_control: bool, state: dict) -> bool:
     """Handle an empty contact set; return True if the iteration must stop."""
     if load_control:
@@ -838,16 +926,19 @@ def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_i
         gbar = _load_multiplier(s, c, s_sat, c_sat, load_control)
         if load_control:
             state["d"] = -gbar
-        zs, gz, gt = _precondition(stencil, g, gbar, p, t, nx, ny, op.periodic, z, pmax)
-        # the load constraint: directions of zero sum on the contact set
+        zs, gz, gt, ts = _precondition(stencil, g, gbar, p, t, nx, ny, op.periodic, z, pmax)
+        # the load constraint: directions of zero sum on the contact set; elastic, the kept
+        # one too (built on the previous contact set, it need not sum to zero on this one),
+        # so that a step on an unchanged contact set keeps the load to rounding
         zbar = zs / c if (load_control and c > 0) else 0.0
+        tbar = ts / c if (load_control and not capped and c > 0) else 0.0
         beta = _conjugation(conj, capped, gz, gt, gz_old)
         gz_old = gz if gz > 0 else 1.0
-        num = _direction_preconditioned(t, z, zbar, g, gbar, p, beta, pmax)
+        num = _direction_preconditioned(t, z, zbar, tbar, g, gbar, p, beta, pmax)
         if beta != 0.0 and not num > 0.0:
             # the kept direction is no longer a descent direction: restart
             _unshift(g, gbar)
-            num = _direction_preconditioned(t, z, zbar, g, gbar, p, 0.0, pmax)
+            num = _direction_preconditioned(t, z, zbar, 0.0, g, gbar, p, 0.0, pmax)
         op.apply(t.reshape(shape), out=r.reshape(shape))
         state["n_conv"] += 1
         rt, rs, ts, rc = _curvature(r, t, p, pmax)
@@ -879,9 +970,16 @@ def _iterate_accelerated(op, shape, hf, vf, p, total_pressure, shift, tol, max_i
             carry = carry and newly == 0
         else:
             if load_control:
+                if (entered or clipped) and tau > 0 and total > total_pressure:
+                    total, gone, gone_entering = _restore_load(
+                        stencil, p, p_new, tau, tau_enter, total_pressure, total, nx, ny,
+                        op.periodic)
+                    entered -= gone_entering
+                    clipped += gone - gone_entering
                 if not total > 0:
                     state["reason"] = "pressure vanished everywhere (step failure)"
                     break
+                # rounding only, after a step on an unchanged contact set or the flat's
                 scale = total_pressure / total
             else:
                 scale = 1.0

@@ -148,6 +148,8 @@ class _Model:
             "nominal_area": self.nominal_area,
             "n_summits": int(self.sz.size),
             "n_evaluations": self.n_evaluations,
+            "dx": self.dx,
+            "dy": self.dy,
             "warning": "",
         }
         info.update(extra)

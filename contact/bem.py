@@ -182,6 +182,8 @@ def _result(
             warnings.warn(message, BEMConvergenceWarning, stacklevel=3)
     info = dict(problem.info)
     info.update(
+        dx=surface.dx,
+        dy=surface.dy,
         warning=message,
         reason=out.reason,
         tol=tol,

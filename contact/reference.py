@@ -5,7 +5,9 @@ newtons, pascals). Both bodies enter through the contact modulus ``E*``, with
 ``1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2`` (``E/(1 - nu^2)`` against a rigid body), which
 :func:`contact.effective_modulus` computes:
 
-- :func:`hertz_sphere`: a sphere pressed on a flat (Hertz 1882; Johnson 1985, §4.2);
+- :func:`hertz_sphere`: a sphere pressed on a flat (Hertz 1882; Johnson 1985, §4.2), and
+  :func:`hertz_axis_stress`, the stresses beneath the centre of its pressure (Johnson 1985,
+  §3.4);
 - :func:`westergaard`: the periodic wavy surface ``h = Δ cos(2πx/λ)`` pressed on a flat,
   in partial and in full contact (Westergaard 1939; Johnson 1985, §13.2);
 - :func:`full_contact_pressure` and :func:`sinusoidal_displacement`: a sinusoidal pressure and
@@ -33,17 +35,20 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-from _glstat_runtime.validation import positive_finite
+from _glstat_runtime.validation import positive_finite, real_scalar
 
 __all__ = [
     "Cone",
+    "HertzAxisStress",
     "HertzSphere",
     "Westergaard",
     "cone",
     "full_contact_pressure",
+    "hertz_axis_stress",
     "hertz_sphere",
     "sinusoidal_displacement",
     "westergaard",
@@ -180,6 +185,77 @@ def hertz_sphere(force: float, radius: float, E_star: float) -> HertzSphere:
         mean_pressure=force / (math.pi * a**2),
         approach=a**2 / radius,
     )
+
+
+class HertzAxisStress(NamedTuple):
+    """Stresses on the axis of a Hertzian contact; made by :func:`hertz_axis_stress`."""
+
+    #: Radial (and hoop) stress ``σr = σθ``, Pa, compression negative.
+    sigma_r: float | np.ndarray
+    #: Vertical stress ``σz``, Pa.
+    sigma_z: float | np.ndarray
+    #: Von Mises stress ``|σr - σz|``, Pa.
+    von_mises: float | np.ndarray
+
+
+def hertz_axis_stress(depth, contact_radius: float, max_pressure: float, nu: float) -> HertzAxisStress:
+    """Stresses beneath the centre of a Hertzian pressure ``p0 sqrt(1 - r²/a²)``.
+
+    Parameters
+    ----------
+    depth : float or array_like
+        Depth ``z >= 0`` below the surface on the axis, m.
+    contact_radius : float
+        Radius ``a`` of the contact, m, > 0.
+    max_pressure : float
+        Pressure ``p0`` at the centre, Pa, > 0.
+    nu : float
+        Poisson ratio of the body, in (-1, 0.5].
+
+    Returns
+    -------
+    HertzAxisStress
+        ``sigma_r``, ``sigma_z`` and ``von_mises`` in pascals (compression negative), floats
+        for a scalar depth, else arrays of its shape.
+
+    Raises
+    ------
+    ValueError
+        A negative or non-finite depth, a radius or pressure that is not positive and finite,
+        a Poisson ratio outside (-1, 0.5].
+
+    Notes
+    -----
+    Johnson (1985), eq. 3.45 (§3.4, a Hertzian pressure on a half-space), with ``ζ = z/a``::
+
+        σr = σθ = p0 [-(1 + ν) (1 - ζ arctan(1/ζ)) + 1 / (2 (1 + ζ²))]
+        σz = -p0 / (1 + ζ²)
+
+    The axis is a principal direction and ``σr = σθ``, so the von Mises stress is
+    ``|σr - σz|``, twice the largest shear stress. For ν = 0.3 it peaks at ``0.6200 p0``
+    at ``z = 0.4809 a`` (§4.2: the largest shear stress ``0.31 p0`` at ``0.48 a``).
+
+    Examples
+    --------
+    >>> from contact.reference import hertz_axis_stress
+    >>> s = hertz_axis_stress(0.4809e-3, 1e-3, 1e9, 0.3)
+    >>> print(f"{s.sigma_r / 1e9:.4f} {s.sigma_z / 1e9:.4f} {s.von_mises / 1e9:.4f}")
+    -0.1921 -0.8122 0.6200
+    """
+    z = np.asarray(depth, dtype=float)
+    if not np.all(np.isfinite(z) & (z >= 0)):
+        raise ValueError(f"depth must be finite and >= 0 (metres below the surface), got {depth!r}")
+    a = positive_finite(contact_radius, "contact_radius", "length in metres")
+    p0 = positive_finite(max_pressure, "max_pressure", "pressure in pascals")
+    n = real_scalar(nu)
+    if n is None or not (-1.0 < n <= 0.5):
+        raise ValueError(f"nu must be a Poisson ratio in (-1, 0.5], got {nu!r}")
+    zeta = z / a
+    # ζ arctan(1/ζ) = ζ (π/2 - arctan ζ), 0 at the surface
+    term = zeta * (0.5 * math.pi - np.arctan(zeta))
+    sigma_r = p0 * (-(1.0 + n) * (1.0 - term) + 0.5 / (1.0 + zeta**2))
+    sigma_z = -p0 / (1.0 + zeta**2)
+    return HertzAxisStress(_as_output(sigma_r), _as_output(sigma_z), _as_output(np.abs(sigma_r - sigma_z)))
 
 
 # --------------------------------------------------------------------------- wavy surfaces

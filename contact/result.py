@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -9,6 +10,8 @@ import numpy as np
 
 if TYPE_CHECKING:
     import pandas as pd
+
+    from .subsurface import SubsurfaceStress, VonMisesMap
 
 __all__ = ["ContactResult"]
 
@@ -47,7 +50,8 @@ class ContactResult:
     method : str
         Name of the solver that produced this result.
     info : dict
-        Solver-specific extras.
+        Solver-specific extras; :func:`contact.solve` and :func:`contact.solve_bem` record the
+        grid spacing ``dx`` and ``dy`` (m) there.
     mask : ndarray of bool or None
         True at missing (unmeasured) points, which count neither in nor out of contact.
     hardness : float or None
@@ -136,6 +140,81 @@ class ContactResult:
         if pf is None:
             return None
         return pf / self.force if self.force > 0 else 0.0
+
+    def _grid(self) -> tuple[float, float, bool]:
+        """Grid spacing ``(dx, dy)`` in metres and the periodic flag, from ``info``."""
+        try:
+            dx, dy = self.info["dx"], self.info["dy"]
+        except KeyError:
+            raise ValueError(
+                "this result does not record its grid spacing (info['dx'], info['dy'], which "
+                "contact.solve and contact.solve_bem store); call contact.subsurface."
+                "subsurface_stress(result.pressure, dx, dy, ...) with the surface's spacing"
+            ) from None
+        return dx, dy, bool(self.info.get("periodic", False))
+
+    def subsurface_stress(self, depths: Sequence[float] | np.ndarray | None, nu: float
+                          ) -> SubsurfaceStress:
+        """Elastic stress field beneath this contact pressure at the given depths.
+
+        :func:`contact.subsurface.subsurface_stress` with the result's pressure, grid spacing
+        (``info["dx"]``, ``info["dy"]``), mask and boundary condition (``info["periodic"]``,
+        False when absent: an isolated patch).
+
+        Parameters
+        ----------
+        depths : sequence of float or None
+            Depths below the surface in metres, > 0; None:
+            :func:`contact.subsurface.default_depths` of the grid.
+        nu : float
+            Poisson ratio of the body whose stress is wanted (the rough one), in (-1, 0.5].
+
+        Returns
+        -------
+        contact.subsurface.SubsurfaceStress
+            The six components and the von Mises stress (Pa, compression negative), of shape
+            ``(len(depths), nx, ny)``.
+
+        Raises
+        ------
+        ValueError
+            The result does not record its grid spacing, or invalid depths or ``nu``.
+        """
+        from .subsurface import subsurface_stress
+
+        dx, dy, periodic = self._grid()
+        return subsurface_stress(self.pressure, dx, dy, depths=depths, nu=nu, periodic=periodic,
+                                 mask=self.mask)
+
+    def max_von_mises(self, depths: Sequence[float] | np.ndarray | None, nu: float) -> VonMisesMap:
+        """Largest von Mises stress beneath each grid point over the given depths.
+
+        :func:`contact.subsurface.max_von_mises` with the result's pressure, grid spacing,
+        mask and boundary condition, as :meth:`subsurface_stress`.
+
+        Parameters
+        ----------
+        depths : sequence of float or None
+            Depths below the surface in metres, > 0; None:
+            :func:`contact.subsurface.default_depths` of the grid.
+        nu : float
+            Poisson ratio of the body, in (-1, 0.5].
+
+        Returns
+        -------
+        contact.subsurface.VonMisesMap
+            ``von_mises`` (Pa) and ``depth`` (m) maps of shape (nx, ny), and ``peak``.
+
+        Raises
+        ------
+        ValueError
+            The result does not record its grid spacing, or invalid depths or ``nu``.
+        """
+        from .subsurface import max_von_mises
+
+        dx, dy, periodic = self._grid()
+        return max_von_mises(self.pressure, dx, dy, depths=depths, nu=nu, periodic=periodic,
+                             mask=self.mask)
 
     def summary(self) -> pd.Series:
         """Key figures in SI units (separation, force, pressures, alpha, ...) as a float

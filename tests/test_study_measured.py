@@ -13,7 +13,6 @@ import pytest
 import contact
 from glstat.study import AnalysisSettings, CampaignError, run_study
 from glstat.study.campaign import campaign_surface
-from glstat.study.surface_task import raw_surface
 from glstat.study.campaign_settings import CampaignSettings
 from glstat.study.measured import (
     find_topographies,
@@ -21,6 +20,7 @@ from glstat.study.measured import (
     measured_settings,
     read_measured,
 )
+from glstat.study.surface_task import raw_surface
 from glstat.study.topography import read_topography
 
 # The tests that read unit-free heights (small integers, or micrometres as metres) say so: the

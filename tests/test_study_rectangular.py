@@ -12,10 +12,10 @@ import pytest
 import contact
 from glstat.study import AnalysisSettings, run_study
 from glstat.study.campaign import campaign_surface
-from glstat.study.surface_task import raw_surface
 from glstat.study.campaign_settings import CampaignSettings
 from glstat.study.measured import like_settings, measured_settings, read_measured
 from glstat.study.report_surfaces import scene_sentence, surface_rows
+from glstat.study.surface_task import raw_surface
 from glstat.study.topography import FORMS, remove_form
 
 FAST = AnalysisSettings(n_resamples=20, grid_resamples=10)
