@@ -41,12 +41,14 @@ __all__ = [
     "compare_models",
     "compare_surfaces",
     "contact_spots",
+    "default_depths",
     "default_s_filter",
     "despike",
     "effective_modulus",
     "find_spikes",
     "fit_spectrum",
     "height_steps",
+    "max_von_mises",
     "plot_psd_comparison",
     "psd_comparison",
     "read",
@@ -58,6 +60,7 @@ __all__ = [
     "solve_bem",
     "solve_bem_displacement",
     "solve_displacement",
+    "subsurface_stress",
     "summits",
     "weierstrass",
     "weierstrass_like",
@@ -65,13 +68,16 @@ __all__ = [
     "write",
 ]
 
-# The boundary-element solver (numba kernels, compiled on first use) and the model
-# comparison are imported on first access, so that ``import contact`` stays light.
+# The boundary-element solver (numba kernels, compiled on first use), the subsurface stresses
+# and the model comparison are imported on first access, so that ``import contact`` stays light.
 _LAZY = {
     "BEMConvergenceWarning": "bem",
     "solve_bem": "bem",
     "solve_bem_displacement": "bem",
     "compare_models": "bem_compare",
+    "default_depths": "subsurface",
+    "max_von_mises": "subsurface",
+    "subsurface_stress": "subsurface",
 }
 
 

@@ -16,7 +16,7 @@ from .answer import case_name
 from .criteria import CRITERION_LABELS
 from .report_document import Blocks
 from .scales import scale_text
-from .surface_table import criteria_frame, resolution_note, scale_frame
+from .surface_table import criteria_frame, scale_frame
 
 __all__ = ["elastic_validity_note", "scale_blocks", "scale_figure", "scale_paragraph",
            "spike_note"]
@@ -104,12 +104,11 @@ def _case_column(settings: Any, frame):
     return frame
 
 
-def scale_blocks(out: Blocks, settings: Any, asettings: Any, crit: Any, results: dict,
-                 bem_records: dict | None) -> str:
-    """Add the criteria table and the answer against the scale to ``out``; returns the
-    resolution-dominated warning ("" when the answer holds across the scales)."""
+def scale_blocks(out: Blocks, settings: Any, asettings: Any, crit: Any,
+                 bem_records: dict | None) -> None:
+    """Add the criteria table and the answer against the scale (table and figure) to ``out``."""
     if not bem_records:
-        return ""
+        return
     level = asettings.confidence_level
     lvl = round(100 * level)
     frame = _case_column(settings, criteria_frame(settings, crit, bem_records, level))
@@ -124,7 +123,7 @@ def scale_blocks(out: Blocks, settings: Any, asettings: Any, crit: Any, results:
                   f"hardness (surfaces.csv gives every area's plastic area in µm² and in grid cells).")
     scales = scale_frame(settings, crit, bem_records, level)
     if not len(scales):
-        return ""
+        return
     scales = _case_column(settings, scales)
     rows = []
     for _, r in scales.iterrows():
@@ -148,7 +147,6 @@ def scale_blocks(out: Blocks, settings: Any, asettings: Any, crit: Any, results:
                "Maximal elastic pressure, plastic area and fraction of areas damaged against the "
                "S-filter's nesting index λs (medians over the areas; the fraction with its exact "
                "interval).")
-    return resolution_note(settings, scales)
 
 
 def scale_figure(frame, crit: Any):

@@ -36,6 +36,7 @@ from .report_text import (
     truncation_paragraphs,
 )
 from .scales import scale_text
+from .surface_table import resolution_note, scale_frame
 
 __all__ = ["answer_section", "checks_section", "examples_section", "main_results_section",
            "paper_section", "settings_section"]
@@ -56,6 +57,10 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     crit = info.get("criterion") or asettings.criterion_of(settings)
     bem_on_all = bool(info.get("bem_analysis"))
     out.paragraph(scale_paragraph(settings, crit, bem_on_all))
+    resolution = resolution_note(settings, scale_frame(settings, crit, info.get("bem_records") or {},
+                                                       asettings.confidence_level))
+    if resolution:
+        out.paragraph("⚠ " + resolution)
     validity = elastic_validity_note(settings, crit, info.get("bem_analysis"))
     if validity:
         out.paragraph("⚠ " + validity)
@@ -101,10 +106,7 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
                   f"k times the analysed one holds k independent analysed areas, docs/method.md §7; "
                   f"the figure \"Integrity against area\" below draws the integrity, 1 − damage, "
                   f"against k).")
-    resolution = scale_blocks(out, settings, asettings, crit, info.get("results") or {},
-                              info.get("bem_records"))
-    if resolution:
-        out.paragraph("⚠ " + resolution)
+    scale_blocks(out, settings, asettings, crit, info.get("bem_records"))
     if len(settings.pressures) > 1:
         _allowable_block(out, settings, asettings, analysis, info.get("bem_analysis"))
     if bem:

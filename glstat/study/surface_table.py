@@ -19,7 +19,6 @@ from typing import Any
 
 import numpy as np
 
-from .answer import case_name
 from .criteria import CRITERIA, Criterion, exact_interval
 from .scales import s_filter_um, spacing_um
 
@@ -38,7 +37,7 @@ SURFACE_COLUMNS = ("name", "hurst", "pressure_mpa", "spacing_um", "s_filter_um",
 def _name(settings: Any, ih: int, i: int) -> str:
     if settings.measured:
         return settings.surface_name(i)
-    return f"{case_name(settings, ih)}, surface {i + 1}"
+    return f"H = {settings.hurst[ih]:g}, surface {i + 1}"
 
 
 def _verdicts(rec: dict | None, crit: Criterion) -> dict[str, Any]:
