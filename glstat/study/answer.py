@@ -210,6 +210,7 @@ def _plastic_zone_rows(settings, criterion, bem_records: dict, level: float) -> 
                      "sample": "areas", "damage": r["fraction"], "damage_low": r["low"],
                      "damage_high": r["high"], "observed_damage": r["fraction"],
                      "n_surfaces": int(r["n_surfaces"]), "fit": "none (exact binomial)",
+                     "held_out_surfaces": 0,
                      "check": "not checked", "passes_check": False,
                      "spacing_um": spacing_um(settings), "s_filter_um": s_filter_um(settings),
                      "criterion": "plastic-zone", "threshold": r["threshold"]})

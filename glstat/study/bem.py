@@ -42,7 +42,7 @@ from .campaign import (
     write_failure,
 )
 from .campaign_settings import CampaignSettings
-from .criteria import criterion_arrays, default_depths, plastic_zone_areas
+from .criteria import criterion_arrays, plastic_zone_areas
 from .errors import CampaignError
 from .lock import lock_directory
 from .model_comparison import (
@@ -209,13 +209,14 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
                                    bsettings.max_iter, 1, True)
     capped, tp = _capped_solve(surf, settings, bsettings, il)
     out: dict[str, np.ndarray | np.generic] = {}
+    spot_vm = None
     for model, res in (("asperity", asp), ("bem", bem)):
         spots = contact.contact_spots(res)
         extra = {}
         if model == "bem":
             crit = criterion_arrays(res, capped, spots, settings.nu, bsettings.subsurface, guard)
             if "spot_von_mises" in crit:
-                extra["von_mises"] = crit.pop("spot_von_mises")
+                spot_vm = extra["von_mises"] = crit.pop("spot_von_mises")
             out.update({f"bem_{k}": v for k, v in crit.items()})
         out.update({f"{model}_{k}": v
                     for k, v in contact_record(res, guard, spots=spots, spot_values=extra).items()})
@@ -230,7 +231,7 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
         out["seconds_plastic"] = np.float64(tp)
     if settings.measured:
         out["max_on_spike"] = np.bool_(_max_on_spike(settings, raw, bem))
-    out.update(_scale_arrays(settings, bsettings, il, raw, bem, capped, out, guard))
+    out.update(_scale_arrays(settings, bsettings, il, raw, bem, capped, spot_vm, guard))
     return out
 
 
@@ -263,36 +264,44 @@ def _max_on_spike(settings: CampaignSettings, raw: Any, bem: Any) -> bool:
 
 
 def _scale_arrays(settings: CampaignSettings, bsettings: BEMSettings, il: int, raw: Any, bem: Any,
-                  capped: Any, record: dict, guard: int) -> dict[str, np.ndarray]:
+                  capped: Any, spot_vm: np.ndarray | None, guard: int) -> dict[str, np.ndarray]:
     """The answer against the scale: the surface solved again at every multiple of λs of
     :func:`glstat.study.scales.scale_factors` (elastic and capped), its largest pressure of the
     spots inside the patch (Pa), its plastic area and largest plastic zone (m²) and, with the
-    subsurface stress, its largest von Mises stress (Pa); entry 0 is the study's own scale
-    (nothing without an S-filter)."""
+    subsurface stress, its largest von Mises stress beneath the spots inside the patch (Pa;
+    ``spot_vm``: the study's own scale's, per spot); entry 0 is the study's own scale (nothing
+    without an S-filter)."""
     import contact
 
     factors = scale_factors(settings)
     if len(factors) < 2:
         return {}
 
-    def figures(res, cap, vm):
-        inner = interior(contact_record(res, guard))
+    def figures(res, cap, spot_vm=None):
+        spots = contact.contact_spots(res)
+        values = {}
+        if bsettings.subsurface:
+            if spot_vm is None:
+                spot_vm = criterion_arrays(res, None, spots, settings.nu, True)["spot_von_mises"]
+            values["von_mises"] = spot_vm
+        rec = contact_record(res, guard, spots=spots, spot_values=values)
+        inner = interior(rec)
+        keep = ~np.asarray(rec["cluster_on_border"], dtype=bool)
+        vm = (float(np.max(rec["cluster_von_mises"][keep], initial=0.0)) if bsettings.subsurface
+              else math.nan)
         zones = (plastic_zone_areas(cap.plastic, cap.cell_area, guard) if cap is not None
                  else np.zeros(0))
         return (inner["max_pressure"], float(zones.sum()), float(zones[0]) if zones.size else 0.0,
                 vm, bool(res.converged) and (cap is None or bool(cap.converged)))
 
-    rows = [figures(bem, capped, float(record.get("bem_max_von_mises", math.nan)))]
+    rows = [figures(bem, capped, spot_vm)]
     for k in factors[1:]:
         s = prepared_surface(settings, raw, k)
         res = contact.solve_bem(s, settings.pressures[il], settings.E, settings.nu,
                                 periodic=bool(bsettings.periodic), tol=bsettings.tol,
                                 max_iter=bsettings.max_iter, workers=1, warn=False)
         cap, _ = _capped_solve(s, settings, bsettings, il)
-        vm = math.nan
-        if bsettings.subsurface:
-            vm = float(np.max(res.max_von_mises(depths=default_depths(res), nu=settings.nu).von_mises))
-        rows.append(figures(res, cap, vm))
+        rows.append(figures(res, cap))
     cols = list(zip(*rows, strict=True))
     return {"scale_factors": np.asarray(factors, dtype=np.int64),
             "scale_max_pressure": np.asarray(cols[0], dtype=np.float64),
@@ -537,7 +546,8 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
     whole solution ``mean_pressure``, ``alpha``, ``force_error`` and ``n_border_spots``; with
     a hardness (:attr:`BEMSettings.hardness`) ``plastic_area_fraction``,
     ``plastic_load_fraction`` and ``plastic_zone_areas`` (m²) of the capped solution when it
-    converged; ``max_von_mises`` (Pa) with the subsurface stress, ``max_on_spike`` for
+    converged; ``max_von_mises`` (Pa, beneath the spots inside the patch) with the subsurface
+    stress, ``max_on_spike`` for
     measured files and the ``scale_*`` figures with an S-filter (:func:`simulate_bem`). A
     solve that did not converge within its iteration limit is left out (never silently used)
     and listed.
@@ -556,16 +566,17 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
             continue
         inner = interior(r)
         peaks, top = inner["peaks"], inner["max_pressure"]
-        if criterion == "subsurface":
+        extra = {k: v for k, v in z.items() if k.startswith("scale_") or k == "max_on_spike"}
+        if "cluster_von_mises" in r:  # beneath the spots inside the patch, as the pressures
             on_border = np.asarray(r["cluster_on_border"], dtype=bool)
-            peaks = np.asarray(r["cluster_von_mises"], dtype=float)[~on_border]
-            top = float(peaks.max()) if peaks.size else 0.0
+            vm = np.asarray(r["cluster_von_mises"], dtype=float)[~on_border]
+            extra["max_von_mises"] = float(vm.max()) if vm.size else 0.0
+            if criterion == "subsurface":
+                peaks, top = vm, extra["max_von_mises"]
         plastic = ({"plastic_area_fraction": float(z["plastic_area_fraction"]),
                     "plastic_load_fraction": float(z["plastic_load_fraction"]),
                     "plastic_zone_areas": np.asarray(z["bem_plastic_zone_areas"], dtype=float)}
                    if "plastic_area_fraction" in z and bool(z["plastic_converged"]) else {})
-        extra = {k: v for k, v in z.items()
-                 if k.startswith("scale_") or k in ("max_on_spike", "bem_max_von_mises")}
         res[key] = {**plastic, **extra, "samples": inner["samples"], "spot_peak": peaks,
                     "n_spots": inner["n_spots"], "asperity_peak": peaks,
                     "n_asperities": inner["n_spots"], "n_contact": int(inner["samples"].size),

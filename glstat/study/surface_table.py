@@ -46,7 +46,7 @@ def _verdicts(rec: dict | None, crit: Criterion) -> dict[str, Any]:
     if rec is None:
         return dict.fromkeys(("damaged_surface", "damaged_subsurface", "damaged_plastic_zone"))
     zones = rec.get("plastic_zone_areas")
-    vm = rec.get("bem_max_von_mises")
+    vm = rec.get("max_von_mises")
     return {"damaged_surface": bool(float(rec["max_surface_pressure"]) >= crit.hardness),
             "damaged_subsurface": None if vm is None else bool(float(vm) >= crit.yield_stress),
             "damaged_plastic_zone": None if zones is None else
@@ -83,7 +83,7 @@ def surfaces_frame(settings: Any, crit: Criterion, results: dict, bem_records: d
         b = bem_records.get(key)
         zones = None if b is None else b.get("plastic_zone_areas")
         plastic = math.nan if zones is None else float(np.sum(zones))
-        vm = None if b is None else b.get("bem_max_von_mises")
+        vm = None if b is None else b.get("max_von_mises")
         rows.append({
             "name": _name(settings, ih, i), "hurst": settings.hurst[ih],
             "pressure_mpa": settings.pressures[il] / 1e6, "spacing_um": spacing_um(settings),
