@@ -10,6 +10,7 @@ solver (:func:`solve_bem`) as its reference.
 import _glstat_runtime  # noqa: F401  (first: numba caches outside the package)
 
 from . import reference  # noqa: F401  (contact.reference: analytic solutions)
+from ._spike_search import Spikes
 from .asperity import solve, solve_displacement
 from .errors import ContactWarning, TopographyFileError
 from .filtering import default_s_filter, s_filter
@@ -21,7 +22,7 @@ from .quality import HeightSteps, height_steps
 from .resample import resample
 from .result import ContactResult
 from .spectrum import SpectrumFit, fit_spectrum
-from .spikes import Spikes, despike, find_spikes
+from .spikes import despike, find_spikes
 from .spots import contact_spots
 from .summits import Summits, summits
 from .surface import Surface

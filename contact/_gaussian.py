@@ -4,7 +4,9 @@ Heights and spacings in metres, ``valid`` True at the measured points. The perio
 multiplies the discrete Fourier transform by the Gaussian's transfer function; the
 non-periodic one is the normalised convolution of ISO 16610-28 (weights restricted to the
 measured points), computed with zero-padded FFTs, with zeroth- or first-order moment
-retention.
+retention. :func:`filter_heights` is the S-filter of :func:`contact.filtering.s_filter` on
+such arrays, its arguments checked; :func:`default_nesting_index` the rule of
+:func:`contact.filtering.default_s_filter`.
 """
 
 from __future__ import annotations
@@ -14,7 +16,21 @@ import math
 import numpy as np
 import scipy.fft as sfft
 
-__all__ = ["ALPHA", "TRUNCATION", "gaussian_nonperiodic", "gaussian_periodic", "transmission"]
+from _glstat_runtime.validation import flag, positive_finite
+
+__all__ = [
+    "ALPHA",
+    "MIN_RETAINED_WEIGHT",
+    "NESTING_INDEX_SERIES",
+    "SAMPLING_RATIO",
+    "TRUNCATION",
+    "check_nesting_index",
+    "default_nesting_index",
+    "filter_heights",
+    "gaussian_nonperiodic",
+    "gaussian_periodic",
+    "transmission",
+]
 
 #: ``sqrt(ln 2 / pi)``: with this constant the Gaussian transmits 50 % at the nesting index.
 ALPHA = math.sqrt(math.log(2) / math.pi)
@@ -28,10 +44,99 @@ TRUNCATION = 1.5
 #: only) and the zeroth-order estimate is used.
 MIN_CONDITION = 1e-3
 
+#: Mantissas of the preferred nesting indices within a decade (ISO 25178-3, ISO 3274):
+#: ``…, 0.1, 0.2, 0.25, 0.5, 0.8, 1, 2, 2.5, 5, 8, 10, … µm``.
+NESTING_INDEX_SERIES = (1.0, 2.0, 2.5, 5.0, 8.0)
+
+#: The default S-filter nesting index is at least this many sampling distances.
+SAMPLING_RATIO = 3.0
+
+#: Measured points of a non-periodic surface where less than this fraction of the
+#: weighting function falls on measured points are missing after the filter (a measured
+#: point of a complete grid keeps at least a quarter, at a corner).
+MIN_RETAINED_WEIGHT = 0.1
+
 
 def transmission(wavelength: float, nesting_index: float) -> float:
     """Amplitude transmission ``exp(-π (α λs / λ)²)`` of a sine of wavelength ``λ`` (m)."""
     return math.exp(-math.pi * (ALPHA * nesting_index / wavelength) ** 2)
+
+
+def default_nesting_index(dx: float, dy: float) -> float:
+    """The smallest preferred nesting index (m) of :data:`NESTING_INDEX_SERIES` that is at
+    least :data:`SAMPLING_RATIO` times the coarser of the (checked) spacings ``dx``, ``dy``
+    (m)."""
+    need = SAMPLING_RATIO * max(dx, dy) * (1 - 1e-9)
+    exponent = math.floor(math.log10(need))
+    for e in (exponent, exponent + 1):
+        for m in NESTING_INDEX_SERIES:
+            value = float(f"{m:g}e{e}")
+            if value >= need:
+                return value
+    raise AssertionError("unreachable: the next decade holds a larger value")  # pragma: no cover
+
+
+def check_nesting_index(nesting_index, dx: float, dy: float, size: tuple[float, float]) -> float:
+    """``λs`` (m), between the coarser grid spacing and the longer side of the surface."""
+    lam = positive_finite(nesting_index, "nesting_index", "S-filter nesting index λs in metres")
+    default = default_nesting_index(dx, dy)
+    coarse = max(dx, dy)
+    if lam < coarse:
+        axis = "x" if dx >= dy else "y"
+        raise ValueError(
+            f"nesting_index = {lam:g} m is below the grid spacing along {axis} ({coarse:g} m): "
+            "the grid does not resolve the wavelengths such a filter removes, so it would leave "
+            f"the surface unchanged; pass nesting_index >= {coarse:g} m (the ISO 25178-3 default "
+            f"for this grid is default_s_filter(dx, dy) = {default:g} m), or skip the S-filter")
+    side = max(size)
+    if lam > side:
+        raise ValueError(
+            f"nesting_index = {lam:g} m exceeds the longer side of the surface ({side:g} m): "
+            "such an S-filter flattens the whole texture; an S-filter removes only the shortest "
+            f"wavelengths (default_s_filter(dx, dy) = {default:g} m for this grid); to remove "
+            "form or tilt, level the surface instead (Surface.detrend())")
+    return lam
+
+
+def filter_heights(h: np.ndarray, valid: np.ndarray, dx: float, dy: float, nesting_index,
+                   periodic, edge_order) -> tuple[np.ndarray, np.ndarray]:
+    """The S-filter of :func:`contact.filtering.s_filter` on a height map, its arguments
+    checked.
+
+    Parameters
+    ----------
+    h : ndarray, shape (nx, ny)
+        Heights in metres (ignored where not ``valid``); not changed.
+    valid : ndarray of bool, shape (nx, ny)
+        Measured points.
+    dx, dy : float
+        Grid spacing in metres (checked).
+    nesting_index, periodic, edge_order
+        As :func:`contact.filtering.s_filter` takes them, not yet checked.
+
+    Returns
+    -------
+    filtered : ndarray, shape (nx, ny)
+        A new array of heights in metres, NaN at the missing points.
+    missing : ndarray of bool, shape (nx, ny)
+        The points missing after the filter: those missing before and, non-periodic, the
+        measured ones where less than :data:`MIN_RETAINED_WEIGHT` of the weight is measured.
+    """
+    nx, ny = h.shape
+    lam = check_nesting_index(nesting_index, dx, dy, (nx * dx, ny * dy))
+    periodic = False if periodic is None else flag(periodic, "periodic")
+    if isinstance(edge_order, bool) or edge_order not in (0, 1):
+        raise ValueError(f"edge_order must be 0 (keep a constant) or 1 (keep a plane), "
+                         f"got {edge_order!r}")
+    missing = ~valid
+    if periodic:
+        out, _ = gaussian_periodic(h, valid, dx, dy, lam)
+    else:
+        out, retained = gaussian_nonperiodic(h, valid, dx, dy, lam, int(edge_order))
+        missing = missing | ~(retained >= MIN_RETAINED_WEIGHT)
+    if missing.any():
+        out[missing] = np.nan
+    return out, missing
 
 
 def gaussian_periodic(h: np.ndarray, valid: np.ndarray, dx: float, dy: float,

@@ -4,41 +4,19 @@ A measured topography holds the surface down to the instrument's lateral resolut
 noise at the shortest wavelengths. The S-filter declares the smallest scale of the
 analysis: it removes the wavelengths shorter than its nesting index ``λs`` (50 % amplitude
 transmission at ``λs``). :func:`default_s_filter` gives the usual ``λs`` of a grid and
-:func:`s_filter` applies it.
+:func:`s_filter` applies it. The numerics, on plain arrays, and their constants
+(the preferred series ``NESTING_INDEX_SERIES``, ``SAMPLING_RATIO``, ``MIN_RETAINED_WEIGHT``)
+are in :mod:`contact._gaussian`; :meth:`contact.Surface.s_filter` is the same filter.
 """
 
 from __future__ import annotations
 
-import math
+from _glstat_runtime.validation import positive_finite
 
-import numpy as np
+from ._gaussian import default_nesting_index
+from .surface import Surface, require_surface
 
-from _glstat_runtime.validation import flag, positive_finite
-
-from ._gaussian import ALPHA, gaussian_nonperiodic, gaussian_periodic, transmission
-from .surface import Surface, require_surface, surface_arrays
-
-__all__ = [
-    "ALPHA",
-    "MIN_RETAINED_WEIGHT",
-    "NESTING_INDEX_SERIES",
-    "SAMPLING_RATIO",
-    "default_s_filter",
-    "s_filter",
-    "transmission",
-]
-
-#: Mantissas of the preferred nesting indices within a decade (ISO 25178-3, ISO 3274):
-#: ``…, 0.1, 0.2, 0.25, 0.5, 0.8, 1, 2, 2.5, 5, 8, 10, … µm``.
-NESTING_INDEX_SERIES = (1.0, 2.0, 2.5, 5.0, 8.0)
-
-#: The default S-filter nesting index is at least this many sampling distances.
-SAMPLING_RATIO = 3.0
-
-#: Measured points of a non-periodic surface where less than this fraction of the
-#: weighting function falls on measured points are missing after the filter (a measured
-#: point of a complete grid keeps at least a quarter, at a corner).
-MIN_RETAINED_WEIGHT = 0.1
+__all__ = ["default_s_filter", "s_filter"]
 
 
 def default_s_filter(dx: float, dy: float | None = None) -> float:
@@ -79,36 +57,7 @@ def default_s_filter(dx: float, dy: float | None = None) -> float:
     """
     dx = positive_finite(dx, "dx", "spacing in metres")
     dy = dx if dy is None else positive_finite(dy, "dy", "spacing in metres")
-    need = SAMPLING_RATIO * max(dx, dy) * (1 - 1e-9)
-    exponent = math.floor(math.log10(need))
-    for e in (exponent, exponent + 1):
-        for m in NESTING_INDEX_SERIES:
-            value = float(f"{m:g}e{e}")
-            if value >= need:
-                return value
-    raise AssertionError("unreachable: the next decade holds a larger value")  # pragma: no cover
-
-
-def _check_nesting_index(nesting_index, dx: float, dy: float, size: tuple[float, float]) -> float:
-    """``λs`` (m), between the coarser grid spacing and the longer side of the surface."""
-    lam = positive_finite(nesting_index, "nesting_index", "S-filter nesting index λs in metres")
-    default = default_s_filter(dx, dy)
-    coarse = max(dx, dy)
-    if lam < coarse:
-        axis = "x" if dx >= dy else "y"
-        raise ValueError(
-            f"nesting_index = {lam:g} m is below the grid spacing along {axis} ({coarse:g} m): "
-            "the grid does not resolve the wavelengths such a filter removes, so it would leave "
-            f"the surface unchanged; pass nesting_index >= {coarse:g} m (the ISO 25178-3 default "
-            f"for this grid is default_s_filter(dx, dy) = {default:g} m), or skip the S-filter")
-    side = max(size)
-    if lam > side:
-        raise ValueError(
-            f"nesting_index = {lam:g} m exceeds the longer side of the surface ({side:g} m): "
-            "such an S-filter flattens the whole texture; an S-filter removes only the shortest "
-            f"wavelengths (default_s_filter(dx, dy) = {default:g} m for this grid); to remove "
-            "form or tilt, level the surface instead (Surface.detrend())")
-    return lam
+    return default_nesting_index(dx, dy)
 
 
 def s_filter(surface: Surface, nesting_index: float, *, periodic: bool | None = None,
@@ -180,22 +129,5 @@ def s_filter(surface: Surface, nesting_index: float, *, periodic: bool | None = 
     >>> round(float(f.heights.max() / z.max()), 3)
     0.5
     """
-    surface = require_surface(surface)
-    h, valid = surface_arrays(surface)
-    dx, dy = surface.dx, surface.dy
-    lam = _check_nesting_index(nesting_index, dx, dy, surface.size)
-    periodic = False if periodic is None else flag(periodic, "periodic")
-    if isinstance(edge_order, bool) or edge_order not in (0, 1):
-        raise ValueError(f"edge_order must be 0 (keep a constant) or 1 (keep a plane), "
-                         f"got {edge_order!r}")
-    missing = ~valid
-    if periodic:
-        out, _ = gaussian_periodic(h, valid, dx, dy, lam)
-    else:
-        out, retained = gaussian_nonperiodic(h, valid, dx, dy, lam, int(edge_order))
-        missing = missing | ~(retained >= MIN_RETAINED_WEIGHT)
-    if not missing.any():
-        return Surface(out, dx, dy)
-    out[missing] = np.nan
-    return Surface(out, dx, dy, mask=missing)
-
+    return require_surface(surface).s_filter(nesting_index, periodic=periodic,
+                                             edge_order=edge_order)

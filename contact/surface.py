@@ -11,14 +11,14 @@ import numpy as np
 from _glstat_runtime.validation import height_map, positive_finite, real_array
 
 from . import _interop
+from ._gaussian import filter_heights
 from ._iso25178 import ACF_THRESHOLD, inverse_material_ratio, material_ratio
+from ._spike_search import MAX_PIXELS, THRESHOLD, Spikes, despiked_heights, search_spikes
 from ._writers import write
 from .roughness import level_heights, roughness_parameters
 
 if TYPE_CHECKING:
     import pandas as pd
-
-    from .spikes import Spikes
 
 __all__ = ["Surface"]
 
@@ -286,9 +286,10 @@ class Surface:
         index ``nesting_index`` (m); see :func:`contact.filtering.s_filter` (``periodic=None``
         is False: a measured patch) and :func:`contact.filtering.default_s_filter` for the
         usual nesting index of the grid."""
-        from .filtering import s_filter
-
-        return s_filter(self, nesting_index, periodic=periodic, edge_order=edge_order)
+        h, valid = height_map(self.heights, self.mask)
+        out, missing = filter_heights(h, valid, self.dx, self.dy, nesting_index, periodic,
+                                      edge_order)
+        return Surface(out, self.dx, self.dy, mask=missing if missing.any() else None)
 
     def spikes(self, *, threshold: float | None = None, max_pixels: int | None = None) -> Spikes:
         """Outlier points (spikes and pits of one or a few pixels) standing out of their
@@ -298,19 +299,18 @@ class Surface:
         -------
         contact.spikes.Spikes
         """
-        from .spikes import MAX_PIXELS, THRESHOLD, find_spikes
-
-        return find_spikes(self, threshold=THRESHOLD if threshold is None else threshold,
-                           max_pixels=MAX_PIXELS if max_pixels is None else max_pixels)
+        h, valid = height_map(self.heights, self.mask)
+        return search_spikes(h, valid, THRESHOLD if threshold is None else threshold,
+                             MAX_PIXELS if max_pixels is None else max_pixels)
 
     def despiked(self, spikes: Spikes | None = None, *, threshold: float | None = None,
                  max_pixels: int | None = None) -> Surface:
         """A new surface with the spike points replaced by the median of their measured,
         non-spike neighbours; see :func:`contact.spikes.despike` (``spikes`` from
         :meth:`spikes`, or found with ``threshold`` and ``max_pixels``)."""
-        from .spikes import despike
-
-        return despike(self, spikes, threshold=threshold, max_pixels=max_pixels)
+        h, valid = height_map(self.heights, self.mask)
+        out, missing = despiked_heights(h, valid, spikes, threshold, max_pixels)
+        return Surface(out, self.dx, self.dy, mask=missing if missing.any() else None)
 
     def write(self, path: str | os.PathLike, *, format: str | None = None) -> None:
         """Write the surface to ``path`` (.npz, .npy, text grid, .xyz or .x3p).

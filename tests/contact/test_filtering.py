@@ -19,12 +19,8 @@ import numpy as np
 import pytest
 
 import contact
-from contact.filtering import (
-    MIN_RETAINED_WEIGHT,
-    NESTING_INDEX_SERIES,
-    default_s_filter,
-    s_filter,
-)
+from contact._gaussian import MIN_RETAINED_WEIGHT, NESTING_INDEX_SERIES
+from contact.filtering import default_s_filter, s_filter
 
 ALPHA = math.sqrt(math.log(2) / math.pi)
 
