@@ -20,10 +20,10 @@ SPIKED = 5  # the file holding a one-pixel spike
 def spiked_study(tmp_path_factory):
     folder = tmp_path_factory.mktemp("spiked")
     for i in range(8):
-        s = contact.self_affine((96, 96), 0.1875e-3, hurst=0.8, rq=0.3e-6, rng=i)
+        s = contact.self_affine((64, 64), 0.128e-3, hurst=0.8, rq=0.3e-6, rng=i)
         h = s.heights.copy()
         if i == SPIKED:  # 20 Sq above its neighbourhood, in the middle
-            h[45, 50] += 20 * float(np.std(h))
+            h[30, 33] += 20 * float(np.std(h))
         contact.write(contact.Surface(h, s.dx), folder / f"scan_{i}.npz")
     settings = measured_settings(folder)
     out = tmp_path_factory.mktemp("spiked_study")
@@ -41,7 +41,7 @@ def test_a_planted_spike_is_flagged_in_one_of_eight_files(spiked_study):
     assert flagged["spike_largest_um"].iloc[0] > 10 * table["sq_um"].iloc[0]
     assert not table["spikes_replaced"].any()
     # every row states its scale
-    np.testing.assert_allclose(table["spacing_um"], 0.1875e3 / 96, rtol=1e-9)
+    np.testing.assert_allclose(table["spacing_um"], 0.128e3 / 64, rtol=1e-9)
     np.testing.assert_allclose(table["s_filter_um"], settings.s_filter * 1e6, rtol=1e-12)
 
 

@@ -305,6 +305,12 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                 summary.update(plastic_summary(plastic, a.confidence_level))
                 summary["plastic_load_fraction"] = float(np.mean(
                     [r["plastic_load_fraction"] for r in rs if "plastic_load_fraction" in r]))
+                # the mean plastic area of one analysed area in µm² and in grid cells
+                lx, ly = settings.size
+                (nx, ny) = settings.shape
+                mean = float(np.mean(plastic))
+                summary["plastic_area_um2"] = mean * lx * ly * 1e12
+                summary["plastic_area_cells"] = mean * nx * ny
             slot = MODEL_SLOTS[model]
             case: dict[str, SampleAnalysis | dict[str, float]] = {}
             for sample in (MODEL_SAMPLES[model] if samples is None else samples):

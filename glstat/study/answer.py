@@ -347,12 +347,17 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
 
 def plastic_text(summary: dict) -> str:
     """The plastic area fraction of a case as the first screen shows it: "0.85 % [0.76 %,
-    0.91 %]; 87 % of the load; interval check passed" ("—" without a capped solution)."""
+    0.91 %] (mean 8500 µm², 1250 grid cells); 87 % of the load; interval check passed" ("—"
+    without a capped solution)."""
     if "plastic_area_fraction" not in summary:
         return "—"
+    size = ""
+    if "plastic_area_um2" in summary:
+        size = (f" (mean {summary['plastic_area_um2']:.3g} µm², "
+                f"{summary['plastic_area_cells']:.3g} grid cells)")
     return (f"{fmt_probability(summary['plastic_area_fraction'])} "
             f"[{fmt_probability(summary['plastic_area_fraction_low'])}, "
-            f"{fmt_probability(summary['plastic_area_fraction_high'])}]; "
+            f"{fmt_probability(summary['plastic_area_fraction_high'])}]{size}; "
             f"{fmt_probability(summary.get('plastic_load_fraction', math.nan))} of the load; "
             f"interval check {summary.get('plastic_check', 'not checked')}")
 
