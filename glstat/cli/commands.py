@@ -360,7 +360,9 @@ def _study_settings(args, argv: list[str]):
         rq=tuple(v * 1e-6 for v in args.rq),
         gamma=args.gamma, n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
         cone_factor=args.cone_factor, seed=args.seed, n_examples=1,
-        s_filter=None if _s_filter_m(args) in ("default", None) else _s_filter_m(args))
+        # measured files: their own grid decides (below)
+        s_filter=(None if args.topographies or args.like or _s_filter_m(args) in ("default", None)
+                  else _s_filter_m(args)))
     if args.paper_table is not None and (args.topographies or args.like):
         raise StudyInputError("--paper-table compares the simulated Weierstrass scene with the "
                               "paper's Table 1; it does not apply to measured files "

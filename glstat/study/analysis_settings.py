@@ -199,9 +199,9 @@ class AnalysisSettings:
         if self.yield_stress is not None:
             y = positive_finite(self.yield_stress, "yield_stress", "yield stress in Pa")
             if y >= self.hardness:
-                raise ValueError(f"yield_stress {y / 1e6:g} MPa is not below the hardness "
-                                 f"{self.hardness / 1e6:g} MPa (H ≈ 2.8 Y for metals); check the "
-                                 f"units (Pa)")
+                raise ValueError(f"yield stress {y / 1e6:g} MPa is not below the hardness "
+                                 f"{self.hardness / 1e6:g} MPa: for metals H ≈ 2.8 Y (Tabor); give "
+                                 f"a yield stress below the hardness, or leave it out for H / 2.8")
             object.__setattr__(self, "yield_stress", float(y))
         if self.min_plastic_area is not None:
             object.__setattr__(self, "min_plastic_area", positive_finite(
