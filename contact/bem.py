@@ -257,11 +257,11 @@ def solve_bem(surface: Surface, nominal_pressure: float, E: float, nu: float, *,
         Threads for :mod:`scipy.fft` (its convention: negative counts from the number of
         CPUs); None uses scipy's default (one).
     accelerate : bool, default True
-        True: the accelerated iteration (directions preconditioned by a local stencil of
-        the inverse compliance and kept while the contact set grows, displacement carried
-        along between convolutions; 3-5 times fewer convolutions on rough surfaces).
-        False: the iteration of Polonsky & Keer (1999) as published, for reference. Both
-        stop on the same criterion and reach the same solution to within about ``tol``.
+        True: the accelerated iteration (preconditioned directions kept while the contact set
+        grows, displacement carried between convolutions, the elastic load restored by raising
+        the flat; 3-5 times fewer convolutions on rough surfaces). False: Polonsky & Keer
+        (1999) as published, for reference: the same criterion and solution to about ``tol``,
+        but it can cycle when one cell carries much of the load (a spike of a measurement).
     warn : bool, default True
         Issue a :class:`BEMConvergenceWarning` when the tolerance is not reached; False keeps
         its message in ``info["warning"]`` only (for worker threads, where changing the
@@ -316,7 +316,7 @@ def solve_bem(surface: Surface, nominal_pressure: float, E: float, nu: float, *,
     pressures of the given total, conjugate gradient on the current contact set, with
     the mean gap removed there (the Lagrange multiplier of the load, ``-d``), projection
     onto ``p >= 0``, interpenetrating points added to the contact set (and a restart to
-    steepest descent when that happens), and rescaling to the load. See ``docs/bem.md``.
+    steepest descent when that happens), and restoring the load. See ``docs/bem.md``.
 
     With a hardness ``H`` (elastic-perfectly-plastic surface, Almqvist et al. 2007) the
     pressure is bounded, ``0 <= p <= H``, and the conditions become ``g = 0`` where
