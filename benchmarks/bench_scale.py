@@ -52,11 +52,11 @@ def filter_rows(n, repeat):
     sigma = ALPHA * lam / math.sqrt(2 * math.pi) / dx
     rows = []
     for periodic in (True, False):
-        t, out = best(lambda: sine.s_filter(lam, periodic=periodic), repeat)
+        t, out = best(lambda periodic=periodic: sine.s_filter(lam, periodic=periodic), repeat)
         core = slice(n // 4, 3 * n // 4)
         amp = np.abs(out.heights[core, n // 2]).max() / 1e-7
         mode = "wrap" if periodic else "constant"
-        tp, _ = best(lambda: ndimage.gaussian_filter(sine.heights, sigma, mode=mode), repeat)
+        tp, _ = best(lambda mode=mode: ndimage.gaussian_filter(sine.heights, sigma, mode=mode), repeat)
         plane_err = math.nan
         if not periodic:
             plane = contact.Surface((x[:, None] + 0.5 * x[None, :]) * 1e-2, dx)
