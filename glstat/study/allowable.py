@@ -26,7 +26,7 @@ __all__ = ["ALLOWABLE_COLUMNS", "allowable_frame", "allowable_text", "area_words
 #: Columns of ``allowable_load.csv``.
 ALLOWABLE_COLUMNS = ("model", "hurst", "area_mm2", "target_damage", "allowable_pressure_mpa",
                      "allowable_low_mpa", "allowable_high_mpa", "status", "bracket_mpa",
-                     "checks")
+                     "checks", "spacing_um", "s_filter_um", "criterion")
 
 
 def area_words(m2: float) -> str:
@@ -129,9 +129,12 @@ def allowable_frame(settings, asettings, analyses: dict[str, dict]) -> Any:
         crosses the target), ``allowable_low_mpa`` and ``allowable_high_mpa`` (where the upper
         and the lower end of its interval cross it; NaN when they do not between the loads),
         ``status`` (:func:`crossing`), ``bracket_mpa`` (the two loads it lies between) and
-        ``checks`` (the held-out checks at those loads).
+        ``checks`` (the held-out checks at those loads), ``spacing_um``, ``s_filter_um`` and
+        ``criterion`` (the scale and the damage criterion the load holds at).
     """
     import pandas as pd
+
+    from .scales import s_filter_um, spacing_um
 
     order = np.argsort(settings.pressures)
     loads = np.asarray(settings.pressures, dtype=float)[order] / 1e6
@@ -161,5 +164,9 @@ def allowable_frame(settings, asettings, analyses: dict[str, dict]) -> Any:
                 rows.append({"model": model, "hurst": settings.hurst[ih], "area_mm2": float(area),
                              "target_damage": target, "allowable_pressure_mpa": p,
                              "allowable_low_mpa": p_low, "allowable_high_mpa": p_high,
-                             "status": status, "bracket_mpa": bracket, "checks": checks})
+                             "status": status, "bracket_mpa": bracket, "checks": checks,
+                             "spacing_um": spacing_um(settings),
+                             "s_filter_um": s_filter_um(settings),
+                             "criterion": (asettings.criterion if model == "bem"
+                                           and asettings.criterion == "subsurface" else "surface")})
     return pd.DataFrame(rows, columns=list(ALLOWABLE_COLUMNS))

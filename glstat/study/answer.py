@@ -43,7 +43,7 @@ PLASTIC_COLUMNS = ("plastic_area_fraction", "plastic_area_fraction_low",
 #: Columns of ``damage_calibration.csv``.
 CALIBRATION_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "hardness_mpa", "area_factor",
                        "predicted", "observed", "observed_low", "observed_high", "n_surfaces",
-                       "p_value")
+                       "p_value", "spacing_um", "s_filter_um")
 #: The paper's damage verdicts at 2050 MPa (its section 4), by H.
 PAPER_VERDICTS = {0.0: "certain", 0.5: "≈ 1 %", 1.0: "impossible"}
 #: The paper's mean contact pressures (Table 1), MPa, by H.
@@ -225,7 +225,8 @@ def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None
     ``predicted`` (P(max > hardness) from the fit of the other fold, averaged over the two
     folds), ``observed`` (fraction of held-out surfaces or groups whose maximum exceeds it),
     ``observed_low``/``observed_high`` (Wilson 95 % interval), ``n_surfaces`` (surfaces or
-    groups), ``p_value`` (exact binomial test of the observed count against the prediction).
+    groups), ``p_value`` (exact binomial test of the observed count against the prediction),
+    ``spacing_um`` and ``s_filter_um`` (the scale: grid spacing and S-filter, NaN without one).
     """
     import pandas as pd
 
@@ -245,7 +246,12 @@ def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None
                 frames.append(c)
     if not frames:
         return pd.DataFrame(columns=list(CALIBRATION_COLUMNS))
-    return pd.concat(frames, ignore_index=True)[list(CALIBRATION_COLUMNS)]
+    from .scales import s_filter_um, spacing_um
+
+    out = pd.concat(frames, ignore_index=True)
+    out["spacing_um"] = spacing_um(settings)
+    out["s_filter_um"] = s_filter_um(settings)
+    return out[list(CALIBRATION_COLUMNS)]
 
 
 def degenerate_scene(analysis: dict, settings=None) -> str:
