@@ -113,3 +113,18 @@ def test_resolution_note_flags_an_answer_that_moves_and_only_then():
     pressure = _scales([0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.2, 0.2, 0.2], [1500, 1000, 800])
     assert "resolution-dominated" in resolution_note(settings, pressure)
     assert resolution_note(settings, pd.DataFrame()) == ""
+
+
+def test_every_caption_states_the_scale():
+    from glstat.study.report_document import Blocks
+
+    b = Blocks()
+    b.table(["a"], [[1]], "Damage per area.")
+    b.table(["a"], [[1]], "Already at grid spacing 2 µm, no S-filter.")
+    b.table(["a"], [[1]])  # no caption: left alone
+    b.paragraph("Text is not a caption.")
+    b.state_in_captions("grid spacing 1.66 µm, S-filter λs = 5 µm", "grid spacing")
+    captions = [blk[3] for blk in b.blocks if blk[0] == "t"]
+    assert captions == ["Damage per area (grid spacing 1.66 µm, S-filter λs = 5 µm).",
+                        "Already at grid spacing 2 µm, no S-filter.", ""]
+    assert b.blocks[-1] == ("p", "Text is not a caption.")

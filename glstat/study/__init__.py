@@ -418,6 +418,13 @@ def _bem_settings(settings: CampaignSettings, analysis: AnalysisSettings,
         bsettings = dataclasses.replace(bsettings, hardness=analysis.hardness)
     if analysis.criterion == "subsurface":
         bsettings = dataclasses.replace(bsettings, subsurface=True)
+    if settings.s_filter is not None and bsettings.grid is not None:
+        spacing = max(settings.size) / bsettings.grid
+        if settings.s_filter < 2 * spacing:
+            raise ValueError(
+                f"s_filter λs = {settings.s_filter * 1e6:.4g} µm is below two spacings of the BEM "
+                f"grid ({bsettings.grid}² points, {spacing * 1e6:.4g} µm): give a λs of at least "
+                f"{2 * spacing * 1e6:.4g} µm, or a finer BEM grid (--bem-grid)")
     cap = float(bsettings.hardness or analysis.hardness)
     if max(settings.pressures) >= cap:
         raise ValueError(

@@ -90,4 +90,8 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict,
         if present:
             say(f"report: {label}")
             rep.extend(*make())
+    from .scales import scale_text
+
+    # every table and figure says at what length scale its numbers hold
+    rep.state_in_captions(scale_text(settings, short=True), "grid spacing")
     return rep

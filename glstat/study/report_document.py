@@ -78,6 +78,18 @@ class Blocks:
         for part in parts:
             self.blocks += part.blocks
 
+    def state_in_captions(self, text: str, marker: str) -> None:
+        """Append `` (text)`` to every table and figure caption that does not already hold
+        ``marker`` (e.g. the length scale every number holds at)."""
+        out = []
+        for b in self.blocks:
+            if b[0] in ("t", "f") and b[3] and marker not in b[3]:
+                caption = b[3].rstrip()
+                end = "." if caption.endswith(".") else ""
+                b = (*b[:3], f"{caption[:len(caption) - len(end)]} ({text}){end}")
+            out.append(b)
+        self.blocks = out
+
 
 class Report(Blocks):
     """The whole report: a title and its blocks, rendered to HTML and Markdown."""
