@@ -85,7 +85,7 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
               f"somewhere on one analysed area ({area_text(settings)}"
               + ("" if settings.measured else "; H is the Hurst exponent of the surfaces, not the "
                  "hardness")
-              + f"; {scale_text(settings, short=True)}),{sub} "
+              + f"; {scale_text(settings, short=True)}), "
               f"predicted from the peak pressures of the connected contact spots of each surface's "
               f"pressure map with their number per surface as a random count (docs/method.md §6; "
               f"the largest spot peak of a surface is its maximal pressure), with its {lvl} % "
@@ -96,7 +96,8 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
               + ("The elastic BEM solves every surface: it is the reference answer; the asperity "
                  "model is the paper's, shown with its own check." if info.get("bem_analysis") else
                  "The elastic BEM column is the same predictor on the elastic solution of the first "
-                 "surfaces, without a check of its own (run --model both for the reference)."))
+                 "surfaces, without a check of its own (run --model both for the reference).")
+              + sub)
     rows, columns = area_damage_rows(settings, asettings, analysis, info.get("bem_analysis"))
     if rows:
         out.table(columns, rows,
@@ -105,7 +106,9 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
                   f"predictor; an area "
                   f"k times the analysed one holds k independent analysed areas, docs/method.md §7; "
                   f"the figure \"Integrity against area\" below draws the integrity, 1 − damage, "
-                  f"against k).")
+                  f"against k)."
+                  + (f" The elastic BEM's rows: the von Mises stress beneath the surface exceeding "
+                     f"Y = {crit.yield_stress / 1e6:.4g} MPa." if sub else ""))
     scale_blocks(out, settings, asettings, crit, info.get("bem_records"))
     if len(settings.pressures) > 1:
         _allowable_block(out, settings, asettings, analysis, info.get("bem_analysis"))
