@@ -150,7 +150,7 @@ def test_resume_reuses_the_bem_solves(study, tmp_path, capsys, monkeypatch):
     assert len(after) == 6 and all(after[k] == v for k, v in before.items())
     manifest = json.loads((out / "manifest.json").read_text())
     assert manifest["compare_bem_surfaces"] == 2
-    assert manifest["compare_bem"] == {"periodic": False, "tol": 1e-8, "max_iter": 1000, "format_version": 1,
+    assert manifest["compare_bem"] == {"periodic": False, "tol": 1e-8, "max_iter": 1000, "format_version": 2,
                                        "hardness": 2050e6}
     assert "campaign" in manifest
     sec = _section((out / "report.md").read_text())
