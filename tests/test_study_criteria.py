@@ -128,3 +128,14 @@ def test_every_caption_states_the_scale():
     assert captions == ["Damage per area (grid spacing 1.66 µm, S-filter λs = 5 µm).",
                         "Already at grid spacing 2 µm, no S-filter.", ""]
     assert b.blocks[-1] == ("p", "Text is not a caption.")
+
+
+def test_the_scale_names_the_elastic_grid_when_it_differs():
+    from glstat.study.scales import scale_text, spacing_um
+
+    s = CampaignSettings(n_surfaces=2, grid=1024, length=1e-3, hurst=(0.5,))
+    assert spacing_um(s) == pytest.approx(0.9765625)
+    assert spacing_um(s, 384) == pytest.approx(1e3 / 384)
+    assert scale_text(s, short=True) == "grid spacing 0.977 µm, no S-filter"
+    assert scale_text(s, short=True, bem_grid=384) == \
+        "grid spacing 0.977 µm (elastic BEM 2.6 µm), no S-filter"

@@ -574,7 +574,8 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
     lvl = round(100 * asettings.confidence_level)
     crit = asettings.criterion_of(settings)
     print(f"Probability that the contact pressure exceeds {hardness:g} MPa somewhere on one "
-          f"{area_text(settings)} area ({lvl} % interval), at {scale_text(settings, short=True)}"
+          f"{area_text(settings)} area ({lvl} % interval), at "
+          f"{scale_text(settings, short=True, bem_grid=res.bem_grid)}"
           + ("" if crit.name == "surface" else
              f"; the elastic BEM under the criterion {crit.text()}") + ":")
     rows = table[table["sample"] == PRIMARY_SAMPLE]

@@ -210,7 +210,7 @@ class StudyResult:
 
     def __init__(self, out, report_html, report_md, analysis, timings, campaign, bem=None,
                  bem_run=None, bem_analysis=None, analysis_settings=None, *, results=None,
-                 bem_records=None, left_out=None):
+                 bem_records=None, left_out=None, bem_grid=None):
         self.out = Path(out)
         self.report_html = report_html
         self.report_md = report_md
@@ -224,6 +224,7 @@ class StudyResult:
         self.results = results or {}
         self.bem_records = bem_records
         self.left_out = list(left_out or ())
+        self.bem_grid = bem_grid
 
     def bem_summary(self):
         """One row per (H, load, quantity) of the BEM comparison: both models' means and the
@@ -253,7 +254,7 @@ class StudyResult:
             return pd.DataFrame(columns=list(ALLOWABLE_COLUMNS))
         a = self.analysis_settings or AnalysisSettings()
         return allowable_frame(settings, a, {"bem": self.bem_analysis or {},
-                                             "asperity": self.analysis})
+                                             "asperity": self.analysis}, bem_grid=self.bem_grid)
 
     def summary(self):
         """``summary.csv`` as a pandas DataFrame: one row per H × load × model × sample (the
@@ -261,7 +262,7 @@ class StudyResult:
         a = self.analysis_settings or AnalysisSettings()
         return summary_frame(self.campaign.settings, self.analysis, self.bem, self.bem_analysis,
                              criterion=self._criterion(), bem_records=self.bem_records,
-                             confidence_level=a.confidence_level)
+                             confidence_level=a.confidence_level, bem_grid=self.bem_grid)
 
     def _criterion(self):
         a = self.analysis_settings or AnalysisSettings()
@@ -273,7 +274,7 @@ class StudyResult:
         from .surface_table import surfaces_frame
 
         return surfaces_frame(self.campaign.settings, self._criterion(), self.results,
-                              self.bem_records, self.left_out)
+                              self.bem_records, self.left_out, bem_grid=self.bem_grid)
 
     def scales(self):
         """The answer against the scale as a pandas DataFrame (``scales.csv``; empty without an
@@ -287,7 +288,8 @@ class StudyResult:
     def damage_calibration(self):
         """``damage_calibration.csv`` as a pandas DataFrame: predicted against observed damage
         probabilities on held-out surfaces (:func:`glstat.study.answer.calibration_frame`)."""
-        return calibration_frame(self.campaign.settings, self.analysis, self.bem_analysis)
+        return calibration_frame(self.campaign.settings, self.analysis, self.bem_analysis,
+                                 bem_grid=self.bem_grid)
 
 
 def _versions() -> dict[str, str]:
@@ -389,7 +391,8 @@ def run_study(
     try:
         html, md = rep.write(out)
         result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an, analysis,
-                             results=results, bem_records=bem_records, left_out=left_out)
+                             results=results, bem_records=bem_records, left_out=left_out,
+                             bem_grid=None if bsettings is None else bsettings.grid)
         _write_tables(out, settings, result)
     except OSError as exc:  # disk full or read-only at the end: the computed results are kept
         raise CampaignError(

@@ -109,7 +109,8 @@ def crossing(pressures, damage, target: float) -> tuple[float, str, int]:
     return math.nan, "no estimate", -1  # not increasing: the curve crosses back
 
 
-def allowable_frame(settings, asettings, analyses: dict[str, dict]) -> Any:
+def allowable_frame(settings, asettings, analyses: dict[str, dict],
+                    bem_grid: int | None = None) -> Any:
     """``allowable_load.csv``: the allowable nominal pressure per model, case and area.
 
     Parameters
@@ -165,7 +166,8 @@ def allowable_frame(settings, asettings, analyses: dict[str, dict]) -> Any:
                              "target_damage": target, "allowable_pressure_mpa": p,
                              "allowable_low_mpa": p_low, "allowable_high_mpa": p_high,
                              "status": status, "bracket_mpa": bracket, "checks": checks,
-                             "spacing_um": spacing_um(settings),
+                             "spacing_um": spacing_um(settings,
+                                                      bem_grid if model == "bem" else None),
                              "s_filter_um": s_filter_um(settings),
                              "criterion": (asettings.criterion if model == "bem"
                                            and asettings.criterion == "subsurface" else "surface")})

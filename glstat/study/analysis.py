@@ -305,12 +305,13 @@ def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, prog
                 summary.update(plastic_summary(plastic, a.confidence_level))
                 summary["plastic_load_fraction"] = float(np.mean(
                     [r["plastic_load_fraction"] for r in rs if "plastic_load_fraction" in r]))
-                # the mean plastic area of one analysed area in µm² and in grid cells
+                # the mean plastic area of one analysed area in µm² and in grid cells (of the
+                # grid the capped solution was computed on)
                 lx, ly = settings.size
-                (nx, ny) = settings.shape
-                mean = float(np.mean(plastic))
-                summary["plastic_area_um2"] = mean * lx * ly * 1e12
-                summary["plastic_area_cells"] = mean * nx * ny
+                summary["plastic_area_um2"] = float(np.mean(plastic)) * lx * ly * 1e12
+                summary["plastic_area_cells"] = float(np.mean(
+                    [r["plastic_area_fraction"] * r.get("n_points", np.prod(settings.shape))
+                     for r in rs if "plastic_area_fraction" in r]))
             slot = MODEL_SLOTS[model]
             case: dict[str, SampleAnalysis | dict[str, float]] = {}
             for sample in (MODEL_SAMPLES[model] if samples is None else samples):

@@ -117,7 +117,8 @@ def _analysis_rows(settings, analysis: dict, model: str) -> list[dict]:
 
 
 def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysis: dict | None = None,
-                  criterion=None, bem_records: dict | None = None, confidence_level: float = 0.9):
+                  criterion=None, bem_records: dict | None = None, confidence_level: float = 0.9,
+                  bem_grid: int | None = None):
     """``summary.csv``: one row per H × load × model × sample (pandas DataFrame).
 
     Columns (pressures in MPa, probabilities as fractions): ``hurst``, ``pressure_mpa`` (nominal),
@@ -175,13 +176,14 @@ def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysi
                 "coverage_p_value": math.nan, "detectable_miss": math.nan,
                 "check": "not checked", "passes_check": False, "upper_end_mpa": math.nan,
                 "n_surfaces": len(surf)})
-    _scale_columns(rows, settings, criterion, bool(bem_analysis))
     if criterion is not None and criterion.name == "plastic-zone" and bem_records:
         rows += _plastic_zone_rows(settings, criterion, bem_records, confidence_level)
+    _scale_columns(rows, settings, criterion, bool(bem_analysis), bem_grid)
     return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
 
 
-def _scale_columns(rows: list[dict], settings, criterion, bem_on_all: bool) -> None:
+def _scale_columns(rows: list[dict], settings, criterion, bem_on_all: bool,
+                   bem_grid: int | None = None) -> None:
     """Add the scale (spacing, λs) and the criterion of each row of ``summary.csv``: the asperity
     model and the elastic rows answer under the surface criterion, but for the subsurface
     criterion of the elastic model run on every surface."""
@@ -191,16 +193,21 @@ def _scale_columns(rows: list[dict], settings, criterion, bem_on_all: bool) -> N
     crit = criterion or Criterion()
     surface = Criterion("surface", crit.hardness)
     for row in rows:
-        own = crit if (row["model"] == "bem" and bem_on_all and crit.name == "subsurface") else surface
-        row.update(spacing_um=spacing_um(settings), s_filter_um=s_filter_um(settings),
-                   criterion=own.name, threshold=own.threshold_text())
+        if row.get("criterion") == "plastic-zone":
+            own = crit
+        elif row["model"] == "bem" and bem_on_all and crit.name == "subsurface":
+            own = crit
+        else:
+            own = surface
+        row.update(spacing_um=spacing_um(settings, bem_grid if row["model"] == "bem" else None),
+                   s_filter_um=s_filter_um(settings), criterion=own.name,
+                   threshold=own.threshold_text())
     for row in rows:
         row.setdefault("observed_max_pressure_mpa", math.nan)
 
 
 def _plastic_zone_rows(settings, criterion, bem_records: dict, level: float) -> list[dict]:
     """The plastic-zone criterion's rows of ``summary.csv`` (elastic BEM, sample "areas")."""
-    from .scales import s_filter_um, spacing_um
     from .surface_table import criteria_frame
 
     frame = criteria_frame(settings, criterion, bem_records, level)
@@ -212,12 +219,12 @@ def _plastic_zone_rows(settings, criterion, bem_records: dict, level: float) -> 
                      "n_surfaces": int(r["n_surfaces"]), "fit": "none (exact binomial)",
                      "held_out_surfaces": 0,
                      "check": "not checked", "passes_check": False,
-                     "spacing_um": spacing_um(settings), "s_filter_um": s_filter_um(settings),
                      "criterion": "plastic-zone", "threshold": r["threshold"]})
     return rows
 
 
-def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None):
+def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None,
+                      bem_grid: int | None = None):
     """``damage_calibration.csv``: predicted against observed damage probabilities.
 
     One row per H × load × model × sample × hardness level × area factor: ``hardness_mpa``,
@@ -249,7 +256,8 @@ def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None
     from .scales import s_filter_um, spacing_um
 
     out = pd.concat(frames, ignore_index=True)
-    out["spacing_um"] = spacing_um(settings)
+    out["spacing_um"] = np.where(out["model"] == "bem", spacing_um(settings, bem_grid),
+                                 spacing_um(settings))
     out["s_filter_um"] = s_filter_um(settings)
     return out[list(CALIBRATION_COLUMNS)]
 

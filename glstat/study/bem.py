@@ -583,7 +583,7 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
                     "max_pressure": top, "max_surface_pressure": inner["max_pressure"],
                     "mean_pressure": float(r["mean_pressure"]),
                     "alpha": 1.0 - float(r["contact_fraction"]), "force_error": float(r["force_error"]),
-                    "n_border_spots": inner["n_border_spots"]}
+                    "n_border_spots": inner["n_border_spots"], "n_points": int(r["n_points"])}
     return res, dropped
 
 

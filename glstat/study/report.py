@@ -93,5 +93,6 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict,
     from .scales import scale_text
 
     # every table and figure says at what length scale its numbers hold
-    rep.state_in_captions(scale_text(settings, short=True), "grid spacing")
+    bem_grid = getattr(info.get("bem_settings"), "grid", None)
+    rep.state_in_captions(scale_text(settings, short=True, bem_grid=bem_grid), "grid spacing")
     return rep

@@ -22,9 +22,10 @@ __all__ = ["elastic_validity_note", "scale_blocks", "scale_figure", "scale_parag
            "spike_note"]
 
 
-def scale_paragraph(settings: Any, crit: Any, bem_on_all: bool) -> str:
+def scale_paragraph(settings: Any, crit: Any, bem_on_all: bool, bem_grid: int | None = None) -> str:
     """The sentence that opens the answer: at what scale and under which criterion it holds."""
-    text = (f"Every number below holds at this length scale: {scale_text(settings)}. "
+    text = (f"Every number below holds at this length scale: "
+            f"{scale_text(settings, bem_grid=bem_grid)}. "
             f"Damage criterion: {crit.text()} — {CRITERION_LABELS[crit.name]}")
     if crit.name != "surface":
         text += (" (elastic BEM; the asperity model answers under the surface criterion, "

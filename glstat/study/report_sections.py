@@ -56,7 +56,8 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     bem = info.get("bem")
     crit = info.get("criterion") or asettings.criterion_of(settings)
     bem_on_all = bool(info.get("bem_analysis"))
-    out.paragraph(scale_paragraph(settings, crit, bem_on_all))
+    bem_grid = getattr(info.get("bem_settings"), "grid", None)
+    out.paragraph(scale_paragraph(settings, crit, bem_on_all, bem_grid))
     resolution = resolution_note(settings, scale_frame(settings, crit, info.get("bem_records") or {},
                                                        asettings.confidence_level))
     if resolution:
@@ -85,7 +86,7 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
               f"somewhere on one analysed area ({area_text(settings)}"
               + ("" if settings.measured else "; H is the Hurst exponent of the surfaces, not the "
                  "hardness")
-              + f"; {scale_text(settings, short=True)}), "
+              + f"; {scale_text(settings, short=True, bem_grid=bem_grid)}), "
               f"predicted from the peak pressures of the connected contact spots of each surface's "
               f"pressure map with their number per surface as a random count (docs/method.md §6; "
               f"the largest spot peak of a surface is its maximal pressure), with its {lvl} % "

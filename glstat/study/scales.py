@@ -33,8 +33,11 @@ def scale_factors(settings: Any) -> tuple[int, ...]:
     return tuple(k for k in SCALE_FACTORS if 4 * k * lam <= side * (1 + 1e-9))
 
 
-def spacing_um(settings: Any) -> float:
-    """The grid spacing in µm (the coarser axis when the spacings differ)."""
+def spacing_um(settings: Any, bem_grid: int | None = None) -> float:
+    """The grid spacing in µm (the coarser axis when the spacings differ), or with ``bem_grid``
+    that of the square grid of that many points per side the elastic BEM solves on."""
+    if bem_grid is not None:
+        return settings.length / bem_grid * 1e6
     return max(settings.spacing) * 1e6
 
 
@@ -53,13 +56,17 @@ def _is_default(settings: Any) -> bool:
     return math.isclose(settings.s_filter, contact.default_s_filter(*settings.spacing), rel_tol=1e-9)
 
 
-def scale_text(settings: Any, short: bool = False) -> str:
+def scale_text(settings: Any, short: bool = False, bem_grid: int | None = None) -> str:
     """The scale of a study's answer in words: "grid spacing 1.66 µm, S-filter λs = 5 µm (the
     ISO 25178-3 default for this spacing)", or "... no S-filter" (``short``: without the
-    explanation in brackets)."""
+    explanation in brackets); ``bem_grid``: the points per side of the grid the elastic BEM
+    solves simulated surfaces on, when it is not the campaign's ("grid spacing 0.977 µm,
+    elastic BEM 2.6 µm")."""
     (dx, dy) = settings.spacing
     spacing = (f"{dx * 1e6:.3g} µm" if math.isclose(dx, dy, rel_tol=1e-6)
                else f"{dx * 1e6:.3g} × {dy * 1e6:.3g} µm")
+    if bem_grid is not None:
+        spacing += f" (elastic BEM {spacing_um(settings, bem_grid):.3g} µm)"
     lam = getattr(settings, "s_filter", None)
     if lam is None:
         what = "no S-filter"

@@ -26,7 +26,8 @@ __all__ = ["SURFACE_COLUMNS", "criteria_frame", "resolution_note", "scale_frame"
            "surfaces_frame"]
 
 #: Columns of ``surfaces.csv``.
-SURFACE_COLUMNS = ("name", "hurst", "pressure_mpa", "spacing_um", "s_filter_um", "sq_um", "sdq",
+SURFACE_COLUMNS = ("name", "hurst", "pressure_mpa", "spacing_um", "bem_spacing_um", "s_filter_um",
+                   "sq_um", "sdq",
                    "spikes", "spike_largest_um", "spikes_replaced", "max_on_spike",
                    "height_step_nm", "asperity_max_pressure_mpa", "bem_max_pressure_mpa",
                    "bem_max_von_mises_mpa", "plastic_area_um2", "plastic_area_cells",
@@ -54,11 +55,12 @@ def _verdicts(rec: dict | None, crit: Criterion) -> dict[str, Any]:
 
 
 def surfaces_frame(settings: Any, crit: Criterion, results: dict, bem_records: dict | None,
-                   left_out: list | None = None):
+                   left_out: list | None = None, bem_grid: int | None = None):
     """``surfaces.csv``: one row per surface (or area) and load, as a pandas DataFrame.
 
     Columns: ``name`` (the file and area, or the case and surface number), ``hurst``,
-    ``pressure_mpa`` (nominal), ``spacing_um``, ``s_filter_um`` (λs, NaN without an S-filter),
+    ``pressure_mpa`` (nominal), ``spacing_um`` (``bem_spacing_um``: the elastic BEM's, when it
+    solves simulated surfaces on a grid of its own), ``s_filter_um`` (λs, NaN without an S-filter),
     ``sq_um`` and ``sdq`` (ISO 25178, at the study's scale; measured files), ``spikes`` (outlier
     points found in the file's area, :func:`contact.find_spikes`), ``spike_largest_um`` (the
     largest one's height above or below its neighbourhood), ``spikes_replaced`` (whether
@@ -75,7 +77,8 @@ def surfaces_frame(settings: Any, crit: Criterion, results: dict, bem_records: d
 
     bem_records = bem_records or {}
     dropped = set(left_out or ())
-    cell = float(np.prod(settings.spacing))
+    cell = (float(np.prod(settings.spacing)) if bem_grid is None
+            else (settings.length / bem_grid) ** 2)
     rows = []
     for key in sorted(set(results) | set(bem_records) | dropped):
         ih, il, i = key
@@ -87,6 +90,7 @@ def surfaces_frame(settings: Any, crit: Criterion, results: dict, bem_records: d
         rows.append({
             "name": _name(settings, ih, i), "hurst": settings.hurst[ih],
             "pressure_mpa": settings.pressures[il] / 1e6, "spacing_um": spacing_um(settings),
+            "bem_spacing_um": spacing_um(settings, bem_grid),
             "s_filter_um": s_filter_um(settings),
             "sq_um": float(r.get("iso_Sq", math.nan)) * 1e6, "sdq": float(r.get("iso_Sdq", math.nan)),
             "spikes": int(r["spike_count"]) if "spike_count" in r else None,
