@@ -145,13 +145,17 @@ def scale_blocks(out: Blocks, settings: Any, asettings: Any, crit: Any,
               f"one that moves by more than its interval is decided by features near the filter's "
               f"scale (scales.csv).")
     out.figure("scale", scale_figure(scales, crit),
-               "Maximal elastic pressure, plastic area and fraction of areas damaged against the "
+               "Maximal elastic surface pressure (and, with the subsurface stress, the largest von "
+               "Mises stress beneath it), plastic area and fraction of areas damaged against the "
                "S-filter's nesting index λs (medians over the areas; the fraction with its exact "
                "interval).")
 
 
 def scale_figure(frame, crit: Any):
-    """Maximal pressure, plastic area and damaged fraction against λs, one line per case."""
+    """Maximal pressure (and von Mises stress), plastic area and damaged fraction against λs,
+    one line per case, on the λs of the study's solves."""
+    from matplotlib.ticker import FixedLocator, NullLocator
+
     from .report_figures import pyplot
 
     plt = pyplot()
@@ -159,17 +163,28 @@ def scale_figure(frame, crit: Any):
     for case, g in frame.groupby("case", sort=False):
         g = g.sort_values("s_filter_um")
         lam = g["s_filter_um"].to_numpy(dtype=float)
-        axes[0].plot(lam, g["max_pressure_mpa"], "o-", label=case)
+        line = axes[0].plot(lam, g["max_pressure_mpa"], "o-", label=f"{case}: surface pressure")[0]
+        vm = g["max_von_mises_mpa"].to_numpy(dtype=float)
+        if np.isfinite(vm).any():
+            axes[0].plot(lam, vm, "s--", color=line.get_color(), label=f"{case}: von Mises")
         axes[1].plot(lam, g["plastic_area_um2"], "o-", label=case)
         frac = g["fraction"].to_numpy(dtype=float)
         err = np.vstack([frac - g["low"].to_numpy(dtype=float), g["high"].to_numpy(dtype=float) - frac])
         axes[2].errorbar(lam, 100 * frac, yerr=100 * err, fmt="o-", capsize=3, label=case)
     axes[0].axhline(crit.hardness / 1e6, color="0.4", ls="--", lw=1, label="hardness")
-    axes[0].set_ylabel("maximal elastic pressure (MPa)")
+    if crit.name == "subsurface":
+        axes[0].axhline(crit.yield_stress / 1e6, color="0.6", ls=":", lw=1, label="yield stress")
+    axes[0].set_ylabel("largest elastic stress (MPa)")
     axes[1].set_ylabel("plastic area per area (µm²)")
+    axes[1].set_ylim(bottom=0)
     axes[2].set_ylabel(f"areas damaged, {crit.name} (%)")
+    axes[2].set_ylim(-2, 102)
+    ticks = sorted(set(frame["s_filter_um"].round(6)))
     for ax in axes:
-        ax.set_xscale("log", base=2)
+        ax.set_xscale("log")
+        ax.xaxis.set_major_locator(FixedLocator(ticks))
+        ax.xaxis.set_minor_locator(NullLocator())
+        ax.set_xticklabels([f"{t:g}" for t in ticks])
         ax.set_xlabel("S-filter λs (µm)")
-    axes[0].legend(fontsize=8)
+    axes[0].legend(fontsize=7)
     return fig
