@@ -302,6 +302,12 @@ def _s_filter_m(args) -> float | str | None:
     return None if args.s_filter == "none" else args.s_filter * 1e-6
 
 
+def _given_s_filter(args) -> float | None:
+    """``--s-filter`` in metres when a length is given (None for "none" or not given)."""
+    lam = _s_filter_m(args)
+    return lam if isinstance(lam, float) else None
+
+
 def _add_criterion_options(p: argparse.ArgumentParser) -> None:
     """What damages a surface: the criterion and its thresholds."""
     p.add_argument("--criterion", choices=("surface", "subsurface", "plastic-zone"),
@@ -361,8 +367,7 @@ def _study_settings(args, argv: list[str]):
         gamma=args.gamma, n_terms=tuple(n_terms), E=args.modulus * 1e9, nu=args.poisson,
         cone_factor=args.cone_factor, seed=args.seed, n_examples=1,
         # measured files: their own grid decides (below)
-        s_filter=(None if args.topographies or args.like or _s_filter_m(args) in ("default", None)
-                  else _s_filter_m(args)))
+        s_filter=None if args.topographies or args.like else _given_s_filter(args))
     if args.paper_table is not None and (args.topographies or args.like):
         raise StudyInputError("--paper-table compares the simulated Weierstrass scene with the "
                               "paper's Table 1; it does not apply to measured files "
@@ -723,9 +728,8 @@ def _measured_settings(args, argv: list[str], settings, surfaces: int):
         raise ValueError("--despike replaces outlier points of measured files solved as they are "
                          "(--topographies); --like simulates surfaces from a file's spectrum")
     like, _ = like_settings(args.like, surfaces, form=args.form, gamma=args.gamma, **scene)
-    lam = _s_filter_m(args)
     return dataclasses.replace(like, n_examples=min(1, like.n_surfaces),
-                               s_filter=None if lam == "default" else lam), surfaces
+                               s_filter=_given_s_filter(args)), surfaces
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -209,14 +209,14 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
                                    bsettings.max_iter, 1, True)
     capped, tp = _capped_solve(surf, settings, bsettings, il)
     out: dict[str, np.ndarray | np.generic] = {}
-    spot_vm = None
+    spot_vm: np.ndarray | None = None
     for model, res in (("asperity", asp), ("bem", bem)):
         spots = contact.contact_spots(res)
-        extra = {}
+        extra: dict[str, np.ndarray] = {}
         if model == "bem":
             crit = criterion_arrays(res, capped, spots, settings.nu, bsettings.subsurface, guard)
             if "spot_von_mises" in crit:
-                spot_vm = extra["von_mises"] = crit.pop("spot_von_mises")
+                spot_vm = extra["von_mises"] = np.asarray(crit.pop("spot_von_mises"))
             out.update({f"bem_{k}": v for k, v in crit.items()})
         out.update({f"{model}_{k}": v
                     for k, v in contact_record(res, guard, spots=spots, spot_values=extra).items()})
@@ -566,7 +566,8 @@ def elastic_results(out: str | os.PathLike, settings: CampaignSettings, bsetting
             continue
         inner = interior(r)
         peaks, top = inner["peaks"], inner["max_pressure"]
-        extra = {k: v for k, v in z.items() if k.startswith("scale_") or k == "max_on_spike"}
+        extra: dict[str, Any] = {k: v for k, v in z.items()
+                                 if k.startswith("scale_") or k == "max_on_spike"}
         if "cluster_von_mises" in r:  # beneath the spots inside the patch, as the pressures
             on_border = np.asarray(r["cluster_on_border"], dtype=bool)
             vm = np.asarray(r["cluster_von_mises"], dtype=float)[~on_border]
