@@ -182,19 +182,23 @@ def bem_path(root: str | os.PathLike, settings: CampaignSettings, ih: int, il: i
 
 
 # -- one surface -------------------------------------------------------------------------------
-# -- one surface -------------------------------------------------------------------------------
 def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il: int,
                  i: int) -> dict[str, np.ndarray | np.generic]:
-    """Regenerate campaign surface (ih, il, i) and solve it with both models (a task), on the
-    BEM grid when one is set (:meth:`BEMSettings.solve_grid`).
+    """Regenerate campaign surface (ih, il, i) at the study's scale and solve it with both
+    models (a task), on the BEM grid when one is set (:meth:`BEMSettings.solve_grid`).
 
     Returns
     -------
     dict of ndarray
-        :func:`contact_record` of each model with the prefixes ``asperity_`` and ``bem_``,
+        :func:`contact_record` of each model with the prefixes ``asperity_`` and ``bem_``
+        (``bem_cluster_von_mises`` per spot with the subsurface stress),
         ``seconds_asperity`` and ``seconds_bem`` (solve times, s), ``rq`` (m, achieved) and,
         for the example surfaces (``i < n_examples``), both pressure maps
-        ``asperity_pressure`` and ``bem_pressure`` (Pa, float32).
+        ``asperity_pressure`` and ``bem_pressure`` (Pa, float32); with a hardness the capped
+        solution's ``plastic_*`` (:func:`plastic_record`) and ``bem_plastic_zone_areas`` (m²);
+        with the subsurface stress ``bem_max_von_mises`` (Pa) and ``bem_max_von_mises_depth``
+        (m) of the whole map (:func:`glstat.study.criteria.criterion_arrays`); for measured
+        files ``max_on_spike``; with an S-filter the ``scale_*`` arrays (:func:`_scale_arrays`).
     """
 
     import contact
