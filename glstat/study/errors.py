@@ -23,7 +23,9 @@ def write_failure(exc: OSError, path: str | os.PathLike) -> str:
         errno.ENOSPC: "free some disk space", errno.EDQUOT: "free some of your disk quota",
         errno.EROFS: "the file system is read-only; choose another --out",
         errno.EACCES: "check the directory's permissions",
-        errno.EPERM: "check the directory's permissions"}
+        errno.EPERM: "check the directory's permissions",
+        errno.ELOOP: "it is a symbolic link, which glstat does not follow out of --out; remove "
+                     "the link (its target is left alone) or choose another --out"}
     hint = hints.get(exc.errno, "check the disk")
     return f"cannot write {path} ({reason}): {hint}"
 

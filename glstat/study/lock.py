@@ -83,8 +83,14 @@ def _acquire(root: Path, key: str) -> str | None:
             return None
         path = root / LOCK_FILE
         try:
-            fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0), 0o644)
+            # never through a symbolic link: the lock file is truncated and written
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0)
+                         | getattr(os, "O_NOFOLLOW", 0), 0o644)
         except OSError as exc:
+            if exc.errno == errno.ELOOP:
+                raise CampaignError(f"the lock file {path} is a symbolic link: glstat does not "
+                                    f"write through it; remove the link (its target is left "
+                                    f"alone) or choose another --out") from None
             raise CampaignError(f"cannot create the lock file {path} ({exc.strerror or exc}); "
                                 f"choose a writable --out") from None
         if not _try_lock(fd):

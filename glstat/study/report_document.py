@@ -4,6 +4,7 @@ rendered to one self-contained HTML page (figures embedded) and to Markdown with
 from __future__ import annotations
 
 import base64
+import errno
 import html
 import io
 import math
@@ -177,6 +178,9 @@ class Report(Blocks):
         from .campaign import atomic_write
 
         out = Path(out)
+        folder = out / "report_files"
+        if folder.is_symlink():  # never write the figures through a link out of ``out``
+            raise OSError(errno.ELOOP, "a symbolic link", str(folder))
         md, files = self.to_markdown("report_files")
         for name, png in files.items():
             atomic_write(out / "report_files" / name, png)
