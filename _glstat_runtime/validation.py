@@ -58,16 +58,25 @@ FIT_METHODS = ("moments", "percentiles", "lmoments", "tlmoments", "mle", "mps", 
 TRIM_MAX = 4095
 
 
-def check_n_resamples(n_resamples, allow_zero: bool = False) -> int:
-    """A number of bootstrap resamples: an integer >= 2, or 0 (no bootstrap) where
-    ``allow_zero``."""
+#: Most bootstrap resamples accepted: each refits the sample and keeps its parameters and
+#: maxima, so the memory and time of a request grow with it; intervals settle long before.
+MAX_RESAMPLES = 10**6
+
+
+def check_n_resamples(n_resamples, allow_zero: bool = False, name: str = "n_resamples") -> int:
+    """A number of bootstrap resamples: an integer from 2 to :data:`MAX_RESAMPLES`, or 0 (no
+    bootstrap) where ``allow_zero``."""
     if isinstance(n_resamples, (bool, np.bool_)) or not isinstance(n_resamples, numbers.Integral):
-        raise TypeError(f"n_resamples must be an integer, got {n_resamples!r}")
+        raise TypeError(f"{name} must be an integer, got {n_resamples!r}")
     if allow_zero and n_resamples == 0:
         return 0
     if n_resamples < 2:
-        raise ValueError(f"n_resamples must be {'0 (no bootstrap) or ' if allow_zero else ''}"
+        raise ValueError(f"{name} must be {'0 (no bootstrap) or ' if allow_zero else ''}"
                          f">= 2, got {n_resamples}")
+    if n_resamples > MAX_RESAMPLES:
+        raise ValueError(f"{name} = {n_resamples:.3g} is more than {MAX_RESAMPLES:.0e}: every "
+                         f"resample refits the sample, so the request would not end in useful "
+                         f"time or memory; intervals settle with 1000-10000 resamples")
     return int(n_resamples)
 
 

@@ -439,6 +439,8 @@ def predict_maximum(
         tail = None
     if tail not in TAILS:
         raise ValueError(f"tail must be 'pareto' or None, got {tail!r}")
+    _check_arguments(n_resamples, likelihood_resamples, confidence_level,
+                     tail_size if tail == "pareto" else "sqrt")
     x, groups = _present_values(data, groups)
     k = np.asarray(area_factor, dtype=float)
     bf, p, m, note, caught = _bootstrap_first_fit(
@@ -489,9 +491,40 @@ def _draws_of_one_area(n, count, groups) -> float | None:
     return n
 
 
+def _check_arguments(n_resamples, likelihood_resamples, confidence_level, tail_size) -> None:
+    """Refuse invalid arguments of :func:`predict_maximum` before any work, naming them."""
+    from _glstat_runtime.validation import check_level, check_n_resamples
+
+    check_n_resamples(n_resamples)
+    if likelihood_resamples is not None:
+        check_n_resamples(likelihood_resamples, name="likelihood_resamples")
+    check_level(confidence_level)
+    if isinstance(tail_size, str):
+        ok = tail_size == "sqrt"
+    elif isinstance(tail_size, float):
+        ok = 0.0 < tail_size < 1.0
+    else:
+        ok = (isinstance(tail_size, (int, np.integer)) and not isinstance(tail_size, bool)
+              and tail_size >= 2)
+    if not ok:
+        raise ValueError(f"tail_size must be 'sqrt', a fraction in (0, 1) or a count >= 2 of the "
+                         f"largest values, got {tail_size!r}")
+
+
 def _present_values(data, groups):
-    """The sample without its masked entries (missing values), and their group labels."""
+    """The sample without its masked entries (missing values), and their group labels (one per
+    value, at least two distinct)."""
     x, keep = real_values(data)
+    if groups is not None:
+        labels = np.asarray(groups).ravel()
+        size = x.size if keep is None else keep.size
+        if labels.size != size:
+            raise ValueError(f"groups must give one label per data value: {labels.size} "
+                             f"labels for {size} values")
+        if np.unique(labels).size < 2:
+            raise ValueError("groups must hold at least two distinct labels (the bootstrap "
+                             "resamples whole groups); give one label per surface or area, or "
+                             "no groups to resample the values")
     if keep is None:
         return x, groups
     x = x[keep]

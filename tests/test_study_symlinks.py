@@ -41,3 +41,20 @@ def test_a_planted_figure_folder_symlink_is_refused(tmp_path):
     os.unlink(out / "report_files")
     html, md = rep.write(out)
     assert html.is_file() and md.is_file()
+
+
+def test_a_full_disk_while_writing_the_lock_is_one_clear_error(tmp_path, monkeypatch):
+    import errno
+
+    import glstat.study.lock as lock_mod
+
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(lock_mod.os, "pwrite", full)
+    with pytest.raises(CampaignError, match="No space left on device.*free some disk space"), \
+            lock_directory(tmp_path / "out"):
+        pass
+    monkeypatch.undo()
+    with lock_directory(tmp_path / "out"):  # the failed attempt left no lock behind
+        pass

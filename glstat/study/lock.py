@@ -17,7 +17,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
-from .errors import CampaignError
+from .errors import CampaignError, write_failure
 from .files import check_writable
 
 __all__ = ["LOCK_FILE", "lock_directory"]
@@ -97,8 +97,12 @@ def _acquire(root: Path, key: str) -> str | None:
             os.close(fd)
             return _describe_holder(path)
         data = json.dumps(_lock_info()).encode()
-        os.ftruncate(fd, 0)
-        os.pwrite(fd, data, 0) if hasattr(os, "pwrite") else os.write(fd, data)
+        try:
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, data, 0) if hasattr(os, "pwrite") else os.write(fd, data)
+        except OSError as exc:  # a full disk or quota: the lock holds, its note cannot be written
+            os.close(fd)
+            raise CampaignError(write_failure(exc, path) + "; nothing was computed") from None
         _HELD[key] = {"fd": fd, "depth": 1, "thread": me}
         return None
 
