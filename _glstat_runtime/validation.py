@@ -68,16 +68,17 @@ def check_n_resamples(n_resamples, allow_zero: bool = False, name: str = "n_resa
     bootstrap) where ``allow_zero``."""
     if isinstance(n_resamples, (bool, np.bool_)) or not isinstance(n_resamples, numbers.Integral):
         raise TypeError(f"{name} must be an integer, got {n_resamples!r}")
-    if allow_zero and n_resamples == 0:
+    b = int(n_resamples)
+    if allow_zero and b == 0:
         return 0
-    if n_resamples < 2:
+    if b < 2:
         raise ValueError(f"{name} must be {'0 (no bootstrap) or ' if allow_zero else ''}"
-                         f">= 2, got {n_resamples}")
-    if n_resamples > MAX_RESAMPLES:
-        raise ValueError(f"{name} = {n_resamples:.3g} is more than {MAX_RESAMPLES:.0e}: every "
-                         f"resample refits the sample, so the request would not end in useful "
-                         f"time or memory; intervals settle with 1000-10000 resamples")
-    return int(n_resamples)
+                         f">= 2, got {b}")
+    if b > MAX_RESAMPLES:
+        raise ValueError(f"{name} = {b:.3g} is more than {MAX_RESAMPLES:.0e}: every resample "
+                         f"refits the sample, so the request would not end in useful time or "
+                         f"memory; intervals settle with 1000-10000 resamples")
+    return b
 
 
 def check_level(confidence_level, name: str = "confidence_level") -> float:

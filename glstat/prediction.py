@@ -499,13 +499,14 @@ def _check_arguments(n_resamples, likelihood_resamples, confidence_level, tail_s
     if likelihood_resamples is not None:
         check_n_resamples(likelihood_resamples, name="likelihood_resamples")
     check_level(confidence_level)
+    ok: bool
     if isinstance(tail_size, str):
         ok = tail_size == "sqrt"
     elif isinstance(tail_size, float):
-        ok = 0.0 < tail_size < 1.0
+        ok = bool(0.0 < tail_size < 1.0)
     else:
-        ok = (isinstance(tail_size, (int, np.integer)) and not isinstance(tail_size, bool)
-              and tail_size >= 2)
+        ok = bool(isinstance(tail_size, (int, np.integer)) and not isinstance(tail_size, bool)
+                  and tail_size >= 2)
     if not ok:
         raise ValueError(f"tail_size must be 'sqrt', a fraction in (0, 1) or a count >= 2 of the "
                          f"largest values, got {tail_size!r}")

@@ -52,7 +52,7 @@ def test_a_full_disk_while_writing_the_lock_is_one_clear_error(tmp_path, monkeyp
         raise OSError(errno.ENOSPC, "No space left on device")
 
     monkeypatch.setattr(lock_mod.os, "pwrite", full)
-    with pytest.raises(CampaignError, match="No space left on device.*free some disk space"), \
+    with pytest.raises(CampaignError, match=r"No space left on device.*free some disk space"), \
             lock_directory(tmp_path / "out"):
         pass
     monkeypatch.undo()
