@@ -350,6 +350,12 @@ def xlsx_valid(folder: Path) -> Path:
     return write_xlsx(folder / "valid.xlsx", sheet_xml(_sample_values()))
 
 
+def xlsx_overflow_cell(folder: Path) -> Path:
+    """200 values and one cell of 1E+400, beyond the floating-point range."""
+    over = '<row r="202"><c r="A202"><v>1E+400</v></c></row>'
+    return write_xlsx(folder / "overflow_cell.xlsx", sheet_xml(_sample_values(), over))
+
+
 def xlsx_far_cell(folder: Path) -> Path:
     """200 values in column A and one more in the last cell of a sheet, XFD1048576."""
     far = '<row r="1048576"><c r="XFD1048576"><v>1</v></c></row>'

@@ -50,6 +50,7 @@ def test_valid_workbook_is_read(tmp_path, openpyxl):
                       "16384 columns"),
     ("xlsx_far_dimension", "declares the used range A1:XFD1048576"),
     ("xlsx_malformed", "could not be read as an Excel workbook (ParseError: 'no element found"),
+    ("xlsx_overflow_cell", "a cell holds a number beyond the floating-point range (such as 1E+400)"),
     ("xlsx_billion_laughs", "its part 'xl/workbook.xml' declares a DOCTYPE"),
 ])
 def test_hostile_workbooks_are_refused_in_one_line(tmp_path, capsys, openpyxl, builder, words):

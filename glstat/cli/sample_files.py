@@ -767,6 +767,9 @@ def _read_excel(path: Path) -> pd.DataFrame:
         df = pd.read_excel(path, engine="openpyxl")
     except MemoryError:
         raise
+    except OverflowError:  # pandas converts a cell of 1E+400 (read as inf) with int()
+        raise InputError(f"{path}: a cell holds a number beyond the floating-point range (such "
+                         f"as 1E+400); correct the cell, or save the sheet as CSV") from None
     except (*_READ_ERRORS, KeyError, TypeError, IndexError, AttributeError, ET.ParseError) as exc:
         # openpyxl's errors of damaged parts: ValueError, KeyError, ParseError, ...
         raise _excel_error(path, exc) from None
