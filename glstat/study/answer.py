@@ -359,6 +359,12 @@ def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
     return rows, columns + (["paper: damage", "paper: mean pressure"] if simulated else [])
 
 
+def _amount(v: float) -> str:
+    """A positive amount for a reader: whole numbers from 100 on ("9310"), three significant
+    digits below ("2.76")."""
+    return f"{v:.0f}" if v >= 100 else f"{v:.3g}"
+
+
 def plastic_text(summary: dict) -> str:
     """The plastic area fraction of a case as the first screen shows it: "0.85 % [0.76 %,
     0.91 %] (mean 8500 µm², 1250 grid cells); 87 % of the load; interval check passed" ("—"
@@ -367,8 +373,8 @@ def plastic_text(summary: dict) -> str:
         return "—"
     size = ""
     if "plastic_area_um2" in summary:
-        size = (f" (mean {summary['plastic_area_um2']:.3g} µm², "
-                f"{summary['plastic_area_cells']:.3g} grid cells)")
+        size = (f" (mean {_amount(summary['plastic_area_um2'])} µm², "
+                f"{_amount(summary['plastic_area_cells'])} grid cells)")
     return (f"{fmt_probability(summary['plastic_area_fraction'])} "
             f"[{fmt_probability(summary['plastic_area_fraction_low'])}, "
             f"{fmt_probability(summary['plastic_area_fraction_high'])}]{size}; "
