@@ -435,12 +435,7 @@ def predict_maximum(
     True
     """
     n = _draws_of_one_area(n, count, groups)
-    if tail == "none":
-        tail = None
-    if tail not in TAILS:
-        raise ValueError(f"tail must be 'pareto' or None, got {tail!r}")
-    _check_arguments(n_resamples, likelihood_resamples, confidence_level,
-                     tail_size if tail == "pareto" else "sqrt")
+    tail = _check_arguments(tail, n_resamples, likelihood_resamples, confidence_level, tail_size)
     x, groups = _present_values(data, groups)
     k = np.asarray(area_factor, dtype=float)
     bf, p, m, note, caught = _bootstrap_first_fit(
@@ -491,16 +486,24 @@ def _draws_of_one_area(n, count, groups) -> float | None:
     return n
 
 
-def _check_arguments(n_resamples, likelihood_resamples, confidence_level, tail_size) -> None:
-    """Refuse invalid arguments of :func:`predict_maximum` before any work, naming them."""
+def _check_arguments(tail, n_resamples, likelihood_resamples, confidence_level,
+                     tail_size) -> str | None:
+    """Refuse invalid arguments of :func:`predict_maximum` before any work, naming them; the
+    tail model ("pareto" or None)."""
     from _glstat_runtime.validation import check_level, check_n_resamples
 
+    if tail == "none":
+        tail = None
+    if tail not in TAILS:
+        raise ValueError(f"tail must be 'pareto' or None, got {tail!r}")
     check_n_resamples(n_resamples)
     if likelihood_resamples is not None:
         check_n_resamples(likelihood_resamples, name="likelihood_resamples")
     check_level(confidence_level)
     ok: bool
-    if isinstance(tail_size, str):
+    if tail is None:
+        ok = True
+    elif isinstance(tail_size, str):
         ok = tail_size == "sqrt"
     elif isinstance(tail_size, float):
         ok = bool(0.0 < tail_size < 1.0)
@@ -510,6 +513,7 @@ def _check_arguments(n_resamples, likelihood_resamples, confidence_level, tail_s
     if not ok:
         raise ValueError(f"tail_size must be 'sqrt', a fraction in (0, 1) or a count >= 2 of the "
                          f"largest values, got {tail_size!r}")
+    return tail
 
 
 def _present_values(data, groups):
