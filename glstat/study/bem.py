@@ -42,7 +42,7 @@ from .campaign import (
     write_failure,
 )
 from .campaign_settings import CampaignSettings
-from .criteria import criterion_arrays, plastic_zone_areas
+from .criteria import criterion_arrays
 from .errors import CampaignError
 from .lock import lock_directory
 from .model_comparison import (
@@ -201,7 +201,6 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
         files ``max_on_spike``; with an S-filter the ``scale_*`` arrays (:func:`_scale_arrays`).
     """
 
-    import contact
 
     grid = bsettings.solve_grid(settings)
     guard = bsettings.guard_points(settings)
@@ -213,17 +212,11 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
                                    bsettings.max_iter, 1, True)
     capped, tp = _capped_solve(surf, settings, bsettings, il)
     out: dict[str, np.ndarray | np.generic] = {}
-    spot_vm: np.ndarray | None = None
+    rec, crit = _elastic_record(bem, capped, settings, bsettings, guard)
+    out.update({f"bem_{k}": v for k, v in crit.items()})
     for model, res in (("asperity", asp), ("bem", bem)):
-        spots = contact.contact_spots(res)
-        extra: dict[str, np.ndarray] = {}
-        if model == "bem":
-            crit = criterion_arrays(res, capped, spots, settings.nu, bsettings.subsurface, guard)
-            if "spot_von_mises" in crit:
-                spot_vm = extra["von_mises"] = np.asarray(crit.pop("spot_von_mises"))
-            out.update({f"bem_{k}": v for k, v in crit.items()})
-        out.update({f"{model}_{k}": v
-                    for k, v in contact_record(res, guard, spots=spots, spot_values=extra).items()})
+        r = rec if model == "bem" else contact_record(res, guard)
+        out.update({f"{model}_{k}": v for k, v in r.items()})
         if i < settings.n_examples:
             n0, n1 = res.pressure.shape
             out[f"{model}_pressure"] = res.pressure[guard:n0 - guard, guard:n1 - guard].astype(np.float32)
@@ -235,8 +228,37 @@ def simulate_bem(settings: CampaignSettings, bsettings: BEMSettings, ih: int, il
         out["seconds_plastic"] = np.float64(tp)
     if settings.measured:
         out["max_on_spike"] = np.bool_(_max_on_spike(settings, raw, bem))
-    out.update(_scale_arrays(settings, bsettings, il, raw, bem, capped, spot_vm, guard))
+    out.update(_scale_arrays(settings, bsettings, il, raw, _scale_row(rec, crit, bem, capped),
+                             guard))
     return out
+
+
+def _elastic_record(res: Any, capped: Any, settings: CampaignSettings, bsettings: BEMSettings,
+                    guard: int) -> tuple[dict, dict]:
+    """The :func:`contact_record` of an elastic solution (with the von Mises stress beneath
+    each spot when the subsurface stress is asked for) and its other criterion figures
+    (:func:`glstat.study.criteria.criterion_arrays`)."""
+    import contact
+
+    spots = contact.contact_spots(res)
+    crit = criterion_arrays(res, capped, spots, settings.nu, bsettings.subsurface, guard)
+    extra = ({"von_mises": np.asarray(crit.pop("spot_von_mises"))} if "spot_von_mises" in crit
+             else {})
+    return contact_record(res, guard, spots=spots, spot_values=extra), crit
+
+
+def _scale_row(rec: dict, crit: dict, res: Any, capped: Any) -> tuple:
+    """One scale's figures from an elastic record and its criterion figures: the largest
+    pressure and von Mises stress of the spots inside the patch (Pa; NaN without the
+    subsurface stress), the plastic area and the largest plastic zone (m²), and whether both
+    solves converged."""
+    inner = interior(rec)
+    keep = ~np.asarray(rec["cluster_on_border"], dtype=bool)
+    vm = (float(np.max(np.asarray(rec["cluster_von_mises"])[keep], initial=0.0))
+          if "cluster_von_mises" in rec else math.nan)
+    zones = np.asarray(crit.get("plastic_zone_areas", np.zeros(0)))
+    return (inner["max_pressure"], float(zones.sum()), float(zones[0]) if zones.size else 0.0,
+            vm, bool(res.converged) and (capped is None or bool(capped.converged)))
 
 
 def _capped_solve(surf: Any, settings: CampaignSettings, bsettings: BEMSettings, il: int,
@@ -267,45 +289,25 @@ def _max_on_spike(settings: CampaignSettings, raw: Any, bem: Any) -> bool:
     return bool(spikes.near(index, radius))
 
 
-def _scale_arrays(settings: CampaignSettings, bsettings: BEMSettings, il: int, raw: Any, bem: Any,
-                  capped: Any, spot_vm: np.ndarray | None, guard: int) -> dict[str, np.ndarray]:
-    """The answer against the scale: the surface solved again at every multiple of λs of
-    :func:`glstat.study.scales.scale_factors` (elastic and capped), its largest pressure of the
-    spots inside the patch (Pa), its plastic area and largest plastic zone (m²) and, with the
-    subsurface stress, its largest von Mises stress beneath the spots inside the patch (Pa;
-    ``spot_vm``: the study's own scale's, per spot); entry 0 is the study's own scale (nothing
-    without an S-filter)."""
+def _scale_arrays(settings: CampaignSettings, bsettings: BEMSettings, il: int, raw: Any,
+                  first: tuple, guard: int) -> dict[str, np.ndarray]:
+    """The answer against the scale: the surface solved again (elastic and capped) at every
+    further multiple of λs of :func:`glstat.study.scales.scale_factors`, with
+    :func:`_scale_row`'s figures of each; entry 0 is the study's own scale, ``first``
+    (nothing without an S-filter)."""
     import contact
 
     factors = scale_factors(settings)
     if len(factors) < 2:
         return {}
-
-    def figures(res, cap, spot_vm=None):
-        spots = contact.contact_spots(res)
-        values = {}
-        if bsettings.subsurface:
-            if spot_vm is None:
-                spot_vm = criterion_arrays(res, None, spots, settings.nu, True)["spot_von_mises"]
-            values["von_mises"] = spot_vm
-        rec = contact_record(res, guard, spots=spots, spot_values=values)
-        inner = interior(rec)
-        keep = ~np.asarray(rec["cluster_on_border"], dtype=bool)
-        vm = (float(np.max(rec["cluster_von_mises"][keep], initial=0.0)) if bsettings.subsurface
-              else math.nan)
-        zones = (plastic_zone_areas(cap.plastic, cap.cell_area, guard) if cap is not None
-                 else np.zeros(0))
-        return (inner["max_pressure"], float(zones.sum()), float(zones[0]) if zones.size else 0.0,
-                vm, bool(res.converged) and (cap is None or bool(cap.converged)))
-
-    rows = [figures(bem, capped, spot_vm)]
+    rows = [first]
     for k in factors[1:]:
         s = prepared_surface(settings, raw, k)
         res = contact.solve_bem(s, settings.pressures[il], settings.E, settings.nu,
                                 periodic=bool(bsettings.periodic), tol=bsettings.tol,
                                 max_iter=bsettings.max_iter, workers=1, warn=False)
         cap, _ = _capped_solve(s, settings, bsettings, il)
-        rows.append(figures(res, cap))
+        rows.append(_scale_row(*_elastic_record(res, cap, settings, bsettings, guard), res, cap))
     cols = list(zip(*rows, strict=True))
     return {"scale_factors": np.asarray(factors, dtype=np.int64),
             "scale_max_pressure": np.asarray(cols[0], dtype=np.float64),

@@ -155,17 +155,6 @@ def plastic_zone_areas(plastic: np.ndarray, cell_area: float, guard: int = 0) ->
     return np.sort(counts.astype(np.float64) * float(cell_area))[::-1]
 
 
-def default_depths(res: Any) -> np.ndarray:
-    """Depths (m) at which a solution's subsurface stress is searched: geometric from half a
-    grid spacing to a quarter of the smaller side (the von Mises maximum beneath a spot of
-    radius a lies at about 0.48 a, so the depths span every spot size the grid resolves)."""
-    import contact
-
-    dx, dy = res.info["dx"], res.info["dy"]
-    n0, n1 = res.pressure.shape
-    return contact.default_depths(dx, dy, (n0 * dx, n1 * dy))
-
-
 def criterion_arrays(elastic: Any, capped: Any | None, spots: Any, nu: float,
                      subsurface: bool, guard: int = 0) -> dict[str, np.ndarray | np.generic]:
     """The figures of one surface under every criterion, for its stored record.
@@ -198,7 +187,7 @@ def criterion_arrays(elastic: Any, capped: Any | None, spots: Any, nu: float,
     if capped is not None:
         out["plastic_zone_areas"] = plastic_zone_areas(capped.plastic, capped.cell_area, guard)
     if subsurface:
-        vm = elastic.max_von_mises(depths=default_depths(elastic), nu=nu)
+        vm = elastic.max_von_mises(depths=None, nu=nu)  # the grid's default depths
         m = np.asarray(vm.von_mises, dtype=np.float64)
         k = int(np.argmax(m))
         out["spot_von_mises"] = spot_maxima(m, spots.labels, spots.n_spots)
