@@ -19,10 +19,11 @@ from glstat.study.plasticity import plastic_summary
 
 def test_crossing_interpolates_in_the_logit_and_never_extrapolates():
     p, status, k = crossing([10, 20, 40], [0.001, 0.01, 0.2], 0.05)
-    # the logit of 0.05 between those of 0.01 (at 20) and 0.2 (at 40), linearly
+    # the logit of 0.05 between those of 0.01 (at 20) and 0.2 (at 40), linearly in log load
     logit = [math.log(v / (1 - v)) for v in (0.01, 0.05, 0.2)]
+    w = (logit[1] - logit[0]) / (logit[2] - logit[0])
     assert status == "interpolated" and k == 1
-    assert p == pytest.approx(20 + 20 * (logit[1] - logit[0]) / (logit[2] - logit[0]), rel=1e-12)
+    assert p == pytest.approx(math.exp(math.log(20) + w * math.log(2)), rel=1e-12)
     assert crossing([10, 20], [0.02, 0.5], 0.01)[:2] == (pytest.approx(math.nan, nan_ok=True),
                                                           "below the lowest load")
     assert crossing([10, 20], [0.0, 0.005], 0.01)[1] == "above the highest load"
@@ -88,6 +89,8 @@ def test_areas_and_allowable_pressures_in_words():
     row = {"status": "interpolated", "allowable_pressure_mpa": 7.3019,
            "allowable_low_mpa": 2.969, "allowable_high_mpa": math.nan}
     assert allowable_text(row, [5e6, 10e6]) == "7.3 MPa [2.97, —]"
+    row["interval_mpa"] = "[2.97, > 10]"
+    assert allowable_text(row, [5e6, 10e6]) == "7.3 MPa [2.97, > 10]"
     assert allowable_text(row, [5e6, 10e6], interval=False) == "7.3 MPa"
     assert allowable_text({"status": "below the lowest load"}, [5e6, 10e6]) == \
         "< 5 MPa (below the lowest load)"

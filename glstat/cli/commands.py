@@ -165,7 +165,14 @@ def _add_load_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--target-damage", type=_number_in(0, 100, low_open=True, high_open=True),
                    default=1.0, metavar="PERCENT",
                    help="damage probability in %% the allowable load must not exceed (with "
-                        "several --pressure values; default 1)")
+                        "--allowable or several --pressure values; default 1)")
+    p.add_argument("--allowable", action="store_true",
+                   help="find the allowable load of every case and area: solve further loads "
+                        "(bisection in the logarithm of the load, starting from --pressure) until "
+                        "the damage probability crosses --target-damage within 10 %% of the load, "
+                        "then solve the load found and verify that the target lies inside the "
+                        "interval predicted there (loads in OUT/allowable/, every probe in "
+                        "allowable_probes.csv)")
     p.add_argument("--bootstrap", type=_positive(int),
                    help=f"bootstrap resamples B (default {DEFAULTS['bootstrap']})")
     p.add_argument("--tail", choices=("pareto", "none"), default="pareto",
@@ -512,7 +519,7 @@ def _run_locked(args, argv: list[str], settings, asettings, out: str):
                              force=args.force, progress=not args.no_progress,
                              command="glstat study " + " ".join(argv), workers_label=label,
                              compare_bem=_bem_settings(args), model=args.model,
-                             paper_table=args.paper_table)
+                             paper_table=args.paper_table, allowable=args.allowable)
     finally:
         if shutdown is not None:
             shutdown()
@@ -555,7 +562,8 @@ def _phases(timings: dict) -> list[tuple[str, float]]:
     names = {"campaign (this run)": "surfaces", "loading results": "loading",
              "analysis (fits, bootstrap, validation)": "analysis",
              "BEM comparison: both models on K surfaces per case (this run)": "BEM solves",
-             "BEM comparison: GLD fits and bootstrap": "BEM fits", "report": "report"}
+             "BEM comparison: GLD fits and bootstrap": "BEM fits",
+             "allowable-load search": "allowable-load search", "report": "report"}
     return [(short, float(timings[key])) for key, short in names.items() if key in timings]
 
 
@@ -616,7 +624,7 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
         print(f"  {'measured' if settings.measured else f'H = {r.hurst:g}'}, elastic BEM, "
               f"{crit.text()}: {fmt_probability(r['damage'])} of {r['n_surfaces']} areas "
               f"[{fmt_probability(r['damage_low'])}, {fmt_probability(r['damage_high'])}] (exact)")
-    if len(settings.pressures) > 1:
+    if res.allowable_curves:
         _print_allowable(res, settings, asettings)
     for warn in (degenerate_scene(res.analysis, settings), overlap_note(settings, res.analysis),
                  elastic_validity_note(settings, crit, res.bem_analysis),
@@ -644,12 +652,12 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
 
 def _print_allowable(res, settings, asettings) -> None:
     """The allowable nominal pressure per case and area (the elastic BEM's when it ran on every
-    surface), one line per case."""
+    surface), one line per case, with the damage predicted at a load the search verified."""
     from ..formatting import fmt_probability
     from ..study.allowable import allowable_text, area_words
 
     table = res.allowable_load()
-    model = "bem" if res.bem_analysis else "asperity"
+    model = "bem" if "bem" in res.allowable_curves else "asperity"
     table = table[table["model"] == model]
     name = "elastic BEM" if model == "bem" else "asperity model"
     print(f"Allowable nominal pressure for a damage probability ≤ "
@@ -657,8 +665,13 @@ def _print_allowable(res, settings, asettings) -> None:
     for h, rows in table.groupby("hurst", sort=False):
         parts = []
         for _, r in rows.iterrows():
-            parts.append(f"{area_words(r['area_mm2'] * 1e-6)}: "
-                         f"{allowable_text(r, settings.pressures, interval=False)}")
+            loads = [float(v) * 1e6 for v in r["probes_mpa"].split()] or list(settings.pressures)
+            text = allowable_text(r, loads)
+            if r["damage_at_allowable"] == r["damage_at_allowable"]:
+                text += (f", {r['status']}: {fmt_probability(r['damage_at_allowable'])} "
+                         f"[{fmt_probability(r['damage_low'])}, "
+                         f"{fmt_probability(r['damage_high'])}] predicted there")
+            parts.append(f"{area_words(r['area_mm2'] * 1e-6)}: {text}")
         case = "measured" if settings.measured else f"H = {h:g}"
         print(f"  {case}: " + "; ".join(parts))
 

@@ -210,7 +210,7 @@ class StudyResult:
 
     def __init__(self, out, report_html, report_md, analysis, timings, campaign, bem=None,
                  bem_run=None, bem_analysis=None, analysis_settings=None, *, results=None,
-                 bem_records=None, left_out=None, bem_grid=None):
+                 bem_records=None, left_out=None, bem_grid=None, allowable_curves=None):
         self.out = Path(out)
         self.report_html = report_html
         self.report_md = report_md
@@ -225,6 +225,7 @@ class StudyResult:
         self.bem_records = bem_records
         self.left_out = list(left_out or ())
         self.bem_grid = bem_grid
+        self.allowable_curves = allowable_curves or {}
 
     def bem_summary(self):
         """One row per (H, load, quantity) of the BEM comparison: both models' means and the
@@ -243,18 +244,21 @@ class StudyResult:
 
     def allowable_load(self):
         """``allowable_load.csv`` as a pandas DataFrame: the nominal pressure that keeps the
-        damage probability below the target on each area, per model and H
-        (:func:`glstat.study.allowable.allowable_frame`; empty with one load)."""
-        from .allowable import ALLOWABLE_COLUMNS, allowable_frame
+        damage probability below the target on each area, per model and case
+        (:func:`glstat.study.allowable.allowable_frame`; empty with one load and no search)."""
+        from .allowable import allowable_frame
 
-        settings = self.campaign.settings
-        if len(settings.pressures) < 2:
-            import pandas as pd
-
-            return pd.DataFrame(columns=list(ALLOWABLE_COLUMNS))
         a = self.analysis_settings or AnalysisSettings()
-        return allowable_frame(settings, a, {"bem": self.bem_analysis or {},
-                                             "asperity": self.analysis}, bem_grid=self.bem_grid)
+        return allowable_frame(self.campaign.settings, a, self.allowable_curves,
+                               bem_grid=self.bem_grid)
+
+    def allowable_probes(self):
+        """``allowable_probes.csv`` as a pandas DataFrame: every load solved for the allowable
+        load, per model, case and area, with its damage probability and interval
+        (:func:`glstat.study.allowable.probes_frame`)."""
+        from .allowable import probes_frame
+
+        return probes_frame(self.campaign.settings, self.allowable_curves)
 
     def summary(self):
         """``summary.csv`` as a pandas DataFrame: one row per H × load × model × sample (the
@@ -318,6 +322,7 @@ def run_study(
     compare_bem: int | BEMSettings | None = DEFAULT_COMPARE_BEM,
     model: str = "asperity",
     paper_table=None,
+    allowable: bool = False,
 ) -> StudyResult:
     """Run (or resume) the campaign, analyse it and write the report.
 
@@ -351,6 +356,13 @@ def run_study(
         (anything :func:`glstat.study.paper.table1` takes, e.g. the rows of
         :func:`glstat.study.paper_table.read_table1`); default the stored copy, which holds
         the mean pressures only.
+    allowable : bool
+        Search the allowable load of every case and area: solve further loads until the
+        nominal pressure at which the damage probability reaches ``analysis.target_damage``
+        is bracketed within 10 %, then solve that load and verify that the target lies inside
+        the interval predicted there (:mod:`glstat.study.allowable_search`; the loads in
+        ``out/allowable/``, every probe in ``allowable_probes.csv``). Without it, a campaign of
+        several loads gives the allowable load interpolated between them.
 
     Returns
     -------
@@ -374,15 +386,22 @@ def run_study(
     an, bem_an, left_out, bem_records = _analyse_models(results, out, settings, analysis, bsettings,
                                                         model, say)
     bem, bem_seconds = _compare_models(out, settings, bsettings, analysis, results, say)
+    ts = time.perf_counter()
+    curves, searched = _allowable_curves(
+        settings, analysis, bsettings, model, an, bem_an, out, allowable, say,
+        executor=executor, workers=workers, force=force, progress=progress)
     t3 = time.perf_counter()
     from .report import build_report
 
-    timings = _timings(camp, bem_run, t1 - t0, t2 - t1, t3 - t2, bem_wall, bem_seconds)
+    timings = _timings(camp, bem_run, t1 - t0, t2 - t1, ts - t2, bem_wall, bem_seconds)
+    if searched:
+        timings["allowable-load search"] = t3 - ts
     info = _report_info(settings, timings, an, results, say, command=command, executor=executor,
                         workers=workers, workers_label=workers_label, paper_table=paper_table)
     _add_bem_info(info, out, settings, bem_an, left_out, bem, bsettings)
     info.criterion = analysis.criterion_of(settings)
     info.bem_records = bem_records
+    info.allowable, info.allowable_searched = curves, searched
     rep = build_report(settings, analysis, results, an, info.as_dict(), progress=say)
     timings["report"] = time.perf_counter() - t3
     timings["total"] = time.perf_counter() - t0
@@ -392,7 +411,8 @@ def run_study(
         html, md = rep.write(out)
         result = StudyResult(out, html, md, an, timings, camp, bem, bem_run, bem_an, analysis,
                              results=results, bem_records=bem_records, left_out=left_out,
-                             bem_grid=None if bsettings is None else bsettings.grid)
+                             bem_grid=None if bsettings is None else bsettings.grid,
+                             allowable_curves=curves)
         _write_tables(out, settings, result)
     except OSError as exc:  # disk full or read-only at the end: the computed results are kept
         raise CampaignError(
@@ -487,18 +507,33 @@ def _analyse_models(results, out, settings, analysis, bsettings, model, say):
 
             eres, _ = elastic_results(out, settings, bsettings)
         return an, None, [], eres
-    from .bem import elastic_results
+    from .model_analysis import elastic_analysis
 
     if bsettings is None:  # set for every model but "asperity"
         raise AssertionError(f"model {model!r} without BEM settings")
-    crit = analysis.criterion_of(settings)
-    eres, left_out = elastic_results(out, settings, bsettings, crit.name)
-    if crit.name == "subsurface":
-        sub = dataclasses.replace(analysis, hardness=crit.yield_stress, yield_stress=None)
-        bem_an = analyse(eres, settings, sub, progress=say, model="bem", samples=("spot",))
-    else:
-        bem_an = analyse(eres, settings, analysis, progress=say, model="bem")
+    bem_an, left_out, eres = elastic_analysis(out, settings, analysis, bsettings, say)
     return an, bem_an, left_out, eres
+
+
+def _allowable_curves(settings, analysis, bsettings, model, an, bem_an, out, allowable: bool,
+                      say, **run) -> tuple[dict, bool]:
+    """The damage curves of the allowable load, ``model -> {(ih, area_m2): [Probe]}``, and
+    whether they were searched: with ``allowable`` those of the answer's model (the elastic
+    BEM's unless ``model`` is "asperity") with the loads the search solved; else the
+    campaign's loads of every model analysed ({} with one load)."""
+    from .allowable import campaign_probes
+
+    if allowable:
+        from .allowable_search import search_allowable, solver
+
+        name, base = ("asperity", an) if model == "asperity" else ("bem", bem_an)
+        solve = solver(settings, analysis, bsettings, name, out, **run)
+        return {name: search_allowable(settings, analysis, base, solve, say=say).curves}, True
+    if len(settings.pressures) < 2:
+        return {}, False
+    curves = {"bem": campaign_probes(settings, bem_an)} if bem_an else {}
+    curves["asperity"] = campaign_probes(settings, an)
+    return curves, False
 
 
 def _compare_models(out, settings, bsettings, analysis, results, say):
@@ -554,6 +589,8 @@ class _ReportInfo:
     bem_maps: dict | None = None
     criterion: Any = None
     bem_records: dict | None = None
+    allowable: dict = dataclasses.field(default_factory=dict)
+    allowable_searched: bool = False
 
     def as_dict(self) -> dict[str, Any]:
         """The entries by name (the same objects, not copies); ``like`` only with a measured
@@ -568,6 +605,8 @@ class _ReportInfo:
         info["bem_left_out"] = self.bem_left_out
         info["criterion"] = self.criterion
         info["bem_records"] = self.bem_records
+        info["allowable"] = self.allowable
+        info["allowable_searched"] = self.allowable_searched
         if self.bem is not None:
             info.update(bem=self.bem, bem_settings=self.bem_settings, bem_maps=self.bem_maps)
         return info
@@ -623,15 +662,18 @@ def _add_bem_info(info: _ReportInfo, out, settings: CampaignSettings, bem_an, le
 
 
 def _write_tables(out, settings: CampaignSettings, result: StudyResult) -> None:
-    """Write ``summary.csv``, ``allowable_load.csv`` (with several loads),
+    """Write ``summary.csv``, ``allowable_load.csv`` and ``allowable_probes.csv`` (with
+    several loads or the search),
     ``damage_calibration.csv``, ``surfaces.csv`` and, with an S-filter, ``scales.csv`` into
     ``out``."""
     from .campaign import atomic_write
 
     atomic_write(Path(out) / "summary.csv", result.summary().to_csv(index=False).encode())
-    if len(settings.pressures) > 1:
+    if result.allowable_curves:
         atomic_write(Path(out) / "allowable_load.csv",
                      result.allowable_load().to_csv(index=False).encode())
+        atomic_write(Path(out) / "allowable_probes.csv",
+                     result.allowable_probes().to_csv(index=False).encode())
     atomic_write(Path(out) / "damage_calibration.csv",
                  result.damage_calibration().to_csv(index=False).encode())
     atomic_write(Path(out) / "surfaces.csv", result.surfaces().to_csv(index=False).encode())

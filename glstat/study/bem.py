@@ -118,6 +118,10 @@ class BEMSettings:
         Also compute the subsurface stress of every elastic solution (the largest von Mises
         stress beneath each contact spot, for the subsurface damage criterion,
         :mod:`glstat.study.criteria`).
+    scales : bool, default True
+        With an S-filter, also solve every surface again at the further multiples of λs
+        (:func:`glstat.study.scales.scale_factors`); False solves the study's own scale only
+        (the loads of the allowable-load search).
     """
 
     n_compare: int = 5
@@ -128,11 +132,13 @@ class BEMSettings:
     guard: int = 0
     hardness: float | None = None
     subsurface: bool = False
+    scales: bool = True
 
     def __post_init__(self) -> None:
         from _glstat_runtime.validation import flag, positive_finite, positive_integer, tolerance
 
         object.__setattr__(self, "subsurface", flag(self.subsurface, "subsurface"))
+        object.__setattr__(self, "scales", flag(self.scales, "scales"))
         if self.hardness is not None:
             object.__setattr__(self, "hardness", positive_finite(self.hardness, "hardness",
                                                                  "hardness in pascals"))
@@ -160,6 +166,8 @@ class BEMSettings:
             out["hardness"] = float(self.hardness)
         if self.subsurface:
             out["subsurface"] = True
+        if not self.scales:  # absent: every scale, as before the choice existed
+            out["scales"] = False
         return out
 
     def guard_points(self, settings: CampaignSettings) -> int:
@@ -298,7 +306,7 @@ def _scale_arrays(settings: CampaignSettings, bsettings: BEMSettings, il: int, r
     import contact
 
     factors = scale_factors(settings)
-    if len(factors) < 2:
+    if len(factors) < 2 or not bsettings.scales:
         return {}
     rows = [first]
     for k in factors[1:]:

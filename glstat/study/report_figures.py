@@ -400,32 +400,37 @@ def psd_like_figure(like: dict):
     return fig
 
 
-def allowable_figure(settings, asettings, analysis: dict, model: str):
+def allowable_figure(settings, asettings, curves: dict, model: str):
     """Damage probability at the hardness against the nominal pressure, one panel per area of
-    ``asettings.damage_areas``, one line per case with its interval band, and the target
-    (campaigns of several loads)."""
+    ``asettings.damage_areas``, one line per case through its probes
+    (:class:`glstat.study.allowable.Probe`, ``curves`` as ``(ih, area_m2) -> [Probe]``) with its
+    interval band, a marker per role, and the target."""
     plt = pyplot()
     areas = asettings.damage_areas
+    marks = {"campaign": "o", "bracket": "^", "bisection": "D", "verification": "*"}
     fig, axes = plt.subplots(1, len(areas), figsize=(3.4 * len(areas), 3.2), squeeze=False)
-    order = np.argsort(settings.pressures)
-    loads = np.asarray(settings.pressures, dtype=float)[order] / 1e6
     for ia, (ax, area) in enumerate(zip(axes[0], areas, strict=True)):
-        for ih in sorted({ih for ih, _ in analysis}):
-            found = [analysis.get((ih, int(il))) for il in order]
-            cases = [c for c in found if c is not None and c[PRIMARY_SAMPLE].area_damage is not None]
-            if len(cases) < len(found):
+        for (ih, a), probes in sorted(curves.items()):
+            if abs(a / area - 1) > 1e-9:
                 continue
-            rows = [c[PRIMARY_SAMPLE].area_damage.iloc[ia] for c in cases]
-            est = np.array([r["estimate"] for r in rows])
-            low = np.array([r["low"] for r in rows])
-            high = np.array([r["high"] for r in rows])
+            q = sorted((p for p in probes if p.usable), key=lambda p: p.pressure)
+            if not q:
+                continue
+            loads = np.array([p.pressure / 1e6 for p in q])
             name = "measured" if settings.measured else f"H = {settings.hurst[ih]:g}"
-            (line,) = ax.plot(loads, est, marker="o", label=name)
-            ax.fill_between(loads, low, high, color=line.get_color(), alpha=0.2, lw=0)
+            (line,) = ax.plot(loads, [p.estimate for p in q], lw=1, label=name)
+            ax.fill_between(loads, [p.low for p in q], [p.high for p in q],
+                            color=line.get_color(), alpha=0.2, lw=0)
+            for role, m in marks.items():
+                sel = [p for p in q if p.role == role]
+                if sel:
+                    ax.plot([p.pressure / 1e6 for p in sel], [p.estimate for p in sel], m,
+                            color=line.get_color(), ms=9 if m == "*" else 5, ls="none")
         ax.axhline(asettings.target_damage, color="C3", ls="--", lw=1,
                    label=f"target {100 * asettings.target_damage:g} %")
         ax.set_title(area_words(area), fontsize=9)
         ax.set_xlabel("nominal pressure (MPa)")
+        ax.set_xscale("log")
         ax.set_ylim(-0.02, 1.02)
         if ia == 0:
             ax.set_ylabel(f"P(max > {asettings.hardness_mpa:g} MPa) ({model})")

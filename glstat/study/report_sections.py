@@ -111,8 +111,9 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
                   + (f" The elastic BEM's rows: the von Mises stress beneath the surface exceeding "
                      f"Y = {crit.yield_stress / 1e6:.4g} MPa." if sub else ""))
     scale_blocks(out, settings, asettings, crit, info.get("bem_records"))
-    if len(settings.pressures) > 1:
-        _allowable_block(out, settings, asettings, analysis, info.get("bem_analysis"))
+    if info.get("allowable"):
+        _allowable_block(out, settings, asettings, info["allowable"],
+                         bool(info.get("allowable_searched")))
     if bem:
         ratios = [f"{case_name(settings, ih)}: mean pressure ×{mean:.2g}, maximal pressure ×{peak:.2g}"
                   for ih, _, mean, peak in model_error_factors(bem)]
@@ -141,32 +142,52 @@ def _tail_words(asettings) -> str:
             "docs/method.md §6)")
 
 
-def _allowable_block(out: Blocks, settings, asettings, analysis: dict, bem_analysis) -> None:
+def _allowable_block(out: Blocks, settings, asettings, curves: dict, searched: bool) -> None:
     """The allowable nominal pressure (table) and the damage against the nominal pressure
-    (figure) of a campaign of several loads, the elastic BEM's when it ran on every surface."""
+    with every load solved (figure), the elastic BEM's when it ran on every surface."""
     from .allowable import allowable_frame, allowable_text, area_words
 
-    model, an = (("elastic BEM", bem_analysis) if bem_analysis else ("asperity model", analysis))
-    frame = allowable_frame(settings, asettings, {model: an})
+    key = "bem" if "bem" in curves else "asperity"
+    model = "elastic BEM" if key == "bem" else "asperity model"
+    frame = allowable_frame(settings, asettings, {key: curves[key]})
     target = fmt_probability(asettings.target_damage)
+    lvl = round(100 * asettings.confidence_level)
     rows = []
     for _, r in frame.iterrows():
+        loads = [float(v) * 1e6 for v in r["probes_mpa"].split()] or list(settings.pressures)
+        at = ("—" if r["damage_at_allowable"] != r["damage_at_allowable"] else
+              f"{fmt_probability(r['damage_at_allowable'])} [{fmt_probability(r['damage_low'])}, "
+              f"{fmt_probability(r['damage_high'])}] ({r['status']})")
         rows.append([("measured" if settings.measured else f"H = {r['hurst']:g}"),
-                     area_words(r["area_mm2"] * 1e-6), allowable_text(r, settings.pressures),
+                     area_words(r["area_mm2"] * 1e-6), allowable_text(r, loads), at,
                      r["bracket_mpa"] or "—", r["checks"] or "—"])
-    lvl = round(100 * asettings.confidence_level)
+    how = (f"found by solving further loads (bisection in the logarithm of the load to 10 %), "
+           f"then verified: the load found was solved and its predicted damage, with its {lvl} % "
+           f"interval, is in the fourth column ('verified' when the interval holds the target)"
+           if searched else
+           "interpolated between the two loads run that bracket it; run --allowable to find "
+           "and verify it with further loads")
     out.table(["case", "area", f"allowable nominal pressure for damage ≤ {target} [{lvl} % interval]",
-               "between the loads (MPa)", "held-out checks at those loads"], rows,
+               "damage predicted at that load", "between the loads (MPa)",
+               "held-out checks at those loads"], rows,
               f"The allowable load ({model}): the nominal pressure at which the probability that "
               f"the pressure exceeds {asettings.hardness_mpa:g} MPa somewhere on the area reaches "
-              f"{target}, interpolated between the two loads run that bracket it (linear in the "
-              f"logit of the probability); its interval where the ends of the probability's "
-              f"interval cross the target (— when they do not between the loads). Nothing is "
-              f"extrapolated: a target below the lowest or above the highest load says so; run "
-              f"more loads (--pressure) to bracket it. allowable_load.csv holds the table.")
-    out.figure("allowable_load", allowable_figure(settings, asettings, an, model),
+              f"{target}, {how}. The crossing is read on the damage made monotone in the load, "
+              f"in the logit of the probability (linearly in the probability next to an exact 0 "
+              f"or 1); its interval where the ends of the probability's interval cross the "
+              f"target, '< a' or '> b' beyond the loads solved. Nothing is extrapolated. "
+              f"allowable_load.csv holds the table, allowable_probes.csv every load solved.")
+    falls = [f"{'measured' if settings.measured else f'H = {r.hurst:g}'}, "
+             f"{area_words(r.area_mm2 * 1e-6)}" for r in frame.itertuples() if not r.monotone]
+    if falls:
+        out.paragraph("⚠ The predicted damage falls where the load rises (" + "; ".join(falls)
+                      + "): the tails fitted at neighbouring loads disagree more than their "
+                        "intervals. The allowable load reads the monotone curve through them "
+                        "(the falling loads pooled); allowable_probes.csv holds both.")
+    out.figure("allowable_load", allowable_figure(settings, asettings, curves[key], model),
                f"Damage probability on each area against the nominal pressure ({model}), with its "
-               f"{lvl} % interval, and the target {target}.")
+               f"{lvl} % interval, every load solved (○ the campaign's, △ bracketing, ◇ "
+               f"bisection, ★ verification) and the target {target}.")
 
 
 def _areas_text(areas) -> str:
