@@ -112,14 +112,14 @@ def allowable_text(row, pressures, interval: bool = True) -> str:
     (``pressures`` in Pa, the loads solved)."""
     status = row["status"]
     loads = [p / 1e6 for p in pressures]
-    if status in ("interpolated", "verified", "not verified"):
+    if status in ("interpolated", "verified", "not verified", "undetermined"):
         spread = ""
         if interval:
             spread = row.get("interval_mpa") or ""
             spread = f" {spread}" if spread else (
                 f" [{_end_text(row['allowable_low_mpa'], '', loads)}, "
                 f"{_end_text(row['allowable_high_mpa'], '', loads)}]")
-        mark = " (not verified)" if status == "not verified" else ""
+        mark = f" ({status})" if status in ("not verified", "undetermined") else ""
         return f"{row['allowable_pressure_mpa']:.3g} MPa{spread}{mark}"
     if status == "below the lowest load":
         return f"< {min(loads):.3g} MPa ({status})"
@@ -216,8 +216,10 @@ def allowable_row(probes: Iterable[Probe], target: float) -> dict[str, Any]:
     dict
         ``allowable_pressure_mpa``, ``allowable_low_mpa``, ``allowable_high_mpa``,
         ``interval_mpa`` (text, "[< 5, 9.1]"), ``status`` ("interpolated"; with a
-        verification probe "verified" when the target lies inside its interval, "not
-        verified" otherwise; or :func:`crossing`'s other statuses), ``bracket_mpa``, ``checks``,
+        verification probe "verified" when the target lies inside its interval, "undetermined"
+        when it does only because that interval covers most of [0, 1]
+        (:func:`glstat.prediction.undetermined`), "not verified" otherwise; or
+        :func:`crossing`'s other statuses), ``bracket_mpa``, ``checks``,
         ``damage_at_allowable``, ``damage_low``, ``damage_high`` (NaN without such a probe),
         ``monotone`` (whether the curve needed no pooling) and ``probes_mpa``.
     """
@@ -242,9 +244,12 @@ def allowable_row(probes: Iterable[Probe], target: float) -> dict[str, Any]:
     checked = [q for q in probes if q.role == "verification" and q.usable]
     if checked:  # the last load the search solved to verify its answer
         q = checked[-1]
+        from ..prediction import undetermined
+
+        status = ("not verified" if not q.holds(target) else
+                  "undetermined" if undetermined(q.low, q.high) else "verified")
         row.update(damage_at_allowable=q.estimate, damage_low=q.low, damage_high=q.high,
-                   allowable_pressure_mpa=q.pressure / 1e6,
-                   status="verified" if q.holds(target) else "not verified")
+                   allowable_pressure_mpa=q.pressure / 1e6, status=status)
     return row
 
 

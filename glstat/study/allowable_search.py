@@ -93,7 +93,7 @@ def next_load(probes: list[Probe], target: float, *, lowest: float, highest: flo
     failed = [q.pressure for q in probes if not q.usable]
     if est[0] > target:
         step = _rounded(loads[0] / STEP)
-        if step < lowest * (1 - 1e-9) or any(f < loads[0] for f in failed):
+        if step < _rounded(lowest) * (1 - 1e-9) or any(f < loads[0] for f in failed):
             return None, "", "below the lowest load"
         return step, "bracket", ""
     if est[-1] <= target:
@@ -148,7 +148,7 @@ def probe_directory(out: str | Path, pressure: float) -> Path:
 
 
 def search_allowable(settings, asettings, analysis: dict, solve: Callable[[float], dict], *,
-                     max_loads: int = 16, tolerance: float = 0.1,
+                     max_loads: int = 12, tolerance: float = 0.1,
                      say: Callable[[str], None] | None = None) -> AllowableSearch:
     """Find and verify the allowable load of every case and area.
 
@@ -165,7 +165,8 @@ def search_allowable(settings, asettings, analysis: dict, solve: Callable[[float
         ``solve(pressure_pa) -> analysis`` of the same surfaces at one load (of the form
         ``(ih, 0) -> {...}``; :func:`solver`).
     max_loads : int
-        Loads the search may solve besides the campaign's.
+        Loads each case and area may ask the search to solve (a load solved for one serves
+        all); a curve that reaches it ends with the state "budget".
     tolerance : float
         Relative width of the bracket at which the bisection stops.
     say : callable, optional
@@ -177,42 +178,43 @@ def search_allowable(settings, asettings, analysis: dict, solve: Callable[[float
     """
     curves = campaign_probes(settings, analysis)
     search = AllowableSearch(curves)
+    asked = dict.fromkeys(curves, 0)  # loads solved at each curve's own request
     lowest = min(settings.pressures) / LOWEST_FACTOR
     highest = 0.5 * asettings.hardness
     target = asettings.target_damage
     while True:
-        wanted: dict[float, dict[tuple[int, float], str]] = {}
+        wanted: dict[tuple[int, float], tuple[float, str]] = {}
         for key, probes in curves.items():
             load, role, state = next_load(probes, target, lowest=lowest, highest=highest,
                                           tolerance=tolerance)
             search.states[key] = state
-            if load is not None:
-                wanted.setdefault(load, {})[key] = role
+            if load is None:
+                continue
+            if asked[key] >= max_loads and load not in search.loads:
+                search.states[key] = "budget"
+                continue
+            wanted[key] = (load, role)
         if not wanted:
             return search
-        known = [p for p in wanted if p in search.loads]
-        if known:  # a load solved for another curve: only the asking curves take it anew
-            load = min(known)
-            keys = list(wanted[load])
-        elif len(search.loads) >= max_loads:
-            for asking in wanted.values():
-                search.states.update(dict.fromkeys(asking, "budget"))
-            return search
+        # a load solved already first (free), then the curve that asked least, lowest load
+        key = min(wanted, key=lambda k: (wanted[k][0] not in search.loads, asked[k],
+                                         wanted[k][0]))
+        load = wanted[key][0]
+        roles = {k: role for k, (p, role) in wanted.items() if p == load}
+        if load in search.loads:  # solved for another curve: only the asking curves take it anew
+            keys = list(roles)
         else:
-            load = min(wanted)  # the lowest first: the cheapest solves
             keys = list(curves)
+            asked[key] += 1
             if say is not None:
-                say(f"allowable load: solving {load / 1e6:.3g} MPa (load {len(search.loads) + 1} "
-                    f"of at most {max_loads})")
+                say(f"allowable load: solving {load / 1e6:.4g} MPa (load {len(search.loads) + 1})")
             search.loads.append(load)
         found = campaign_probes(dataclasses.replace(settings, pressures=(load,)), solve(load))
-        default = "bisection" if "verification" in wanted[load].values() else \
-            next(iter(wanted[load].values()))
-        for key in keys:
-            probes = curves[key]
+        for k in keys:
+            probes = curves[k]
             probes[:] = [q for q in probes if not _same(q.pressure, load)]
-            probes.extend(dataclasses.replace(q, role=wanted[load].get(key, default))
-                          for q in found.get(key, []))
+            role = roles.get(k, "bisection" if roles[key] == "verification" else roles[key])
+            probes.extend(dataclasses.replace(q, role=role) for q in found.get(k, []))
 
 
 def solver(settings, asettings, bsettings, model: str, out: str | Path, *, executor=None,
