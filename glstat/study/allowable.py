@@ -109,7 +109,8 @@ def _end_text(value: float, status: str, loads_mpa: Sequence[float]) -> str:
 def allowable_text(row, pressures, interval: bool = True) -> str:
     """One row of :func:`allowable_frame` as text: "7.3 MPa [2.97, > 10]" when found,
     "< 5 MPa (below the lowest load)" or "> 20 MPa (above the highest load)" otherwise
-    (``pressures`` in Pa, the loads solved)."""
+    (``pressures`` in Pa, the loads solved). Whether a load found was verified is the row's
+    ``status``, given with the damage predicted there (``damage_at_allowable``)."""
     status = row["status"]
     loads = [p / 1e6 for p in pressures]
     if status in ("interpolated", "verified", "not verified", "undetermined"):
@@ -119,8 +120,7 @@ def allowable_text(row, pressures, interval: bool = True) -> str:
             spread = f" {spread}" if spread else (
                 f" [{_end_text(row['allowable_low_mpa'], '', loads)}, "
                 f"{_end_text(row['allowable_high_mpa'], '', loads)}]")
-        mark = f" ({status})" if status in ("not verified", "undetermined") else ""
-        return f"{row['allowable_pressure_mpa']:.3g} MPa{spread}{mark}"
+        return f"{row['allowable_pressure_mpa']:.3g} MPa{spread}"
     if status == "below the lowest load":
         return f"< {min(loads):.3g} MPa ({status})"
     if status == "above the highest load":

@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from ..prediction import MaximumPrediction
+from ..prediction import MaximumPrediction, collect_warnings
 from .analysis_settings import (
     GROUPED_SAMPLES,
     MODEL_NAMES,
@@ -193,9 +193,7 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
         What to do when the surfaces are too few, in options the study's mode accepts
         (:meth:`CampaignSettings.more_surfaces_advice`).
     """
-    import pandas as pd
 
-    import glstat
 
     per = [surface_values(results[k], sample) for k in keys]
     data, labels, counts = pool(per)
@@ -225,6 +223,28 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
     sa.note = sa.prediction.note
     if bf is None:
         return sa
+    # the warnings of what is derived from the bootstrap (an inversion at its iteration limit)
+    # join the prediction's notes, as those of the fit do: recorded, never printed
+    _, caught = collect_warnings(_derived_quantities, sa, per, a, ih, il, p, m, area_m2,
+                                 sample, grouped, advice)
+    if caught:
+        import dataclasses
+
+        new = tuple(dict.fromkeys(c for c in caught if c not in sa.prediction.notes))
+        sa.prediction = dataclasses.replace(sa.prediction, notes=sa.prediction.notes + new)
+    return sa
+
+
+def _derived_quantities(sa: SampleAnalysis, per: list, a: AnalysisSettings, ih: int, il: int,
+                        p: str, m: str, area_m2: float | None, sample: str, grouped: bool,
+                        advice: str) -> None:
+    """Integrity, guaranteed pressures, the damage on the areas, the damage curve and the
+    held-out validation of a sample whose prediction has a bootstrap (set on ``sa``)."""
+    import pandas as pd
+
+    import glstat
+
+    bf = sa.prediction.boot
     count_kw = sa.prediction.count_kwargs()
     sa.integrity = bf.integrity_probability(a.hardness_mpa, area_factor=np.asarray(a.area_factors),
                                             **count_kw)
@@ -252,7 +272,6 @@ def analyse_sample(results: dict, keys: list, sample: str, a: AnalysisSettings,
                       "observed": float(np.mean(maxima > lv))})
     sa.damage_curve = pd.DataFrame(curve)
     sa.validation = validate_sample(per, sample, a, ih, il, p, m, levels, advice=advice)
-    return sa
 
 
 def analyse(results: dict, settings: CampaignSettings, a: AnalysisSettings, progress=None,
