@@ -5,9 +5,12 @@ The sample is cut into K blocks of m values. For every block, the pipeline of
 :func:`glstat.predict_maximum` runs on the other K - 1 blocks and predicts the maximum of m
 values (its interval, and the damage probability at a threshold); the block's own maximum is
 the outcome. Over the K blocks, the fraction of observed maxima inside the predicted interval
-is checked against the confidence level, and the fraction above the threshold against the
-predicted damage, with the exact binomial test of :func:`glstat.binomial_check` — which says
-"not checkable" rather than "passed" when K blocks are too few to detect a miss.
+is checked against the confidence level (one-sided: only an interval that covers too rarely
+fails; one that covers more often is reported as conservative), and the fraction above the
+threshold against the predicted interval of the damage probability (failed only when the
+count lies significantly outside it), with the exact binomial tests of
+:func:`glstat.binomial_check` — which says "not checkable" rather than "passed" when K blocks
+are too few to detect a miss.
 
 The check reaches only as far as the data: it tests the maximum of m values, where m is a
 fraction of the sample. The maximum of N >> m values lies in a tail beyond the sample, an
@@ -36,7 +39,7 @@ __all__ = ["MaximumCrossValidation", "blocks_needed", "cross_validate_maximum"]
 
 #: Columns of :attr:`MaximumCrossValidation.table`.
 COLUMNS = ("block", "size", "observed", "low", "high", "covered", "pit", "predicted_damage",
-           "damaged", "fit")
+           "damage_low", "damage_high", "damaged", "fit")
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,15 +55,21 @@ class MaximumCrossValidation:
         (low <= observed <= high), ``pit`` (P(max of m <= observed) under the fold's
         full-sample fit, in [0, 1]),
         ``predicted_damage`` (the fold's P(max of m > threshold); NaN without threshold),
+        ``damage_low`` and ``damage_high`` (its interval at the confidence level),
         ``damaged`` (observed > threshold; missing without threshold) and ``fit`` (the fit
         used, e.g. ``"rs moments pareto"``, ``"rs moments"`` without a tail; empty when no
         requested fit had a solution, and then the prediction columns are missing and the
         block is left out of the checks).
     coverage_check : glstat.BinomialCheck
-        The number of covered blocks against the confidence level.
+        The number of covered blocks against the confidence level, one-sided
+        (``alternative="less"``): failed only when the interval covers significantly less
+        often than its level; covering significantly more often makes it
+        :attr:`~glstat.BinomialCheck.conservative`.
     damage_check : glstat.BinomialCheck or None
-        The number of blocks whose maximum exceeds the threshold against the mean predicted
-        damage (None without threshold).
+        The number of blocks whose maximum exceeds the threshold against the predicted damage
+        averaged over the blocks, with its interval (the blocks' ``damage_low`` and
+        ``damage_high`` averaged): failed only when the count lies significantly above or
+        below that interval (None without threshold).
     verdict : str
         ``"failed"`` if a check failed, else ``"not checkable"`` if one is not checkable,
         else ``"passed"``.
@@ -126,7 +135,7 @@ class MaximumCrossValidation:
         above, below = self.n_above, self.n_below
         level = _pct(self.confidence_level)
         where = f"{above} above the interval, {below} below"
-        if cov.verdict == FAILED and cov.observed < self.confidence_level:
+        if cov.verdict == FAILED:  # one-sided: the interval covered too rarely
             if above > below:
                 return (f"the fitted tail is too light: observed block maxima lie above the "
                         f"predicted interval in {above} of {n} blocks (below in {below}; median "
@@ -137,30 +146,32 @@ class MaximumCrossValidation:
                         f"PIT {np.median(self.pit):.2f})")
             return (f"the predicted interval is too narrow: observed block maxima lie outside it "
                     f"in {above + below} of {n} blocks ({where})")
-        if cov.verdict == FAILED:
-            return (f"the predicted interval is too wide: it covered the observed block maximum in "
-                    f"{cov.hits} of {n} blocks, more often than the {level} it claims")
         d = self.damage_check
         if d is not None and d.verdict == FAILED:
-            side = "too low" if d.observed > d.predicted else "too high"
+            side = "too low" if d.observed > d.high else "too high"
             return (f"the predicted damage probability P(max of {m} > {self.threshold:g}) is "
                     f"{side}: exceeded in {d.hits} of {d.n} blocks against {_pct(d.predicted)} "
-                    f"predicted on average")
+                    f"[{_pct(d.low)}, {_pct(d.high)}] predicted on average")
+        wide = ("; more often than its level: the interval is conservative, wider than it "
+                "needs to be" if cov.conservative else "")
         if cov.verdict == NOT_CHECKABLE:
             if cov.n == 0:
                 return "no fold had a fit: nothing to check"
             need = blocks_needed(self.confidence_level, max_miss=cov.max_miss, power=cov.power,
                                  significance=cov.significance)
-            more = (f"at least {need} blocks are needed to detect a miss of "
+            more = (f"at least {need} blocks are needed to detect a shortfall of "
                     f"{100 * cov.max_miss:.2g} percentage points" if need is not None
                     else "no number of blocks can detect it")
-            return (f"too few blocks to tell: {more}; so far {cov.hits} of {n} covered ({where})")
+            return (f"too few blocks to tell: {more}; so far {cov.hits} of {n} covered "
+                    f"({where}){wide}")
+        covered = (f"the predicted {level} interval of the maximum of {m} values covered the "
+                   f"observed block maximum in {cov.hits} of {n} blocks ({where}){wide}")
         if d is not None and d.verdict == NOT_CHECKABLE:
-            return (f"the predicted {level} interval of the maximum of {m} values covered the "
-                    f"observed block maximum in {cov.hits} of {n} blocks ({where}), but {d.n} "
-                    f"blocks are too few to check the damage probability")
-        return (f"the predicted {level} interval of the maximum of {m} values covered the "
-                f"observed block maximum in {cov.hits} of {n} blocks ({where})")
+            if d.too_wide_to_check:
+                return (f"{covered}, but the predicted interval of the damage probability, "
+                        f"[{_pct(d.low)}, {_pct(d.high)}], is too wide to be checked")
+            return f"{covered}, but {d.n} blocks are too few to check the damage probability"
+        return covered
 
     def text(self) -> str:
         """The verdict and the checks behind it, a few lines for a terminal.
@@ -211,9 +222,9 @@ def blocks_needed(confidence_level: float, *, max_miss: float = 0.2, power: floa
                   significance: float = 0.05, limit: int = 1000) -> int | None:
     """Smallest number of blocks with which the coverage check can pass.
 
-    With fewer blocks, :func:`glstat.binomial_check` of ``confidence_level`` cannot detect
-    every miss larger than ``max_miss`` with probability ``power``, and the coverage check is
-    "not checkable" whatever the data.
+    With fewer blocks, the one-sided :func:`glstat.binomial_check` of ``confidence_level``
+    cannot detect every shortfall larger than ``max_miss`` with probability ``power``, and
+    the coverage check is "not checkable" whatever the data.
 
     Parameters
     ----------
@@ -233,13 +244,13 @@ def blocks_needed(confidence_level: float, *, max_miss: float = 0.2, power: floa
     --------
     >>> from glstat.cross_validation import blocks_needed
     >>> blocks_needed(0.9), blocks_needed(0.5)
-    (25, 49)
+    (25, 37)
     """
     check_level(confidence_level)
     for k in range(2, limit + 1):
         hits = min(k, max(0, round(confidence_level * k)))
-        c = binomial_check(confidence_level, hits, k, significance=significance, power=power,
-                           max_miss=max_miss)
+        c = binomial_check(confidence_level, hits, k, alternative="less",
+                           significance=significance, power=power, max_miss=max_miss)
         if c.verdict == PASSED:
             return k
     return None
@@ -373,8 +384,8 @@ def cross_validate_maximum(
     not make that extrapolation right, and nothing computed from the sample can check it.
 
     The coverage check of a 90 % interval needs at least 25 blocks to be able to pass
-    (:func:`blocks_needed`; 20 outcomes detect a miss of 21 percentage points, not the 20 the
-    check asks for), hence the default. The folds' predictions share most of their data, so
+    (:func:`blocks_needed`; 20 outcomes detect a shortfall of 21 percentage points, not the 20
+    the check asks for), hence the default. The folds' predictions share most of their data, so
     the blocks' outcomes are not quite independent.
 
     Examples
@@ -451,6 +462,7 @@ def _predict_block(x, blocks, b, seed, pairs, threshold, level, b_res, tail
     obs = float(test.max())
     row = {"block": b, "size": m, "observed": obs, "low": math.nan, "high": math.nan,
            "covered": None, "pit": math.nan, "predicted_damage": math.nan,
+           "damage_low": math.nan, "damage_high": math.nan,
            "damaged": None if threshold is None else bool(obs > threshold), "fit": ""}
     p = predict_maximum(train, pairs, n=m, threshold=threshold, n_resamples=b_res,
                         confidence_level=level, rng=seed, tail=tail)
@@ -460,8 +472,16 @@ def _predict_block(x, blocks, b, seed, pairs, threshold, level, b_res, tail
                    pit=float(p.maximum.full.cdf(obs)),
                    fit=f"{p.param} {p.method}" + (" pareto" if p.tail_size else ""))
         if p.damage is not None:
-            row["predicted_damage"] = float(np.ravel(p.damage.estimate)[0])
+            row.update(predicted_damage=float(np.ravel(p.damage.estimate)[0]),
+                       damage_low=float(np.ravel(p.damage.low)[0]),
+                       damage_high=float(np.ravel(p.damage.high)[0]))
     return row, ((f"block {b}: no fit ({p.note})",) if not p.ok else ()) + p.notes
+
+
+def _probability(values) -> float:
+    """The mean of probabilities, clipped to [0, 1] (NaN without values)."""
+    mean = float(values.mean()) if len(values) else math.nan
+    return mean if math.isnan(mean) else min(1.0, max(0.0, mean))
 
 
 def _result(rows, k, m, n_values, level, threshold, n_resamples, shuffle, notes):
@@ -472,11 +492,18 @@ def _result(rows, k, m, n_values, level, threshold, n_resamples, shuffle, notes)
     table["damaged"] = table["damaged"].astype("boolean")
     ok = table["fit"] != ""
     n_ok = int(ok.sum())
-    coverage = binomial_check(level, int(table.loc[ok, "covered"].sum()), n_ok)
+    coverage = binomial_check(level, int(table.loc[ok, "covered"].sum()), n_ok, alternative="less")
     damage = None
     if threshold is not None:
-        mean = float(table.loc[ok, "predicted_damage"].mean()) if n_ok else 0.0
-        damage = binomial_check(min(1.0, max(0.0, mean)), int(table.loc[ok, "damaged"].sum()), n_ok)
+        # the blocks' predictions and interval ends averaged: the interval of the mean damage
+        # (widened to hold the estimate, should a percentile interval leave it out)
+        est, low, high = (_probability(table.loc[ok, c]) for c in
+                          ("predicted_damage", "damage_low", "damage_high"))
+        est = 0.0 if math.isnan(est) else est
+        low = est if math.isnan(low) else min(low, est)
+        high = est if math.isnan(high) else max(high, est)
+        damage = binomial_check(est, int(table.loc[ok, "damaged"].sum()), n_ok,
+                                interval=(low, high))
     verdicts = [c.verdict for c in (coverage, damage) if c is not None]
     verdict = (FAILED if FAILED in verdicts else NOT_CHECKABLE if NOT_CHECKABLE in verdicts
                else PASSED)

@@ -7,6 +7,7 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 import pytest
+from scipy import stats
 
 from glstat.formatting import fmt_mpa, fmt_probability
 from glstat.study.analysis import SampleAnalysis, _end_note
@@ -71,22 +72,48 @@ def test_hardness_levels_span_the_maxima_and_include_the_hardness():
     assert np.all(np.diff(lv) > 0)
 
 
-def _validation(damage, coverage):
-    """A validation whose checks are ``(predicted, hits, n)`` triples."""
+def _validation(damage, coverage, interval=None):
+    """A validation whose checks are ``(predicted, hits, n)`` triples: the damage against
+    ``interval`` (default: the point), the coverage one-sided as the study checks it."""
     from glstat.study.validation import held_out_check
 
     return Validation(table=pd.DataFrame({"x": [1]}), coverage=coverage[1] / coverage[2],
-                      damage_check=held_out_check(*damage), coverage_check=held_out_check(*coverage))
+                      damage_check=held_out_check(*damage, interval=interval),
+                      coverage_check=held_out_check(*coverage, alternative="less"))
 
 
 def test_verdict_is_failed_when_either_binomial_test_rejects():
     assert _validation((0.5, 50, 100), (0.9, 90, 100)).verdict() == "passed"
-    # the damage is off: 75 of 100 surfaces damaged where 50 % were predicted
-    assert _validation((0.5, 75, 100), (0.9, 90, 100)).verdict() == "failed"
+    # the damage is off: 75 of 100 surfaces damaged where 50 % [40 %, 60 %] was predicted
+    off = _validation((0.5, 75, 100), (0.9, 90, 100), (0.4, 0.6))
+    assert off.verdict() == "failed" and not off.passes()
+    assert "75 of 100 held-out surfaces damaged, 50 % [40 %, 60 %] predicted" in off.short_text()
     # the interval of the maximum covers 70 of 100 where 90 % were promised
     assert _validation((0.5, 50, 100), (0.9, 70, 100)).verdict() == "failed"
-    assert not _validation((0.5, 75, 100), (0.9, 90, 100)).passes()
-    assert "75 of 100 held-out surfaces damaged" in _validation((0.5, 75, 100), (0.9, 90, 100)).short_text()
+
+
+def test_the_damage_check_holds_the_predicted_interval():
+    # 62 of 100 damaged: rejected against the estimate 50 % (scipy.stats.binomtest p = 0.02),
+    # not against its interval [40 %, 65 %]; the check fails only outside the interval
+    assert stats.binomtest(62, 100, 0.5).pvalue < 0.05
+    assert _validation((0.5, 62, 100), (0.9, 90, 100)).verdict() == "failed"
+    v = _validation((0.5, 62, 100), (0.9, 90, 100), (0.4, 0.65))
+    assert v.verdict() == "passed" and v.damage_check.p_value == 1.0
+    assert _validation((0.5, 20, 100), (0.9, 90, 100), (0.4, 0.65)).verdict() == "failed"
+    # an interval that does not hold the estimate is widened to hold it
+    w = _validation((0.5, 50, 100), (0.9, 90, 100), (0.55, 0.7))
+    assert (w.damage_check.low, w.damage_check.high) == (0.5, 0.7)
+
+
+def test_a_conservative_interval_of_the_maximum_does_not_fail():
+    # 99 of 100 held-out maxima inside the 90 % interval: more often than stated (the
+    # two-sided test would reject: scipy.stats.binomtest p = 1e-3), not a failure
+    assert stats.binomtest(99, 100, 0.9).pvalue < 0.05
+    v = _validation((0.5, 50, 100), (0.9, 99, 100), (0.4, 0.6))
+    assert v.verdict() == "passed" and v.coverage_check.conservative
+    assert v.short_text().endswith("; the interval of the maximum is conservative (99 of 100 "
+                                   "inside))")
+    assert "one-sided" in _validation((0.5, 50, 100), (0.9, 70, 100)).short_text()
 
 
 def test_verdict_is_never_passed_with_too_few_surfaces():
@@ -95,6 +122,19 @@ def test_verdict_is_never_passed_with_too_few_surfaces():
     assert v.verdict() == "not checkable" and not v.passes()
     assert "not checkable with 12 held-out surfaces" in v.short_text()
     assert Validation(error="too few surfaces").verdict() == "not checked"
+    # an interval of the damage wider than [20 %, 80 %] cannot be checked by any number
+    wide = _validation((0.5, 50, 100), (0.9, 90, 100), (0.1, 0.85))
+    assert wide.verdict() == "not checkable"
+    assert wide.short_text() == "not checkable: the predicted damage interval [10 %, 85 %] is too " \
+                                "wide to be checked"
+
+
+def _lognormal_surfaces(n=120, seed=4):
+    rng = np.random.default_rng(seed)
+    per = _surfaces(rng, n, lambda r, k: r.lognormal(7.0, 0.3, k))
+    a = AnalysisSettings(hardness=1e6 * float(np.median([m for _, _, m in per])), n_resamples=100)
+    levels = hardness_levels(np.array([m for _, _, m in per]), a.hardness_mpa, a.n_levels)
+    return per, a, levels
 
 
 def test_validate_sample_fails_when_the_observed_maxima_exceed_the_peaks():
@@ -103,17 +143,33 @@ def test_validate_sample_fails_when_the_observed_maxima_exceed_the_peaks():
     # must say so; the same surfaces with their true maxima are not rejected
     from glstat.study.validation import validate_sample
 
-    rng = np.random.default_rng(4)
-    per = _surfaces(rng, 120, lambda r, k: r.lognormal(7.0, 0.3, k))
-    a = AnalysisSettings(hardness=1e6 * float(np.median([m for _, _, m in per])), n_resamples=100)
-    levels = hardness_levels(np.array([m for _, _, m in per]), a.hardness_mpa, a.n_levels)
+    per, a, levels = _lognormal_surfaces()
     honest = validate_sample(per, "spot", a, 0, 0, "rs", "moments", levels)
-    assert honest.damage_check.verdict != "failed"
-    assert honest.damage_check.n == 120
+    assert honest.damage_check.verdict != "failed" and honest.verdict() != "failed"
+    assert honest.damage_check.n == 120 and honest.damage_check.is_interval
+    assert honest.coverage_check.alternative == "less"
+    # the check's interval is the folds' intervals pooled, as damage_calibration.csv has it
+    cal = honest.calibration
+    at = cal[np.isclose(cal["hardness_mpa"], a.hardness_mpa) & (cal["area_factor"] == 1)].iloc[0]
+    assert honest.damage_check.low <= at["predicted_low"] + 1e-15
+    assert honest.damage_check.high >= at["predicted_high"] - 1e-15
+    assert (cal["predicted_low"] <= cal["predicted_high"]).all()
     lifted = [(v, k, 1.3 * m) for v, k, m in per]
     v = validate_sample(lifted, "spot", a, 0, 0, "rs", "moments", levels)
     assert v.damage_check.verdict == "failed" and v.verdict() == "failed"
-    assert v.damage_check.observed >= 0.85 and v.damage_check.predicted < 0.7
+    assert v.damage_check.observed >= 0.85 and v.damage_check.high < 0.7
+
+
+def test_validate_sample_fails_when_the_observed_maxima_are_too_low():
+    # the other direction: maxima of a parent scaled by 0.7, far below the predicted ones
+    from glstat.study.validation import validate_sample
+
+    per, a, levels = _lognormal_surfaces()
+    lowered = [(v, k, 0.7 * m) for v, k, m in per]
+    v = validate_sample(lowered, "spot", a, 0, 0, "rs", "moments", levels)
+    assert v.verdict() == "failed" and v.damage_check.verdict == "failed"
+    assert v.damage_check.observed < v.damage_check.low
+    assert v.coverage_check.verdict == "failed"
 
 
 def test_degenerate_scene_warning():

@@ -42,7 +42,8 @@ PLASTIC_COLUMNS = ("plastic_area_fraction", "plastic_area_fraction_low",
                    "plastic_area_fraction_high")
 #: Columns of ``damage_calibration.csv``.
 CALIBRATION_COLUMNS = ("hurst", "pressure_mpa", "model", "sample", "hardness_mpa", "area_factor",
-                       "predicted", "observed", "observed_low", "observed_high", "n_surfaces",
+                       "predicted", "predicted_low", "predicted_high", "observed", "observed_low",
+                       "observed_high", "n_surfaces",
                        "p_value", "spacing_um", "s_filter_um")
 #: The paper's damage verdicts at 2050 MPa (its section 4), by H.
 PAPER_VERDICTS = {0.0: "certain", 0.5: "≈ 1 %", 1.0: "impossible"}
@@ -131,10 +132,12 @@ def summary_frame(settings, analysis: dict, bem: dict | None = None, bem_analysi
     analysed area with its bootstrap interval), ``observed_damage`` (fraction of the surfaces
     whose maximum exceeds the hardness), ``held_out_damage`` and ``held_out_surfaces`` (the
     same on the held-out surfaces of the check), ``damage_p_value`` (exact binomial test of the
-    held-out damage against the prediction), ``coverage``, ``coverage_low``, ``coverage_high``
-    (held-out coverage of the predicted interval of the maximum and its Wilson interval),
-    ``coverage_p_value`` (exact binomial test against the interval's level),
-    ``detectable_miss`` (the smallest miss either test detects with 80 % power),
+    held-out damage against the predicted interval of the damage, 1 inside it), ``coverage``,
+    ``coverage_low``, ``coverage_high`` (held-out coverage of the predicted interval of the
+    maximum and its Wilson interval), ``coverage_p_value`` (one-sided exact binomial test
+    against the interval's level: small when it covers too rarely),
+    ``detectable_miss`` (the smallest miss beyond the prediction either test detects with 80 %
+    power),
     ``bias_p_value`` (centring t-test), ``theta`` (extremal index), ``damage_levels_inside``
     (hardness levels at which the predicted damage lies inside the observed interval, "k of
     m"), ``check`` ("passed", "failed", "not checkable" or "not checked"), ``passes_check``,
@@ -232,7 +235,8 @@ def calibration_frame(settings, analysis: dict, bem_analysis: dict | None = None
     ``predicted`` (P(max > hardness) from the fit of the other fold, averaged over the two
     folds), ``observed`` (fraction of held-out surfaces or groups whose maximum exceeds it),
     ``observed_low``/``observed_high`` (Wilson 95 % interval), ``n_surfaces`` (surfaces or
-    groups), ``p_value`` (exact binomial test of the observed count against the prediction),
+    groups), ``p_value`` (exact binomial test of the observed count against the predicted
+    interval, 1 when the observed fraction lies in it),
     ``spacing_um`` and ``s_filter_um`` (the scale: grid spacing and S-filter, NaN without one).
     """
     import pandas as pd
@@ -487,14 +491,17 @@ def check_rows(settings, asettings, analysis: dict, bem_analysis: dict | None = 
                 continue
             d, c = v.damage_check, v.coverage_check
             miss = max(d.detectable_miss, c.detectable_miss)
+            wide = "; conservative" if c.conservative else ""
             rows.append([case, SAMPLE_LABELS[sample],
-                         f"{d.hits} of {d.n} vs {fmt_probability(d.predicted)} (p = {d.p_value:.2g})",
-                         f"{c.hits} of {c.n} = {100 * v.coverage:.0f} % (p = {c.p_value:.2g})",
+                         f"{d.hits} of {d.n} vs {fmt_probability(d.predicted)} "
+                         f"[{fmt_probability(d.low)}, {fmt_probability(d.high)}] (p = {d.p_value:.2g})",
+                         f"{c.hits} of {c.n} = {100 * v.coverage:.0f} % (p = {c.p_value:.2g}{wide})",
                          "—" if not math.isfinite(miss) else f"{100 * miss:.2g} points",
                          f"{v.t_pvalue:.2g}", f"{v.theta:.2g}" if math.isfinite(v.theta) else "—",
                          v.verdict()])
     return rows, ["case", "sample", f"damaged held-out surfaces vs predicted at "
-                                    f"{asettings.hardness_mpa:g} MPa (exact binomial p)",
-                  f"held-out maxima inside the {lvl} % interval (exact binomial p)",
+                                    f"{asettings.hardness_mpa:g} MPa [{lvl} % interval] (exact "
+                                    "binomial p against the interval)",
+                  f"held-out maxima inside the {lvl} % interval (one-sided exact binomial p)",
                   "smallest miss detected (80 % power)", "centring test p", "extremal index θ",
                   "check"]

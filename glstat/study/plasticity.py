@@ -90,7 +90,7 @@ def plastic_summary(fractions, level: float = 0.9) -> dict[str, Any]:
         lo, hi, _ = plastic_interval(train, level)
         hits += int(np.count_nonzero((test >= lo) & (test <= hi)))
     check = binomial_check(level, hits, x.size, significance=CHECK_SIGNIFICANCE,
-                           power=CHECK_POWER, max_miss=CHECK_MAX_MISS)
+                           power=CHECK_POWER, max_miss=CHECK_MAX_MISS, alternative="less")
     out.update(plastic_held_out=f"{hits} of {x.size}", plastic_p_value=check.p_value,
                plastic_check=check.verdict)
     return out

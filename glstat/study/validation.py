@@ -1,6 +1,12 @@
 """Predictions checked on surfaces the fit did not see: two folds (even and odd surfaces), the
 maximum of each held-out surface against its predicted interval, and the damage probability at
-several hardness levels and area factors against the observed fraction of surfaces."""
+several hardness levels and area factors against the observed fraction of surfaces.
+
+The verdict's two checks fail only when the held-out surfaces disagree with the prediction:
+the damage at the hardness when the number of damaged surfaces lies significantly outside the
+predicted interval of the damage probability, the coverage of the maximum's interval when it
+falls significantly short of the interval's level (an interval that covers more often is
+reported as conservative)."""
 
 from __future__ import annotations
 
@@ -79,13 +85,17 @@ class Validation:
         ``m / sum_i n_i (-log F(M_i))`` (1 when the n values behave as independent draws).
     calibration : pandas.DataFrame
         Predicted against observed damage probability per hardness level and area factor
-        (columns of ``damage_calibration.csv``, with the exact binomial test's ``p_value``).
+        (columns of ``damage_calibration.csv``, with ``predicted_low`` and
+        ``predicted_high``, the predicted interval, and ``p_value``, the exact binomial
+        test of the observed count against that interval).
     damage_check : glstat.BinomialCheck or None
-        The predicted damage probability at the hardness on one area against the fraction of
-        held-out surfaces whose maximal pressure exceeds it (exact binomial test).
+        The predicted damage probability at the hardness on one area, with its interval,
+        against the fraction of held-out surfaces whose maximal pressure exceeds it: failed
+        only when the count lies significantly outside the interval (exact binomial tests).
     coverage_check : glstat.BinomialCheck or None
         The number of held-out maxima inside their predicted interval against the interval's
-        level (exact binomial test).
+        level, one-sided: failed only when they are significantly fewer (exact binomial
+        test); significantly more make it :attr:`~glstat.BinomialCheck.conservative`.
     error : str
         Why the validation could not be done ("" when it was).
     """
@@ -114,11 +124,13 @@ class Validation:
         return int(inside.sum()), len(one)
 
     def verdict(self) -> str:
-        """The held-out check: ``"failed"`` when the damage probability at the hardness or the
-        coverage of the maximum's interval is rejected by its exact binomial test at 5 %;
-        ``"not checkable"`` when neither is rejected but the held-out surfaces are too few to
-        detect a miss of 20 percentage points with 80 % power; ``"passed"`` otherwise;
-        ``"not checked"`` without a validation."""
+        """The held-out check: ``"failed"`` when the number of damaged held-out surfaces lies
+        significantly outside the predicted interval of the damage probability at the
+        hardness, or the maximum's interval covers significantly less often than its level
+        (exact binomial tests at 5 %); ``"not checkable"`` when neither is rejected but the
+        held-out surfaces are too few to detect a miss of 20 percentage points beyond the
+        prediction with 80 % power (or the damage interval leaves no room for one);
+        ``"passed"`` otherwise; ``"not checked"`` without a validation."""
         checks = [c for c in (self.damage_check, self.coverage_check) if c is not None]
         if self.error or self.table is None or len(checks) < 2:
             return "not checked"
@@ -144,19 +156,26 @@ class Validation:
             parts = []
             if d is not None and d.verdict == "failed":
                 parts.append(f"{d.hits} of {d.n} held-out surfaces damaged, "
-                             f"{fmt_probability(d.predicted)} predicted (p = {d.p_value:.2g})")
+                             f"{fmt_probability(d.predicted)} [{fmt_probability(d.low)}, "
+                             f"{fmt_probability(d.high)}] predicted (p = {d.p_value:.2g})")
             if c is not None and c.verdict == "failed":
                 parts.append(f"{c.hits} of {c.n} held-out maxima inside the "
-                             f"{fmt_probability(c.predicted)} interval (p = {c.p_value:.2g})")
+                             f"{fmt_probability(c.predicted)} interval (one-sided p = "
+                             f"{c.p_value:.2g})")
             return "failed: " + "; ".join(parts)
         miss = max(x.detectable_miss for x in (d, c))
         if v == "not checkable":
+            if d.verdict == "not checkable" and d.too_wide_to_check:
+                return (f"not checkable: the predicted damage interval [{fmt_probability(d.low)}, "
+                        f"{fmt_probability(d.high)}] is too wide to be checked")
             if not math.isfinite(miss):
                 return (f"not checkable with {d.n} held-out surfaces: no miss, however large, "
                         f"would show")
             return (f"not checkable with {d.n} held-out surfaces: misses under "
                     f"{_pp(miss)} go undetected")
-        return f"passed ({d.hits} of {d.n} damaged; a miss of {_pp(miss)} would show)"
+        wide = (f"; the interval of the maximum is conservative ({c.hits} of {c.n} inside)"
+                if c.conservative else "")
+        return f"passed ({d.hits} of {d.n} damaged; a miss of {_pp(miss)} would show{wide})"
 
     def verdict_text(self) -> str:
         """The verdict with the reason, in one line (for the report and the command)."""
@@ -175,13 +194,43 @@ def _pp(d: float) -> str:
     return "any size" if not math.isfinite(d) else f"{100 * d:.2g} percentage points"
 
 
-def held_out_check(predicted: float, hits: int, n: int):
-    """:func:`glstat.binomial_check` at the study's level, power and largest undetected miss."""
+def held_out_check(predicted: float, hits: int, n: int, *, interval=None,
+                   alternative: str = "two-sided"):
+    """:func:`glstat.binomial_check` at the study's level, power and largest undetected miss.
+
+    Parameters
+    ----------
+    predicted : float
+        The predicted probability (clipped to [0, 1]).
+    hits, n : int
+        Held-out surfaces (or groups) with the event, and held-out surfaces.
+    interval : (float, float), optional
+        The predicted interval of the probability: the check then fails only when ``hits``
+        lies significantly outside it. It is widened to hold ``predicted`` should it leave
+        it out, and clipped to [0, 1].
+    alternative : {"two-sided", "less", "greater"}
+        As in :func:`glstat.binomial_check`; ``"less"`` for the coverage of an interval
+        against its level (only a shortfall fails).
+
+    Returns
+    -------
+    glstat.BinomialCheck
+    """
     from ..gof.binomial_check import binomial_check
 
-    return binomial_check(min(max(float(predicted), 0.0), 1.0), int(hits), int(n),
+    p = _clip(predicted)
+    if interval is not None:
+        low, high = (_clip(v) for v in interval)
+        interval = (p if math.isnan(low) else min(low, p), p if math.isnan(high) else max(high, p))
+    return binomial_check(p, int(hits), int(n), interval=interval, alternative=alternative,
                           significance=CHECK_SIGNIFICANCE, power=CHECK_POWER,
                           max_miss=CHECK_MAX_MISS)
+
+
+def _clip(p: float) -> float:
+    """A probability clipped to [0, 1] (NaN stays NaN)."""
+    p = float(p)
+    return p if math.isnan(p) else min(max(p, 0.0), 1.0)
 
 
 def hardness_levels(maxima: np.ndarray, hardness: float, n_levels: int) -> np.ndarray:
@@ -253,6 +302,8 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
                 d = bf.damage_probability(lv, area_factor=float(k), **count_kw)
                 cal.append({"fold": f, "hardness_mpa": float(lv), "area_factor": k,
                             "predicted": float(np.ravel(d.estimate)[0]),
+                            "predicted_low": float(np.ravel(d.low)[0]),
+                            "predicted_high": float(np.ravel(d.high)[0]),
                             "hits": int(np.sum(gmax > lv)), "n_surfaces": int(groups)})
     if not rows:
         return Validation(error="no held-out surface has a contact")
@@ -271,26 +322,30 @@ def validate_sample(per: list, sample: str, a: AnalysisSettings, ih: int, il: in
         val.theta = float(terms.size / terms.sum())
     if cal:
         c = pd.DataFrame(cal)
-        # pool the folds: predictions weighted by the surfaces they predict
-        c["wpred"] = c["predicted"] * c["n_surfaces"]
-        g = c.groupby(["hardness_mpa", "area_factor"], as_index=False)[["wpred", "hits",
-                                                                         "n_surfaces"]].sum()
-        g["predicted"] = g["wpred"] / g["n_surfaces"]
+        # pool the folds: predictions and interval ends weighted by the surfaces they predict
+        pooled = ["predicted", "predicted_low", "predicted_high"]
+        for col in pooled:
+            c["w_" + col] = c[col] * c["n_surfaces"]
+        g = c.groupby(["hardness_mpa", "area_factor"], as_index=False)[
+            ["w_" + col for col in pooled] + ["hits", "n_surfaces"]].sum()
+        for col in pooled:
+            g[col] = g["w_" + col] / g["n_surfaces"]
         g["observed"] = g["hits"] / g["n_surfaces"]
         ci = [wilson_interval(h, n) for h, n in zip(g["hits"], g["n_surfaces"], strict=True)]
         g["observed_low"] = [c_[0] for c_ in ci]
         g["observed_high"] = [c_[1] for c_ in ci]
-        checks = [held_out_check(pr, h, n) for pr, h, n in
-                  zip(g["predicted"], g["hits"], g["n_surfaces"], strict=True)]
+        checks = [held_out_check(pr, h, n, interval=(lo, hi)) for pr, lo, hi, h, n in
+                  zip(g["predicted"], g["predicted_low"], g["predicted_high"], g["hits"],
+                      g["n_surfaces"], strict=True)]
         g["p_value"] = [c_.p_value for c_ in checks]
         at = np.flatnonzero(np.isclose(g["hardness_mpa"], a.hardness_mpa, rtol=1e-12)
                             & (g["area_factor"] == 1))
         if at.size:
             val.damage_check = checks[int(at[0])]
-        val.calibration = g.drop(columns=["wpred", "hits"])[
-            ["hardness_mpa", "area_factor", "predicted", "observed", "observed_low", "observed_high",
-             "n_surfaces", "p_value"]]
-    val.coverage_check = held_out_check(a.confidence_level, k_cov, mcount)
+        val.calibration = g[["hardness_mpa", "area_factor", "predicted", "predicted_low",
+                             "predicted_high", "observed", "observed_low", "observed_high",
+                             "n_surfaces", "p_value"]]
+    val.coverage_check = held_out_check(a.confidence_level, k_cov, mcount, alternative="less")
     return val
 
 

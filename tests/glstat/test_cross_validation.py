@@ -1,8 +1,10 @@
 """glstat.cross_validate_maximum: block cross-validation of the predicted maximum.
 
 A fit whose upper tail is too light fails (PIT values piled at 1); data drawn from a GLD do
-not fail and cover near the level; few blocks are "not checkable", never "passed"; the table
-holds what the folds' fits give; bad input is refused with the fix.
+not fail and cover near the level; an interval that covers more often than its level is
+conservative, not failed; the damage count is checked against the predicted interval of the
+damage probability; few blocks are "not checkable", never "passed"; the table holds what the
+folds' fits give; bad input is refused with the fix.
 """
 
 from __future__ import annotations
@@ -96,6 +98,27 @@ def test_data_from_a_gld_pass_with_coverage_near_the_level():
     assert cv.text().startswith("check by block cross-validation: passed")
 
 
+@pytest.mark.slow
+def test_a_right_model_rarely_fails_and_a_wrong_one_always_fails_with_50_blocks():
+    # 12 samples of 2500 lognormal values, 50 blocks of 50, threshold at a true damage of 10 %
+    # per block (exact: 1 - F(t)^50 = 0.1, scipy.stats.lognorm): at most 2 of 12 "failed"
+    # (benchmarks/bench_checks.py measures the rate: docs/benchmarks.md); the GLD alone on
+    # the sample with far lower outliers (its fitted tail too light) fails every time
+    parent = stats.lognorm(0.5)
+    t = float(parent.isf(-np.expm1(np.log(0.9) / 50)))
+    verdicts = []
+    for seed in range(12):
+        x = parent.rvs(2500, random_state=100 + seed)
+        cv = glstat.cross_validate_maximum(x, n_blocks=50, threshold=t, n_resamples=200, rng=seed)
+        verdicts.append(cv.verdict)
+    assert verdicts.count("failed") <= 2, verdicts
+    assert verdicts.count("passed") >= 8, verdicts
+    for seed in range(3):
+        cv = glstat.cross_validate_maximum(_low_outliers(seed, 2500), n_blocks=50, n_resamples=100,
+                                           rng=seed, tail=None)
+        assert cv.verdict == "failed" and cv.coverage_check.verdict == "failed"
+
+
 def test_few_blocks_are_not_checkable_never_passed():
     x = glstat.GLD(0.0, -0.1, -0.05, -0.08).rvs(1000, random_state=3)
     cv = glstat.cross_validate_maximum(x, n_blocks=5, n_resamples=30, rng=0)
@@ -132,7 +155,7 @@ def test_blocks_in_order_and_what_each_fold_predicts():
                                        shuffle=False, rng=1)
     t = cv.to_frame()
     assert list(t.columns) == ["block", "size", "observed", "low", "high", "covered", "pit",
-                               "predicted_damage", "damaged", "fit"]
+                               "predicted_damage", "damage_low", "damage_high", "damaged", "fit"]
     assert cv.block_size == 100 and cv.n_dropped == 3 and len(t) == 10
     assert "3 of 1003 values left out to make blocks of equal size" in cv.text()
     blocks = x[:1000].reshape(10, 100)  # in order; the last 3 values left out
@@ -152,6 +175,13 @@ def test_blocks_in_order_and_what_each_fold_predicts():
     assert cv.coverage_check.n == 10 and cv.coverage_check.hits == int(t["covered"].sum())
     assert cv.damage_check.hits == int(t["damaged"].sum())
     assert cv.damage_check.predicted == pytest.approx(float(t["predicted_damage"].mean()))
+    # the damage is checked against the blocks' intervals averaged (holding the estimate)
+    assert (t["damage_low"] <= t["damage_high"]).all()
+    assert cv.damage_check.low == pytest.approx(min(float(t["damage_low"].mean()),
+                                                    cv.damage_check.predicted))
+    assert cv.damage_check.high == pytest.approx(max(float(t["damage_high"].mean()),
+                                                     cv.damage_check.predicted))
+    assert cv.coverage_check.alternative == "less"
 
 
 def test_same_seed_same_result_and_shuffle_changes_the_blocks():
@@ -189,7 +219,8 @@ def test_folds_without_a_fit_are_left_out():
 def _rows(observed, low=1.0, high=2.0):
     return [{"block": b, "size": 10, "observed": o, "low": low, "high": high,
              "covered": bool(low <= o <= high), "pit": 0.5, "predicted_damage": math.nan,
-             "damaged": None, "fit": "rs moments"} for b, o in enumerate(observed)]
+             "damage_low": math.nan, "damage_high": math.nan, "damaged": None,
+             "fit": "rs moments"} for b, o in enumerate(observed)]
 
 
 def test_meaning_of_misses_below_and_of_a_too_wide_interval():
@@ -199,29 +230,70 @@ def test_meaning_of_misses_below_and_of_a_too_wide_interval():
                                       "below the predicted interval in 10 of 20 blocks")
     both = _result(_rows([0.5] * 5 + [2.5] * 5 + [1.5] * 10), 20, 10, 200, 0.9, None, 50, True, [])
     assert "too narrow" in both.meaning() and "5 above the interval, 5 below" in both.meaning()
+    # 100 of 100 covered by a 90 % interval: more often than its level, conservative, not
+    # failed (the two-sided test would reject 90 %: scipy.stats.binomtest p = 5e-5)
+    assert stats.binomtest(100, 100, 0.9).pvalue < 0.05
     wide = _result(_rows([1.5] * 100), 100, 10, 1000, 0.9, None, 50, True, [])
-    assert wide.verdict == "failed" and "too wide" in wide.meaning()
+    assert wide.verdict == "passed" and wide.coverage_check.conservative
+    assert wide.meaning().endswith("(0 above the interval, 0 below); more often than its level: "
+                                   "the interval is conservative, wider than it needs to be")
+    assert "more often than predicted (one-sided p = 2.7e-05): conservative" in wide.text()
+    # 80 of 100 covered: significantly short of 90 % (scipy: one-sided p = 0.002)
+    assert stats.binomtest(80, 100, 0.9, alternative="less").pvalue < 0.05
+    short = _result(_rows([1.5] * 80 + [2.5] * 20), 100, 10, 1000, 0.9, None, 50, True, [])
+    assert short.verdict == "failed" and "too light" in short.meaning()
 
 
 def test_meaning_of_a_damage_check_that_fails_or_cannot_be_made():
     # 30 blocks, 27 covered (coverage passes); the damage check decides the verdict
     rows = _rows([1.5] * 27 + [2.5] * 3)
     for r in rows:
-        r["predicted_damage"], r["damaged"] = 0.5, r["observed"] > 1.2
+        r.update(predicted_damage=0.5, damage_low=0.4, damage_high=0.6,
+                 damaged=r["observed"] > 1.2)
     low = _result(rows, 30, 10, 300, 0.9, 1.2, 50, True, [])
     assert low.coverage_check.verdict == "passed" and low.damage_check.verdict == "failed"
     assert low.verdict == "failed"
     assert low.meaning() == ("the predicted damage probability P(max of 10 > 1.2) is too low: "
-                             "exceeded in 30 of 30 blocks against 50 % predicted on average")
+                             "exceeded in 30 of 30 blocks against 50 % [40 %, 60 %] predicted "
+                             "on average")
     half = [dict(r, damaged=b % 2 == 0) for b, r in enumerate(rows)]
     few = _result(half, 30, 10, 300, 0.9, 1.2, 50, True, [])  # 15 of 30 against 50 %
     assert few.damage_check.verdict == "not checkable" and few.verdict == "not checkable"
     assert few.meaning().endswith("but 30 blocks are too few to check the damage probability")
-    rare = [dict(r, predicted_damage=0.05, damaged=b == 0) for b, r in enumerate(rows)]
-    ok = _result(rare, 30, 10, 300, 0.9, 1.2, 50, True, [])  # 1 of 30 against 5 %
+    rare = [dict(r, predicted_damage=0.05, damage_low=0.03, damage_high=0.07, damaged=b == 0)
+            for b, r in enumerate(rows)]
+    ok = _result(rare, 30, 10, 300, 0.9, 1.2, 50, True, [])  # 1 of 30 against 5 % [3 %, 7 %]
+    assert ok.damage_check.detectable_miss < 0.2
     assert ok.damage_check.verdict == "passed" and ok.verdict == "passed"
     assert ok.meaning().startswith("the predicted 90 % interval of the maximum of 10 values covered "
                                    "the observed block maximum in 27 of 30 blocks")
+    vague = [dict(r, damage_low=0.1, damage_high=0.9) for r in half]
+    wide = _result(vague, 30, 10, 300, 0.9, 1.2, 50, True, [])
+    assert wide.damage_check.verdict == "not checkable" and wide.verdict == "not checkable"
+    assert wide.meaning().endswith("but the predicted interval of the damage probability, "
+                                   "[10 %, 90 %], is too wide to be checked")
+
+
+def test_the_damage_check_holds_the_interval_not_the_estimate():
+    # 14 of 60 blocks damaged where 10 % [5 %, 20 %] is predicted: the estimate alone is
+    # rejected (scipy.stats.binomtest p = 0.002), the interval is not; 30 of 60 is above it
+    assert stats.binomtest(14, 60, 0.1).pvalue < 0.05
+    rows = _rows([1.5] * 60)
+    for b, r in enumerate(rows):
+        r.update(predicted_damage=0.1, damage_low=0.05, damage_high=0.2, damaged=b < 14)
+    cv = _result(rows, 60, 10, 600, 0.9, 1.2, 50, True, [])
+    assert cv.damage_check.verdict == "passed" and cv.verdict == "passed"
+    assert (cv.damage_check.low, cv.damage_check.high) == pytest.approx((0.05, 0.2))
+    for r in rows:
+        r["damaged"] = r["block"] < 30
+    cv = _result(rows, 60, 10, 600, 0.9, 1.2, 50, True, [])
+    assert cv.damage_check.verdict == "failed" and cv.verdict == "failed"
+    assert "too low: exceeded in 30 of 60 blocks" in cv.meaning()
+    # below the interval: none of 60 damaged where 20 % [10 %, 30 %] is predicted
+    for r in rows:
+        r.update(predicted_damage=0.2, damage_low=0.1, damage_high=0.3, damaged=False)
+    cv = _result(rows, 60, 10, 600, 0.9, 1.2, 50, True, [])
+    assert cv.damage_check.verdict == "failed" and "is too high" in cv.meaning()
 
 
 # ---------------------------------------------------------------------------------------------
