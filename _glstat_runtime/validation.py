@@ -20,11 +20,14 @@ __all__ = [
     "PLAUSIBLE_MODULUS",
     "PLAUSIBLE_PRESSURE",
     "PLAUSIBLE_ROUGHNESS",
+    "PLAUSIBLE_SPACING",
     "TRIM_MAX",
     "check_level",
     "check_method",
     "check_n_resamples",
+    "check_order",
     "check_param",
+    "check_sample_scale",
     "check_trim",
     "draws_or_count",
     "elastic_constants",
@@ -37,11 +40,13 @@ __all__ = [
     "implausible_modulus",
     "implausible_pressure",
     "implausible_roughness",
+    "implausible_spacing",
     "plausible_roughness",
     "positive_finite",
     "positive_integer",
     "positive_pressure",
     "real_array",
+    "real_number",
     "real_scalar",
     "real_values",
     "tolerance",
@@ -159,13 +164,18 @@ def draws_or_count(n, count, *, whole: bool = False) -> float | None:
     Raises
     ------
     TypeError
-        Both ``n`` and ``count`` are given.
+        Both ``n`` and ``count`` are given, or ``n`` is text.
     ValueError
-        With ``whole``: ``n`` is not one finite real number >= 1 with an integral value.
+        ``n`` is an integer beyond the double range; with ``whole``: ``n`` is not one
+        finite real number >= 1 with an integral value.
     """
     if n is not None and count is not None:
         raise TypeError("give either n (a fixed number of draws) or count (a random one), not both")
-    if not whole or n is None:
+    if n is None:
+        return n
+    if isinstance(n, str | bytes) or _beyond_double(n):
+        real_number(n, "n", "a number of draws")  # raises, naming the problem
+    if not whole:
         return n
     x = real_scalar(n)
     if x is None or not (math.isfinite(x) and x >= 1):
@@ -218,9 +228,17 @@ def real_values(data, name: str = "data") -> tuple[np.ndarray, np.ndarray | None
     if kind in "mM":
         raise TypeError(f"{name} are dates or times ({arr.dtype}), not numbers; convert them to a "
                         "real quantity (e.g. durations in seconds) first")
-    if kind in "bSUV":
+    if kind in "SU":
+        raise TypeError(f"{name} must be real numbers, got an array of dtype {arr.dtype} (text); "
+                        "convert it first, e.g. np.asarray(values, dtype=float)")
+    if kind in "bV":
         raise TypeError(f"{name} must be real numbers, got an array of dtype {arr.dtype}")
     if kind == "O":
+        text = next((v for v in arr.ravel() if isinstance(v, str | bytes)), None)
+        if text is not None:  # float('3.9') would read it: text is refused as in str arrays
+            raise TypeError(f"{name} must be real numbers, got an object array holding text: "
+                            f"{_shown(text)}; convert it first, e.g. pandas.to_numeric(series) "
+                            "or np.asarray(values, dtype=float)")
         try:
             values = np.array(arr, dtype=float).ravel()
         except (TypeError, ValueError):
@@ -260,8 +278,154 @@ def real_scalar(value) -> float | None:
             return None
         return float(value)
     if isinstance(value, numbers.Real):
-        return float(value)
+        try:
+            return float(value)
+        except OverflowError:  # an integer or fraction beyond the double range
+            return math.inf if value > 0 else -math.inf
     return None
+
+
+def _shown(value) -> str:
+    """``repr(value)``, cut to 40 characters, and its type: how a message shows a value."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool) and _beyond_double(value):
+        text = f"an integer of about 10**{int(abs(int(value)).bit_length() * math.log10(2))}"
+    else:
+        text = repr(value)
+        text = text if len(text) <= 40 else text[:37] + "..."
+    return f"{text} ({type(value).__name__})"
+
+
+def _beyond_double(value) -> bool:
+    """True for a Python integer or fraction whose magnitude exceeds the largest double."""
+    if isinstance(value, numbers.Rational) and not isinstance(value, bool | np.integer):
+        try:
+            float(value)
+        except OverflowError:
+            return True
+    return False
+
+
+def real_number(value, name: str, what: str) -> float:
+    """``value`` as a float when it is one real number; NaN and infinities are returned for
+    the caller to judge.
+
+    Parameters
+    ----------
+    value : object
+        A Python or NumPy integer or float, a fraction, or a 0-d integer or float array.
+    name : str
+        The argument's name, for messages.
+    what : str
+        What the number is, with its unit, for messages (e.g. ``"the location lambda1"``).
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    TypeError
+        Not one real number: text, ``decimal.Decimal``, ``None``, ``pandas.NA``, complex
+        numbers, booleans, arrays with ``ndim > 0``; the message names the argument, the
+        accepted types and the conversion to make.
+    ValueError
+        An integer or fraction beyond the double range (about 1.8e308).
+    """
+    x = real_scalar(value)
+    if x is not None:
+        if math.isinf(x) and _beyond_double(value):
+            raise ValueError(f"{name} = {_shown(value)} exceeds the largest double-precision "
+                             f"number (about 1.8e308); give {what} within that range")
+        return x
+    if isinstance(value, str | bytes):
+        hint = "convert text with float(...) first"
+    elif isinstance(value, bool | np.bool_):
+        hint = "give a number, not True or False"
+    elif np.ndim(value) != 0:
+        hint = f"give one number, not an array of shape {np.shape(value)}"
+    elif isinstance(value, numbers.Complex) or np.iscomplexobj(value):
+        hint = "take the real part or the modulus explicitly"
+    elif isinstance(value, numbers.Number):
+        hint = "convert it with float(...) first"
+    else:
+        hint = "a missing value has no place here: give a number"
+    raise TypeError(f"{name} ({what}) must be a real number, an int, a float or a NumPy integer "
+                    f"or float; got {_shown(value)}: {hint}")
+
+
+#: Largest magnitude of a sample's values fitted: the moments of larger values overflow.
+SAMPLE_MAX = 1e300
+
+
+def check_sample_scale(values: np.ndarray, name: str = "data") -> None:
+    """Refuse a sample whose magnitude is beyond what the fits compute with.
+
+    Parameters
+    ----------
+    values : ndarray of float
+        The finite values of the sample.
+    name : str
+        The argument's name, for messages.
+
+    Raises
+    ------
+    ValueError
+        The largest magnitude exceeds :data:`SAMPLE_MAX` (the sums of powers overflow), or
+        every value is subnormal, below 2.2e-308 in magnitude (they keep fewer than 53
+        bits); the message gives the factor to rescale by and how the lambdas follow.
+    """
+    if values.size == 0:
+        return
+    top = float(np.max(np.abs(values)))
+    if top > SAMPLE_MAX:
+        raise ValueError(f"{name} reach {top:.3g}, beyond {SAMPLE_MAX:g}: their powers overflow the "
+                         "double range; fit data / s for a power of ten s (e.g. 1e300), then "
+                         "lambda1 * s and lambda2 / s are those of the data")
+    if 0.0 < top < np.finfo(float).tiny:
+        raise ValueError(f"{name} are subnormal numbers (largest magnitude {top:.3g}, below "
+                         f"{np.finfo(float).tiny:.3g}) and keep fewer than 53 bits; fit data * s "
+                         "for a power of ten s (e.g. 1e300), then lambda1 / s and lambda2 * s "
+                         "are those of the data")
+
+
+def check_order(order, most: int, name: str = "order") -> int:
+    """``order`` as the order of a moment: a whole number from 0 to ``most``.
+
+    Parameters
+    ----------
+    order : object
+        A Python or NumPy integer, or a float with an integral value.
+    most : int
+        The highest order accepted.
+    name : str
+        The argument's name, for messages.
+
+    Returns
+    -------
+    int
+        ``int(order)``.
+
+    Raises
+    ------
+    TypeError
+        Not one real number (see :func:`real_number`).
+    ValueError
+        Not a whole number, negative, or above ``most`` (checked before any work).
+    """
+    if isinstance(order, numbers.Integral) and not isinstance(order, bool | np.bool_) \
+            and _beyond_double(order):
+        x = math.inf
+    else:
+        x = real_number(order, name, "the order of a moment")
+    if math.isnan(x) or x < 0 or (math.isfinite(x) and x != math.floor(x)):
+        raise ValueError(f"{name} must be a whole number >= 0, got {_shown(order)}")
+    if x > most:
+        shown = str(int(x)) if math.isfinite(x) else _shown(order)
+        raise ValueError(f"{name} = {shown} is above {most}, the highest order computed: moments of "
+                         "higher order over- or underflow the double range for almost every "
+                         "distribution; describe the tails with quantiles or L-moments instead")
+    return int(x)
 
 
 def warn_at_caller(message: str) -> None:
@@ -315,6 +479,29 @@ def implausible_height_scale(rq: float, side: float) -> str | None:
         return (f"the RMS of the heights ({rq:g}) exceeds the surface's side ({side:g}): heights "
                 "and spacing are probably in different units; both are in metres (did you "
                 f"give micrometres as metres? then heights * 1e-6, RMS {rq:g}e-6 m)")
+    return None
+
+
+#: Grid spacings (m) outside these bounds are implausible for a topography in metres: above
+#: a kilometre between neighbouring points, below a picometre (a hundredth of an atom).
+PLAUSIBLE_SPACING = (1e-12, 1e3)
+
+
+def implausible_spacing(dx: float, dy: float, size: tuple[float, float]) -> str | None:
+    """Why a grid spacing ``dx``, ``dy`` (m) of a surface of ``size`` (Lx, Ly) in metres looks
+    like a number in another unit (or a pixel count) given as metres, in words; None when
+    both lie within :data:`PLAUSIBLE_SPACING`."""
+    low, high = PLAUSIBLE_SPACING
+    for name, d in (("dx", dx), ("dy", dy)):
+        if d > high:
+            return (f"{name} = {d:g} m is implausible for a grid spacing in metres (more than "
+                    f"{high:g} m between neighbouring points; the surface is {size[0]:g} m x "
+                    f"{size[1]:g} m): give the spacing in metres (a pixel count, or micrometres "
+                    "given as metres?)")
+        if d < low:
+            return (f"{name} = {d:g} m is implausible for a grid spacing in metres (below "
+                    f"{low:g} m, a hundredth of an atom; the surface is {size[0]:g} m x "
+                    f"{size[1]:g} m): give the spacing in metres (converted twice?)")
     return None
 
 
@@ -687,6 +874,10 @@ def real_array(value, name: str = "heights") -> tuple[np.ndarray, np.ndarray | N
     if kind in "SUVb":
         raise TypeError(f"{name} must be real numbers, got an array of dtype {arr.dtype}")
     if kind == "O":
+        text = next((v for v in arr.ravel() if isinstance(v, str | bytes)), None)
+        if text is not None:  # float('3.9') would read it: text is refused as in str arrays
+            raise TypeError(f"{name} must be real numbers, got an object array holding text: "
+                            f"{_shown(text)}; convert it to numbers first")
         try:
             out = np.array(arr, dtype=float)
         except (TypeError, ValueError):

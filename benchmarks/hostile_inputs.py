@@ -4,18 +4,31 @@ Run from the repository root::
 
     python benchmarks/hostile_inputs.py            # corpus in a temporary folder
     python benchmarks/hostile_inputs.py --keep DIR # keep the corpus in DIR
+    python benchmarks/hostile_inputs.py --examples DIR  # also mutants of real instrument files
+
+``--examples`` (default: the environment variable ``TOPOGRAPHY_EXAMPLES``) names a folder
+holding real instrument files, such as SurfaceTopography's ``test/file_format_examples``;
+those of ``tests/hostile.py``'s ``INSTRUMENT_FILES`` found there are read, truncated, with
+flipped bytes and with header fields made inconsistent.
 
 Every file is read in its own subprocess (``contact.read`` or ``glstat fit``) under a 6 GiB
 address-space limit; the subprocess reports the outcome, the seconds and the peak memory
-(``VmHWM`` after reading, reset after the imports, minus ``VmRSS`` then). Bad API calls
-run in one subprocess.
+(``VmHWM`` after reading, reset after the imports, minus ``VmRSS`` then; SurfaceTopography is
+imported before the reset for the formats only it reads). Bad API calls run in one
+subprocess.
 Outcomes:
 
-* clear error: the project's error type (``TopographyFileError`` / exit status 2 of
-  ``glstat fit`` / ``TypeError``, ``ValueError``, ``FitError`` for API calls) with a message;
-* accepted: a valid input read correctly;
-* crash: any other exception (a traceback), or more than one error line of ``glstat fit``;
-* silent: accepted although the input should be refused;
+* clear error: the project's error type (``TopographyFileError``, or the ``ValueError`` of a
+  file that needs ``dx=`` or ``unit=`` / exit status 2 of ``glstat fit`` / ``TypeError``,
+  ``ValueError``, ``FitError`` for API calls, naming the argument where the call says which)
+  with a message on one line;
+* accepted: a valid input read correctly; warned: accepted with a ``ContactWarning`` (or
+  another warning, for API calls) saying that a value is implausible for its unit;
+* unclear error: an API call refused with an error that does not name its argument;
+* crash: any other exception (a traceback), more than one error line of ``glstat fit``, or
+  more than 4 kB written to stderr while reading a file;
+* silent: accepted (or accepted without the warning) although the input should be refused
+  (or warned about);
 * blow-up: more than ``--max-mb`` MB of peak memory or ``--max-seconds`` seconds, or the
   memory limit reached;
 * hang: no answer within ``--hang-seconds`` (the subprocess is stopped).
@@ -66,8 +79,9 @@ def _good_surface(folder: Path, ext: str) -> Path:
     return path
 
 
-def contact_corpus(d: Path) -> list[tuple[str, Path, str]]:
-    """(name, file, expected) with expected "refused" or "accepted"."""
+def contact_corpus(d: Path, examples: Path | None = None) -> list[tuple[str, Path, str]]:
+    """(name, file, expected) with expected "refused", "accepted", "warned" or "any" (either a
+    reading or a clear error); mutants of the real files in ``examples`` when given."""
     cases = [(name, getattr(hostile, name)(d), "refused") for name in (
         "x3p_zip_bomb", "x3p_lying_bomb", "x3p_huge_grid", "x3p_encrypted", "x3p_deflate64",
         "x3p_broken_deflate", "x3p_inf", "x3p_entity_expansion", "npy_huge_header",
@@ -133,6 +147,29 @@ def contact_corpus(d: Path) -> list[tuple[str, Path, str]]:
                       "refused"))
     cases.append(("mat_8192x8192_in_0.5MB", hostile.mat_declared(d, 8192, 8192, full=True),
                   "refused"))
+    # a known header with a bad value: refused by the built-in reader, never handed on
+    for factor in ("0", "1e-320"):
+        cases.append((f"matrix_factor_{factor}",
+                      hostile.matrix_export(d, factor=factor, name=f"factor_{factor}.txt"),
+                      "refused"))
+    cases.append(("matrix_pixel_2147483648_m",
+                  hostile.matrix_export(d, pixel="2147483648 m", name="pixel_2G.txt"), "warned"))
+    cases.append(("gwyddion_without_width",
+                  hostile.gwyddion_export(d, width=None, name="no_width.txt"), "refused"))
+    cases.append(("gwyddion_without_height",
+                  hostile.gwyddion_export(d, height=None, name="no_height.txt"), "refused"))
+    cases.append(("x3p_case_folded_twin", hostile.x3p_twins(
+        d, ("bindata/data.bin", "BINDATA/DATA.BIN"), "twin.x3p"), "accepted"))
+    cases.append(("x3p_two_case_folded_twins", hostile.x3p_twins(
+        d, ("BINDATA/DATA.BIN", "Bindata/Data.bin"), "two_twins.x3p"), "refused"))
+    cases.append(("x3p_duplicate_member", hostile.x3p_twins(
+        d, ("bindata/data.bin", "bindata/data.bin"), "duplicate.x3p"), "refused"))
+    for ext in (".di", ".opd", ".plu", ".sur"):
+        cases.append((f"random_bytes{ext}", _write(d / f"rand{ext}",
+                                                   np.random.default_rng(2).bytes(4096)), "refused"))
+        cases.append((f"empty{ext}", _write(d / f"empty{ext}", b""), "refused"))
+    if examples is not None and examples.is_dir():
+        cases += hostile.instrument_mutants(examples, d)
     return cases
 
 
@@ -205,6 +242,17 @@ def fit_corpus(d: Path) -> list[tuple[str, Path, str]]:
     return cases
 
 
+def _judged(outcome: str, expected: str) -> str:
+    """``outcome`` of a file against ``expected``: a reading where a refusal or a warning was
+    expected is silent; ``any`` accepts a reading, a warning or a clear error."""
+    read = outcome in ("accepted", "warned")
+    if expected == "warned" and outcome == "accepted":
+        return "silent: accepted without a warning"
+    if read and expected not in ("accepted", "warned", "any"):
+        return "silent: accepted, expected a refusal"
+    return outcome
+
+
 def _npy(a: np.ndarray) -> bytes:
     buf = io.BytesIO()
     np.save(buf, a)
@@ -228,7 +276,15 @@ if kind == "fit":
         pathlib.Path.write_text = full
         matplotlib.figure.Figure.savefig = full
 else:
+    import warnings
     import contact
+    if sys.argv[6] == "st":  # read by SurfaceTopography: its import is not the reading
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                import SurfaceTopography
+        except ImportError:
+            pass
 def _status(key):
     for line in open("/proc/self/status"):
         if line.startswith(key + ":"):
@@ -245,23 +301,31 @@ try:
         status = main([path, "--bootstrap", "0", "--gof-resamples", "0", "--out", out])
         outcome = {0: "accepted", 2: "clear error", 1: "clear error (no fit)"}.get(status, f"status {status}")
     else:
-        contact.read(path, dx=1e-6 if path.endswith(".npy") else None)
-        outcome = "accepted"
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            contact.read(path, dx=1e-6 if path.endswith(".npy") else None)
+        said = [w for w in caught if issubclass(w.category, contact.ContactWarning)]
+        outcome = "warned" if said else "accepted"
 except MemoryError:
     outcome = "blow-up (memory limit)"
 except Exception as exc:
     import contact.errors
-    if isinstance(exc, contact.errors.TopographyFileError):
+    text = str(exc)
+    if "\n" in text.strip():
+        outcome = f"crash: an error of {len(text.splitlines())} lines: " + text[:200]
+    elif isinstance(exc, contact.errors.TopographyFileError):
         outcome = "clear error"
+    elif type(exc) is ValueError and ("pass dx=" in text or "unit=" in text):
+        outcome = "clear error (asks for dx= or unit=)"
     else:
-        outcome = "crash: " + type(exc).__name__ + ": " + str(exc)[:200]
+        outcome = "crash: " + type(exc).__name__ + ": " + text[:200]
 after = _status("VmHWM")
 print(json.dumps({"outcome": outcome, "seconds": time.perf_counter() - t0,
                   "peak_mb": max(0, after - before) / 1024}))
 """
 
 API = r"""
-import json, warnings
+import json, re, sys, time, warnings
 import numpy as np, pandas as pd
 import contact, glstat
 from glstat.errors import FitError
@@ -323,6 +387,37 @@ calls = {
   "predict_maximum n 0.5": lambda: glstat.predict_maximum(x, n=0.5, n_resamples=10, rng=1),
   "predict_maximum n and count": lambda: glstat.predict_maximum(
       x, n=10, count=glstat.PoissonCount(10), n_resamples=10, rng=1),
+  "GLD moment 1000": lambda: glstat.GLD(0, 0.197451, 0.134912, 0.134912).moment(1000),
+}
+#: Refused, with a message that must match the pattern (the argument's name): (call, pattern).
+named = {
+  "GLD lambda2 1e-320 (infinite scale)": (lambda: glstat.GLD(0, 1e-320, 0.1, 0.1), "lambda2"),
+  "GLD shapes 1e308 (a point mass)": (lambda: glstat.GLD(0, 0.2, 1e308, 1e308), "lambda3"),
+  "GLD FKML shapes 1e308": (lambda: glstat.GLD(0, 1, 1e308, 1e308, "fkml"), "lambda3"),
+  "GLD lambda1 10**400": (lambda: glstat.GLD(10**400, 0.2, 0.1, 0.1), "lambda1"),
+  "GLD lambda2 '0.2'": (lambda: glstat.GLD(0, "0.2", 0.1, 0.1), "lambda2"),
+  "GLD lambda2 Decimal": (lambda: glstat.GLD(0, __import__("decimal").Decimal("0.2"), 0.1, 0.1),
+                          "lambda2"),
+  "GLD lambda1 pd.NA": (lambda: glstat.GLD(pd.NA, 0.2, 0.1, 0.1), "lambda1"),
+  "GLD moment 10**6": (lambda: glstat.GLD(0, 0.197451, 0.134912, 0.134912).moment(10**6), "order"),
+  "GLD moment 2.5": (lambda: glstat.GLD(0, 0.197451, 0.134912, 0.134912).moment(2.5), "order"),
+  "gld_rs moment 10**6": (lambda: glstat.gld_rs.moment(10**6, 0.134912, 0.134912), "order"),
+  "predict_maximum n 10**400": (lambda: glstat.predict_maximum(x, n=10**400, n_resamples=10),
+                                r"\bn\b"),
+  "predict_maximum n '10'": (lambda: glstat.predict_maximum(x, n="10", n_resamples=10), r"\bn\b"),
+  "predict_maximum threshold pd.NA": (lambda: glstat.predict_maximum(
+      x, n=10, threshold=pd.NA, n_resamples=10, rng=1), "threshold"),
+  "predict_maximum threshold complex": (lambda: glstat.predict_maximum(
+      x, n=10, threshold=1j, n_resamples=10, rng=1), "threshold"),
+  "predict_maximum threshold array": (lambda: glstat.predict_maximum(
+      x, n=10, threshold=np.array([1.0, 2.0]), n_resamples=10, rng=1), "threshold"),
+  "predict_maximum threshold '5'": (lambda: glstat.predict_maximum(
+      x, n=10, threshold="5", n_resamples=10, rng=1), "threshold"),
+  "fit Series of text": (lambda: glstat.fit(pd.Series([str(v) for v in x])), "text"),
+  "fit x * 1e307 (overflow)": (lambda: glstat.fit(x * 1e307), "1e\\+300"),
+  "fit x * 1e-310 (subnormal)": (lambda: glstat.fit(x * 1e-310), "subnormal"),
+  "Surface object array of text": (lambda: contact.Surface(h.astype(str).astype(object), 1e-6),
+                                   "text"),
 }
 #: Valid but implausible for their unit: accepted with a warning that says so.
 warned = {
@@ -334,6 +429,9 @@ warned = {
   "CampaignSettings length 1 m": lambda: CampaignSettings(length=1.0),
   "solve_bem load 20 Pa": lambda: contact.solve_bem(s, 20.0, 210e9, 0.3),
   "weierstrass rq 1.6 m": lambda: contact.weierstrass((16, 16), 1e-3, 0.5, rq=1.6),
+  "Surface dx 1e300 m": lambda: contact.Surface(h, 1e300),
+  "Surface dx 2147483648 m": lambda: contact.Surface(h, 2147483648.0),
+  "Surface dx 1e-13 m": lambda: contact.Surface(h * 1e-9, 1e-13),
 }
 clear = (TypeError, ValueError, FitError, FileNotFoundError)
 out = {}
@@ -348,16 +446,26 @@ for name, call in warned.items():
     said = [w for w in caught if issubclass(w.category, (UserWarning, DeprecationWarning))]
     out[name] = "warned" if said else "silent: accepted without a warning"
 warnings.simplefilter("ignore")
-for name, call in calls.items():
+for name, call in [*calls.items(), *named.items()]:
+    call, pattern = call if isinstance(call, tuple) else (call, None)
+    t0 = time.perf_counter()
     try:
         call()
-        out[name] = "accepted"
+        out[name] = "accepted" if pattern is None else "silent: accepted, expected a refusal"
     except clear as exc:
-        out[name] = "clear error" if str(exc).strip() else "crash: empty message"
+        text = str(exc).strip()
+        if not text or "\n" in text:
+            out[name] = "crash: " + ("empty message" if not text else "a message of several lines")
+        elif pattern is not None and not re.search(pattern, text):
+            out[name] = f"unclear error: does not name {pattern!r}: " + text[:120]
+        else:
+            out[name] = "clear error"
     except MemoryError:
         out[name] = "blow-up (memory)"
     except Exception as exc:
         out[name] = "crash: " + type(exc).__name__ + ": " + str(exc)[:120]
+    if time.perf_counter() - t0 > float(sys.argv[1]) and not out[name].startswith("blow-up"):
+        out[name] = f"blow-up: {time.perf_counter() - t0:.1f} s: " + out[name]
 print(json.dumps(out))
 """
 
@@ -365,6 +473,9 @@ print(json.dumps(out))
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--keep", help="write the corpus to this folder and keep it")
+    p.add_argument("--examples", default=os.environ.get("TOPOGRAPHY_EXAMPLES"),
+                   help="a folder of real instrument files (SurfaceTopography's "
+                        "test/file_format_examples) to mutate; default $TOPOGRAPHY_EXAMPLES")
     p.add_argument("--max-mb", type=float, default=200.0, help="peak memory counted as a blow-up")
     p.add_argument("--max-seconds", type=float, default=10.0, help="time counted as a blow-up")
     p.add_argument("--hang-seconds", type=float, default=120.0,
@@ -382,13 +493,18 @@ def main(argv: list[str] | None = None) -> int:
         d = Path(tmp.name)
     rows = []
     env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
-    for kind, cases in (("contact", contact_corpus(d)), ("fit", fit_corpus(d))):
+    examples = Path(args.examples) if args.examples else None
+    from contact.io import FORMATS
+
+    for kind, cases in (("contact", contact_corpus(d, examples)), ("fit", fit_corpus(d))):
         for name, path, expected in cases:
+            st = "st" if kind == "contact" and path.suffix.lower() not in FORMATS else "-"
             try:
                 proc = subprocess.run([sys.executable, "-c", CHILD, str(path), kind,
-                                       str(d / "out" / name), str(args.cap_mb * 2**20), expected],
+                                       str(d / "out" / name), str(args.cap_mb * 2**20), expected,
+                                       st],
                                       capture_output=True, text=True, timeout=args.hang_seconds,
-                                      cwd=ROOT, env=env)
+                                      cwd=ROOT, env=env, errors="replace")
             except subprocess.TimeoutExpired:
                 got = {"outcome": f"hang: no answer within {args.hang_seconds:.0f} s",
                        "seconds": args.hang_seconds, "peak_mb": float("nan")}
@@ -403,27 +519,33 @@ def main(argv: list[str] | None = None) -> int:
                 lines = [ln for ln in proc.stderr.splitlines() if ln.startswith("glstat fit: error")]
                 if got["outcome"].startswith("clear error") and kind == "fit" and len(lines) != 1:
                     got["outcome"] = f"crash: {len(lines)} error lines on stderr"
-                if got["outcome"] == "accepted" and expected != "accepted":
-                    got["outcome"] = "silent: accepted, expected a refusal"
+                if kind == "contact" and len(proc.stderr) > 4096:
+                    got["outcome"] = f"crash: {len(proc.stderr)} bytes on stderr"
+                got["stderr_bytes"] = len(proc.stderr)
+                got["outcome"] = _judged(got["outcome"], expected)
             if got["peak_mb"] > args.max_mb or got["seconds"] > args.max_seconds:
                 if not got["outcome"].startswith("hang"):
                     got["outcome"] = "blow-up: " + got["outcome"]
             rows.append({"kind": kind, "name": name, "expected": expected, **got})
             print(f"{kind:8s} {name:32s} {got['outcome'][:60]:60s} {got['seconds']:6.2f} s "
                   f"{got['peak_mb']:8.1f} MB", flush=True)
-    api = subprocess.run([sys.executable, "-c", API], capture_output=True, text=True, timeout=600,
-                         cwd=ROOT)
+    api = subprocess.run([sys.executable, "-c", API, str(args.max_seconds)], capture_output=True,
+                         text=True, timeout=600, cwd=ROOT)
     calls = json.loads(api.stdout.strip().splitlines()[-1])
     for name, outcome in calls.items():
         print(f"api      {name:32s} {outcome[:60]}")
     outcomes = [r["outcome"] for r in rows] + list(calls.values())
     wrong_accept = [r["name"] for r in rows if r["outcome"].startswith("silent")]
-    wrong_refuse = [r["name"] for r in rows if r["expected"] == "accepted" and r["outcome"] != "accepted"]
+    wrong_refuse = [r["name"] for r in rows if r["expected"] in ("accepted", "warned")
+                    and r["outcome"] not in ("accepted", "warned")
+                    and not r["outcome"].startswith("silent")]
     total = {
         "files": len(rows), "api calls": len(calls),
         "clear errors": sum(o.startswith("clear error") for o in outcomes),
         "accepted": sum(o == "accepted" for o in outcomes),
         "warned (valid but implausible for its unit)": sum(o == "warned" for o in outcomes),
+        "unclear errors (refused without naming the argument)":
+            sum(o.startswith("unclear") for o in outcomes),
         "crashes": sum(o.startswith("crash") for o in outcomes),
         "blow-ups": sum(o.startswith("blow-up") for o in outcomes),
         "hangs": sum(o.startswith("hang") for o in outcomes),
@@ -442,7 +564,7 @@ def main(argv: list[str] | None = None) -> int:
     out = ROOT / "benchmarks" / "results" / "hostile_inputs.json"
     out.write_text(json.dumps({"totals": total, "cases": rows, "api": calls}, indent=1) + "\n")
     print(f"wrote {out.relative_to(ROOT)}")
-    silent_calls = [n for n, o in calls.items() if o.startswith("silent")]
+    silent_calls = [n for n, o in calls.items() if o.startswith(("silent", "unclear"))]
     return 1 if (total["crashes"] or total["blow-ups"] or total["hangs"] or wrong_accept
                  or wrong_refuse or silent_calls) else 0
 

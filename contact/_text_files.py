@@ -207,7 +207,8 @@ def _first_row(body: str, delimiter: str | None, lineno: int, fname: str) -> Non
         ) from None
 
 
-def read_text(path: os.PathLike, fname: str, unit: str | None = None) -> Stored:
+def read_text(path: os.PathLike, fname: str, unit: str | None = None,
+              given: tuple[float | None, float | None] = (None, None)) -> Stored:
     """Heights and spacing of a text map, ``#`` starting a comment, values split by blanks
     (commas in ``.csv`` files).
 
@@ -230,6 +231,9 @@ def read_text(path: os.PathLike, fname: str, unit: str | None = None) -> Stored:
     unit : str, optional
         Canonical length unit (``m``, ``mm``, ``µm``, ``nm``, ``pm``, ``Å``) of the numbers
         the file states no unit for.
+    given : tuple of float or None
+        The caller's ``dx``, ``dy`` (m): a Gwyddion header stating one size but not the
+        other is refused unless the caller gives the missing spacing.
 
     Returns
     -------
@@ -243,10 +247,11 @@ def read_text(path: os.PathLike, fname: str, unit: str | None = None) -> Stored:
     ------
     NotOwnText
         A layout this reader does not know: a first data line that is not numbers (an
-        unknown header), no data rows, heights that are not lengths, several data blocks.
+        unknown header), no data rows, several data blocks, fewer than 3 columns.
     TopographyFileError
-        An unreadable file, rows of different lengths, a non-number among the rows, a bad
-        spacing line, fewer rows than the header declares.
+        An unreadable file, ragged rows, a non-number among the rows, a bad spacing line,
+        fewer rows than declared; in an export header a bad size or conversion factor,
+        heights that are not lengths, a missing width or height (final: no other reader).
     ValueError
         An XYZ list or an export that states no unit, without ``unit``; a ``unit`` that
         contradicts the file's.
@@ -297,7 +302,7 @@ def read_text(path: os.PathLike, fname: str, unit: str | None = None) -> Stored:
                 f"header (line {foreign.lines[0]}); keep one kind"
             )
         h = h.T  # one line per y: the values of a line run along x
-        dx, dy, scale = foreign.resolve(h.shape, unit, fname)
+        dx, dy, scale = foreign.resolve(h.shape, unit, fname, given)
     elif not own_lines and h.shape[1] == 3 and (grid := _complete_grid(h, fname)) is not None:
         if unit is None:
             raise missing_unit(fname)

@@ -51,6 +51,9 @@ _DATA_UNIT = re.compile(rf"{_LEAD}data\s+unit\s*=\s*(?P<unit>\S+)\s*$", re.IGNOR
 _FACTOR = re.compile(rf"{_LEAD}height\s+conversion\s+factor\s*\(\s*->\s*(?P<unit>[^)]*?)\s*\)"
                      rf"\s*=\s*(?P<number>{_NUMBER})\s*$", re.IGNORECASE)
 _WIDTH_KEY = re.compile(rf"^(?:{_WIDTH})$", re.IGNORECASE)
+#: Smallest magnitude of a size, spacing or height conversion factor: a normal double with
+#: room for the data (a factor below it leaves the heights zero or subnormal).
+_SMALLEST_FACTOR = 1e-200
 
 
 @dataclass
@@ -92,8 +95,9 @@ class ForeignHeader:
 
         Raises
         ------
-        NotOwnText
-            A size, spacing or factor that is not a positive finite number.
+        TopographyFileError
+            A size, spacing or factor that is not a finite number of magnitude 1e-200 or
+            more (a known header with a bad value: final, not another program's layout).
         """
         if (m := _SIZE.match(line)) is not None:
             number = _positive(m.group("number"), line, lineno, fname)
@@ -119,9 +123,11 @@ class ForeignHeader:
             self.matrix = True
         elif (m := _FACTOR.match(line)) is not None:
             number = float(m.group("number"))
-            if not (math.isfinite(number) and number != 0):
-                raise NotOwnText(f"{fname}: line {lineno}: height conversion factor "
-                                 f"{m.group('number')} is not a finite non-zero number")
+            if not (math.isfinite(number) and abs(number) >= _SMALLEST_FACTOR):
+                raise TopographyFileError(
+                    f"{fname}: line {lineno}: height conversion factor {m.group('number')} is "
+                    f"not a finite number of magnitude {_SMALLEST_FACTOR:g} or more (the heights "
+                    "would be zero or subnormal); write the factor of the instrument")
             self.factor = (number, m.group("unit"))
             self.matrix = True
         else:
@@ -129,7 +135,8 @@ class ForeignHeader:
         self.lines.append(lineno)
         return True
 
-    def resolve(self, shape: tuple[int, int], unit: str | None, fname: str
+    def resolve(self, shape: tuple[int, int], unit: str | None, fname: str,
+                given: tuple[float | None, float | None] = (None, None)
                 ) -> tuple[float | None, float | None, float]:
         """Spacing and height scale, in metres, of a map of ``shape`` = (nx, ny).
 
@@ -141,6 +148,8 @@ class ForeignHeader:
             The caller's unit (canonical) for what the file states no unit for.
         fname : str
             The file's name, for messages.
+        given : tuple of float or None
+            The caller's ``dx``, ``dy`` (m), which stand in for a size the header lacks.
 
         Returns
         -------
@@ -151,9 +160,10 @@ class ForeignHeader:
 
         Raises
         ------
-        NotOwnText
+        TopographyFileError
             Heights that are not lengths (a phase or voltage channel), an unknown lateral
-            unit, or a grid count that does not match the data.
+            unit, a grid count that does not match the data, or a Gwyddion header stating
+            one size (width or height) but not the other, which ``given`` does not supply.
         ValueError
             No unit stated and none given, or ``unit`` contradicts the stated one.
         """
@@ -183,25 +193,42 @@ class ForeignHeader:
             dx = length(self.width[0], self.width[1]) / nx
         if self.height is not None:
             dy = length(self.height[0], self.height[1]) / ny
+        if self.pixel is None:
+            self._check_both_sizes(dx, dy, given, fname)
         if dx is not None and dy is None:
             dy = dx
         if dy is not None and dx is None:
             dx = dy
         return dx, dy, scale
 
+    def _check_both_sizes(self, dx: float | None, dy: float | None,
+                          given: tuple[float | None, float | None], fname: str) -> None:
+        """Refuse a header stating the width but not the height, or the reverse, unless the
+        caller gives the missing spacing: square pixels are not assumed silently."""
+        if self.height is not None and self.width is None and given[0] is None:
+            raise TopographyFileError(
+                f"{fname}: its header states the height (line {self.height[2]}) but no width "
+                f"(the size along x); pass dx= (the x spacing in metres; dx={dy:.6g} for "
+                "square pixels, as dy)")
+        if self.width is not None and self.height is None and given[1] is None:
+            raise TopographyFileError(
+                f"{fname}: its header states the width (line {self.width[2]}) but no height "
+                f"(the size along y); pass dy= (the y spacing in metres; dy={dx:.6g} for "
+                "square pixels, as dx)")
+
     def _height_unit(self, fname: str) -> str | None:
         """The canonical unit of the heights as the header states it; None when unstated."""
         if self.factor is not None:
             target = unit_name(self.factor[1])
             if target is None:
-                raise NotOwnText(f"{fname}: its height conversion factor converts to "
-                                 f"{self.factor[1]!r}, not to a length unit")
+                raise TopographyFileError(f"{fname}: its height conversion factor converts to "
+                                          f"{self.factor[1]!r}, not to a length unit")
             return target
         if self.value_unit is None:
             return None
         name = unit_name(self.value_unit)
         if name is None:
-            raise NotOwnText(
+            raise TopographyFileError(
                 f"{fname}: its values are in {self.value_unit!r}, not a length: not a height "
                 "map (a phase, current or voltage channel?)"
             )
@@ -210,9 +237,9 @@ class ForeignHeader:
 
 def _positive(text: str, line: str, lineno: int, fname: str) -> float:
     number = float(text)
-    if not (math.isfinite(number) and number > 0):
-        raise NotOwnText(f"{fname}: line {lineno}: {line.strip()!r} is not a positive finite "
-                         "size")
+    if not (math.isfinite(number) and number >= _SMALLEST_FACTOR):
+        raise TopographyFileError(f"{fname}: line {lineno}: {line.strip()!r} is not a positive "
+                                  f"finite size of {_SMALLEST_FACTOR:g} or more")
     return number
 
 
@@ -222,6 +249,6 @@ def _lateral_unit(written: str | None, fname: str) -> str | None:
         return None
     name = unit_name(written)
     if name is None:
-        raise NotOwnText(f"{fname}: unknown lateral unit {written!r}; expected one of m, mm, "
-                         "µm, nm, pm, Å")
+        raise TopographyFileError(f"{fname}: unknown lateral unit {written!r}; expected one of "
+                                  "m, mm, µm, nm, pm, Å")
     return name

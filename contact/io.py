@@ -31,12 +31,15 @@ raises :class:`~contact.errors.TopographyFileError` and returns nothing.
 
 from __future__ import annotations
 
+import contextlib
+import logging
 import math
 import os
+import re
 import struct
 import warnings
 import zlib
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import numpy as np
@@ -96,8 +99,12 @@ def _surface(heights: np.ndarray, dx: float, dy: float, mask: np.ndarray | None,
 
 
 def _import_surfacetopography(fname: str):
+    """SurfaceTopography, imported without its import-time notes (NuMPI's fallback to an MPI
+    stub warns when mpi4py is absent, which does not concern a serial reading)."""
     try:
-        import SurfaceTopography
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            import SurfaceTopography
     except ImportError as exc:
         raise ImportError(
             f"reading '{Path(fname).suffix}' files needs the optional package "
@@ -152,6 +159,66 @@ def _mat5_declared_points(path: Path) -> int:
         return most
 
 
+#: Loggers of SurfaceTopography and of the libraries its readers use, silenced while it reads
+#: a file (igor2 logs the raw bytes of a damaged file at ERROR level); loggers named by a
+#: path inside SurfaceTopography are silenced too.
+QUIET_LOGGERS = ("SurfaceTopography", "igor2", "NuMPI", "PIL", "h5py", "olefile", "openpyxl")
+
+
+@contextlib.contextmanager
+def _quiet_loggers() -> Iterator[None]:
+    """Keep the records of :data:`QUIET_LOGGERS` from the terminal while SurfaceTopography
+    reads: each gets a handler that drops them and stops propagating; both are undone on
+    exit, so the process's logging is as before (a handler the caller put on one of these
+    loggers still receives its records)."""
+    names = set(QUIET_LOGGERS) | {
+        name for name, logger in list(logging.root.manager.loggerDict.items())
+        if "SurfaceTopography" in name and isinstance(logger, logging.Logger)}
+    sink = logging.NullHandler()
+    saved = []
+    for name in sorted(names):
+        logger = logging.getLogger(name)
+        saved.append((logger, logger.propagate))
+        logger.addHandler(sink)
+        logger.propagate = False
+    try:
+        yield
+    finally:
+        for logger, propagate in saved:
+            logger.removeHandler(sink)
+            logger.propagate = propagate
+
+
+def _st_refusal(exc: BaseException, path: Path, st, reader=None) -> str:
+    """One line saying why SurfaceTopography cannot read ``path``: the message of ``reader``
+    (the reader that opened the file), else that of its reader for the file's extension
+    from the list of every reader it tried."""
+    if reader is not None:
+        if isinstance(exc, IndexError) and not getattr(reader, "channels", None):
+            return f"its {type(reader).__name__} finds no data channel in it (truncated or damaged?)"
+        return f"its {type(reader).__name__} says: {_short(exc)}"
+    tried = dict(re.findall(r"tried (\w+): \n (.*?)(?:\n\n|$)", str(exc), re.S))
+    if not tried:
+        return _short(exc)
+    suffix = path.suffix.lower().lstrip(".")
+    own = []
+    for candidate in getattr(getattr(st, "IO", None), "readers", ()):
+        name = candidate.__name__
+        try:
+            extensions = candidate.file_extensions() or ()
+        except Exception:  # a reader without typical extensions
+            extensions = ()
+        if suffix in extensions or name.lower().removesuffix("reader") == suffix:
+            own.append(name)
+    for name in own:
+        if name in tried:
+            return f"its {name} says: {_short(tried[name])}"
+    if own:
+        return (f"its {own[0]} does not recognise the first bytes (not a .{suffix} file, or "
+                f"damaged at its start); none of the {len(tried)} other readers it tried reads it")
+    return f"none of the {len(tried)} readers it tried recognises the file"
+
+
 def _read_surfacetopography(path: Path, fname: str, unit: str | None = None,
                             spacing: Spacing = (None, None)) -> Stored:
     """Heights and spacing, in metres, of a 2-D map that SurfaceTopography reads.
@@ -161,16 +228,21 @@ def _read_surfacetopography(path: Path, fname: str, unit: str | None = None,
     file that stores none.
     """
     st = _import_surfacetopography(fname)
+    if path.stat().st_size == 0:
+        raise TopographyFileError(f"{fname}: the file is empty")
     try:
         declared = _mat5_declared_points(path)
     except (OSError, struct.error, zlib.error):
         declared = 0  # not a MATLAB file SurfaceTopography reads: its reader says why
     check_declared_heights(declared, path.stat().st_size, fname, "a variable of the file")
+    reader = None
     try:
-        reader = st.open_topography(fname)
-        channel = reader.default_channel
+        with _quiet_loggers():
+            reader = st.open_topography(fname)
+            channel = reader.default_channel
     except Exception as exc:  # the reader's own exception types vary by format
-        raise TopographyFileError(f"{fname}: SurfaceTopography cannot read it: {exc}") from None
+        raise TopographyFileError(f"{fname}: SurfaceTopography cannot read it: "
+                                  f"{_st_refusal(exc, path, st, reader)}") from None
     if channel.dim != 2:
         raise TopographyFileError(f"{fname}: holds a line profile (1-D); need an areal map")
     if channel.nb_grid_pts is not None:  # what the file declares, before any height is read
@@ -194,9 +266,11 @@ def _read_surfacetopography(path: Path, fname: str, unit: str | None = None,
         (nx, ny), dy = channel.nb_grid_pts, dx if dy is None else dy
         sizes = (nx * dx / per_unit, ny * dy / per_unit)
     try:
-        topo = reader.topography(unit=unit if stated is None else None, physical_sizes=sizes)
+        with _quiet_loggers():
+            topo = reader.topography(unit=unit if stated is None else None, physical_sizes=sizes)
     except Exception as exc:  # the reader's own exception types vary by format
-        raise TopographyFileError(f"{fname}: SurfaceTopography cannot read it: {exc}") from None
+        raise TopographyFileError(f"{fname}: SurfaceTopography cannot read it: "
+                                  f"{_st_refusal(exc, path, st, reader)}") from None
     finally:
         close = getattr(reader, "close", None)
         if callable(close):
@@ -221,7 +295,7 @@ def _read_text_or_other(path: Path, fname: str, unit: str | None,
     """A text file: the built-in reader, else (for a layout it does not know, in a file of
     at most :data:`TEXT_FALLBACK_MAX_BYTES`) SurfaceTopography's reading of a 2-D map."""
     try:
-        return read_text(path, fname, unit)
+        return read_text(path, fname, unit, spacing)
     except NotOwnText as own:
         refusal = TopographyFileError(str(own))
         size = path.stat().st_size

@@ -40,10 +40,17 @@ class Surface:
     Raises
     ------
     TypeError
-        Heights that are not real numbers: complex, dates, strings, booleans, or objects
-        such as ``None`` or ``pandas.NA`` (mask those points instead).
+        Heights that are not real numbers: complex, dates, strings (also in object
+        arrays), booleans, or objects such as ``None`` or ``pandas.NA`` (mask those points
+        instead).
     ValueError
         Wrong shape, NaN or inf outside the mask, or a bad spacing.
+
+    Warns
+    -----
+    contact.ContactWarning
+        Values that are valid but implausible in metres: a spacing of more than a
+        kilometre or below a picometre, or heights whose RMS exceeds the surface's side.
 
     Notes
     -----
@@ -69,7 +76,7 @@ class Surface:
         self.dx = dx
         self.dy = dy
         self.mask = mask
-        _warn_if_implausible(h if mask is None else h[valid], (h.shape[0] * dx, h.shape[1] * dy))
+        _warn_if_implausible(h if mask is None else h[valid], (dx, dy), h.shape)
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -417,11 +424,19 @@ def require_surface(obj) -> Surface:
     return obj
 
 
-def _warn_if_implausible(heights: np.ndarray, size: tuple[float, float]) -> None:
+def _warn_if_implausible(heights: np.ndarray, spacing: tuple[float, float],
+                         shape: tuple[int, int]) -> None:
     """Warn when the heights' RMS exceeds the surface's shorter side (heights and spacing in
-    different units)."""
-    from _glstat_runtime.validation import implausible_height_scale, warn_at_caller
+    different units), or when the spacing is implausible in metres (a kilometre or more, or
+    below a picometre: a pixel count or another unit given as metres)."""
+    from _glstat_runtime.validation import (
+        implausible_height_scale,
+        implausible_spacing,
+        warn_at_caller,
+    )
 
-    note = implausible_height_scale(float(np.std(heights)), min(size))
+    size = (shape[0] * spacing[0], shape[1] * spacing[1])
+    note = implausible_spacing(*spacing, size) or implausible_height_scale(
+        float(np.std(heights)), min(size))
     if note:
         warn_at_caller(note)

@@ -71,21 +71,35 @@ MAX_XML_BYTES = 64 * 2**20
 
 
 def _info(archive: zipfile.ZipFile, name: str, fname: str) -> zipfile.ZipInfo:
-    names = {n.lower().lstrip("/"): n for n in archive.namelist()}
-    key = name.replace("\\", "/").lower().lstrip("/")
-    if key not in names:
-        if key == "main.xml":
-            raise TopographyFileError(
-                f"{fname}: not a valid X3P file: the archive lacks 'main.xml', the "
-                "description every X3P file starts with"
-            )
-        raise TopographyFileError(f"{fname}: the archive lacks {name!r} (listed in main.xml)")
-    return archive.getinfo(names[key])
+    """The member ``name`` as main.xml names it: the member of exactly that name, else the one
+    member whose name differs only in case (files written on case-insensitive systems); two
+    members of one name, or several case-folded twins and no exact one, are refused."""
+    key = name.replace("\\", "/").lstrip("/")
+    infos = archive.infolist()
+    exact = [i for i in infos if i.filename.replace("\\", "/").lstrip("/") == key]
+    folded = [i for i in infos if i.filename.replace("\\", "/").lstrip("/").lower() == key.lower()]
+    found = exact or folded
+    if len(found) == 1:
+        return found[0]
+    if exact:
+        raise TopographyFileError(f"{fname}: the archive holds {len(exact)} members named {name!r}; "
+                                  "keep one")
+    if folded:
+        raise TopographyFileError(
+            f"{fname}: the archive lacks {name!r} (listed in main.xml) but holds {len(folded)} "
+            f"members differing from it only in case ({', '.join(i.filename for i in folded)}); "
+            "keep one")
+    if key.lower() == "main.xml":
+        raise TopographyFileError(
+            f"{fname}: not a valid X3P file: the archive lacks 'main.xml', the "
+            "description every X3P file starts with"
+        )
+    raise TopographyFileError(f"{fname}: the archive lacks {name!r} (listed in main.xml)")
 
 
 def _member(archive: zipfile.ZipFile, name: str, fname: str, limit: int,
             exact: int | None = None, size_error: str | None = None) -> bytearray:
-    """Member ``name`` (case-insensitive), checked by :func:`check_zip_member` and read with
+    """Member ``name`` (see :func:`_info`), checked by :func:`check_zip_member` and read with
     a cap of ``limit`` bytes (``exact``: the size it must have; ``size_error``: the message
     when it has another)."""
     info = _info(archive, name, fname)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import functools
 import io
+import re
 import struct
 import zipfile
 import zlib
@@ -428,3 +429,140 @@ def parquet_nested(folder: Path, kind: str) -> Path:
     path = folder / f"{kind}.parquet"
     pq.write_table(table, path)
     return path
+
+
+# ---------------------------------------------------------------------------------------------
+# text exports of other programs with bad header values, X3P archives with twin members
+# ---------------------------------------------------------------------------------------------
+def matrix_export(folder: Path, factor: str = "6.3e-8", pixel: str = "3.7e-7 m",
+                  name: str = "matrix.txt") -> Path:
+    """A matrix export (``h= w=``, ``pixel size=``, ``height conversion factor``) of 5 lines
+    of 6 values, with the factor and the pixel size as written."""
+    values = np.random.default_rng(5).normal(size=(5, 6)).round(6)
+    head = ["h=5 w=6", f"pixel size={pixel}", "data unit=rad",
+            f"height conversion factor (-> m)={factor}"]
+    path = folder / name
+    path.write_text("\n".join(head + [" ".join(f"{v:f}" for v in row) for row in values]) + "\n")
+    return path
+
+
+def gwyddion_export(folder: Path, width: str | None = "12 µm", height: str | None = "5 µm",
+                    name: str = "gwyddion.txt") -> Path:
+    """A Gwyddion text export of 4 lines of 3 heights (nm) whose header states the width and
+    the height given (None: the line is left out)."""
+    lines = ["# Channel: Topography"]
+    lines += [f"# Width: {width}"] if width is not None else []
+    lines += [f"# Height: {height}"] if height is not None else []
+    lines += ["# Value units: nm"]
+    values = np.random.default_rng(6).normal(size=(4, 3)).round(6)
+    path = folder / name
+    path.write_text("\n".join(lines + ["\t".join(repr(float(v)) for v in row) for row in values])
+                    + "\n")
+    return path
+
+
+def x3p_twins(folder: Path, names: tuple[str, ...], name: str = "twins.x3p") -> Path:
+    """An X3P of 3 x 3 points whose main.xml links 'bindata/data.bin' and whose archive holds
+    one data member under each of ``names`` (in this order): member k holds the heights
+    ``k + arange(9)`` micrometres, so the member read is known from its heights."""
+    xml = x3p_xml(3, 3)
+    path = folder / name
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("main.xml", xml)
+        for k, member in enumerate(names):
+            z.writestr(member, ((k + np.arange(9.0)) * 1e-6).tobytes())
+    return path
+
+
+# ---------------------------------------------------------------------------------------------
+# mutants of real instrument files (a folder such as SurfaceTopography's file_format_examples)
+# ---------------------------------------------------------------------------------------------
+#: Real files mutated, when present in the folder given: read by SurfaceTopography (.di,
+#: .opd, .plu, .sur) or by this package (MetroPro .dat, .x3p, matrix and Gwyddion exports).
+INSTRUMENT_FILES = ("di-1.di", "di-2.di", "opd-1.opd", "plu-1.plu", "sur-2.sur", "sur-3.sur",
+                    "metropro-1.dat", "x3p-2.x3p", "matrix-2.txt", "matrix-3.txt",
+                    "gwyddion-export-english.txt")
+
+
+def _flip(blob: bytes, start: int, count: int) -> bytes:
+    data = bytearray(blob)
+    for k in range(start, min(start + count, len(data))):
+        data[k] ^= 0xFF
+    return bytes(data)
+
+
+def _x3p_resized(blob: bytes) -> bytes:
+    """The X3P ``blob`` with main.xml declaring twice its SizeX."""
+    out = io.BytesIO()
+    with zipfile.ZipFile(io.BytesIO(blob)) as src, zipfile.ZipFile(out, "w") as dst:
+        for info in src.infolist():
+            data = src.read(info)
+            if info.filename.lower() == "main.xml":
+                data = re.sub(rb"<SizeX>(\d+)</SizeX>",
+                              lambda m: b"<SizeX>%d</SizeX>" % (2 * int(m.group(1))), data)
+            dst.writestr(info.filename, data)
+    return out.getvalue()
+
+
+def _header_mutants(name: str, blob: bytes) -> list[tuple[str, bytes, str]]:
+    """Mutants of a header field of the formats whose header this package reads."""
+    if name.startswith("metropro"):
+        huge = bytearray(blob)
+        struct.pack_into(">H", huge, 68, 65535)  # cn_width: the phase map's width
+        return [("width_65535", bytes(huge), "refused")]
+    if name.endswith(".x3p"):
+        return [("sizex_doubled", _x3p_resized(blob), "refused")]
+    if name.startswith("matrix"):
+        text = blob.decode("latin-1")
+        out = []
+        for label, old, new, expected in (
+                ("h_plus_1", r"h=(\d+)", lambda m: f"h={int(m.group(1)) + 1}", "refused"),
+                ("factor_0", r"(conversion factor[^=]*=)\s*\S+", lambda m: m.group(1) + "0",
+                 "refused"),
+                ("factor_1e-320", r"(conversion factor[^=]*=)\s*\S+",
+                 lambda m: m.group(1) + "1e-320", "refused"),
+                ("pixel_2147483648_m", r"(pixel size=)\s*\S+", lambda m: m.group(1) + "2147483648",
+                 "warned")):
+            mutated, n = re.subn(old, new, text, count=1, flags=re.IGNORECASE)
+            if n:
+                out.append((label, mutated.encode("latin-1"), expected))
+        return out
+    if name.startswith("gwyddion"):
+        text = blob.decode("utf-8")
+        kept = "\n".join(ln for ln in text.splitlines() if not ln.startswith("# Width"))
+        return [("without_width", (kept + "\n").encode(), "refused")]
+    return []
+
+
+def instrument_mutants(examples: Path, folder: Path) -> list[tuple[str, Path, str]]:
+    """(name, file, expected) for every file of :data:`INSTRUMENT_FILES` in ``examples``: the
+    file itself ("accepted", "warned" for the Gwyddion example of unit-free heights), its
+    truncations ("refused"; "any" for a text file cut at a line's end, and for the last byte
+    of formats that may end in padding), byte flips in the header and in the data ("any": a
+    reader may not see them, but must neither crash nor flood stderr) and header fields made
+    inconsistent (see :func:`_header_mutants`)."""
+    out = []
+    sub = folder / "instruments"
+    sub.mkdir(exist_ok=True)
+    for name in INSTRUMENT_FILES:
+        source = examples / name
+        if not source.is_file() or source.stat().st_size == 0:
+            continue
+        blob = source.read_bytes()
+        stem, ext = name.rsplit(".", 1)
+        binary = ext not in ("txt",)
+        own = ext in ("dat", "x3p")  # formats whose size this package checks exactly
+        cases = [("valid", blob, "warned" if name.startswith("gwyddion") else "accepted"),
+                 ("half", blob[: len(blob) // 2], "refused" if binary else "any"),
+                 # .opd and .plu files end in padding: SurfaceTopography reads them without it
+                 ("last_byte_missing", blob[:-1], "refused" if own else "any"),
+                 ("header_flipped", _flip(blob, 16, 32), "any"),
+                 ("data_flipped", _flip(blob, len(blob) // 2, 64), "any")]
+        if len(blob) > 4096:
+            cases.append(("first_300_bytes", blob[:300], "refused"))
+        cases += _header_mutants(name, blob)
+        for label, data, expected in cases:
+            path = sub / f"{stem}-{label}.{ext}"
+            path.write_bytes(data)
+            out.append((f"{stem}_{label}", path, expected))
+    return out

@@ -302,3 +302,38 @@ def test_empty_text_file_is_a_file_error_not_a_unit_question(tmp_path, suffix):
     path.write_bytes(b"")
     with pytest.raises(TopographyFileError, match="holds no data rows"):
         contact.read(path)
+
+
+# ---------------------------------------------------------------------------------------------
+# mutants of real instrument files: TOPOGRAPHY_EXAMPLES may name a copy of SurfaceTopography's
+# test/file_format_examples
+# ---------------------------------------------------------------------------------------------
+EXAMPLES = Path(os.environ.get("TOPOGRAPHY_EXAMPLES", "/nonexistent"))
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not (EXAMPLES / "opd-1.opd").is_file(),
+                    reason="TOPOGRAPHY_EXAMPLES does not hold SurfaceTopography's example files")
+def test_mutants_of_real_instrument_files_are_read_or_refused_in_one_quiet_line(tmp_path, capfd):
+    """Truncations, flipped bytes and inconsistent header fields of real files: the expected
+    outcome (``hostile.instrument_mutants``), one line, under 4 kB of stderr each."""
+    import warnings
+
+    pytest.importorskip("SurfaceTopography", reason="several formats need SurfaceTopography")
+    cases = hostile.instrument_mutants(EXAMPLES, tmp_path)
+    assert len(cases) >= 30
+    for name, path, expected in cases:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                contact.read(path)
+                warned = any(issubclass(w.category, contact.ContactWarning) for w in caught)
+                outcome = "warned" if warned else "accepted"
+            except TopographyFileError as exc:
+                assert "\n" not in str(exc), (name, str(exc))
+                outcome = "refused"
+            except ValueError as exc:  # a file whose header no longer states its spacing
+                assert "pass dx=" in str(exc) and expected == "any", (name, str(exc))
+                outcome = "refused"
+        assert expected == "any" or outcome == expected, (name, outcome, expected)
+        assert len(capfd.readouterr().err) < 4096, name

@@ -157,6 +157,17 @@ def quoted(value: Any, limit: int = 200) -> str:
     return f"{shown}... ({len(value)} characters)"
 
 
+def one_line(exc: BaseException, limit: int = 160) -> str:
+    """``Type: message`` of a library's exception on one line: line breaks and other control
+    characters (a damaged file's bytes inside the message) become escapes or spaces, and a
+    long message is cut to about ``limit`` characters."""
+    text = " ".join(str(exc).split())
+    text = "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
+    if len(text) > limit:
+        text = text[:limit - 3] + "..."
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
 #: Columns named in a message at most.
 _LISTED = 20
 
@@ -408,7 +419,7 @@ def _open_text(path: Path, compressed: bool, read, errors: tuple = ()):
     except errors as exc:
         what = "decompressed" if compressed else "read"
         hint = "; the file is damaged or not compressed the way its name says" if compressed else ""
-        raise InputError(f"{path} could not be {what} ({type(exc).__name__}: {exc}){hint}") from None
+        raise InputError(f"{path} could not be {what} ({one_line(exc)}){hint}") from None
 
 
 def _read_delimited(path: Path, fmt: str, sep: str | None, decimal: str,
@@ -535,7 +546,8 @@ def _read_parquet(path: Path, column: str | None) -> pd.DataFrame:
         raise
     except (OSError, ValueError, MemoryError, IndexError, KeyError) as exc:
         # pyarrow's ArrowInvalid derives from ValueError, ArrowMemoryError from MemoryError
-        raise InputError(f"{path} could not be read as Parquet ({type(exc).__name__}: {exc})") from None
+        raise InputError(f"{path} could not be read as Parquet ({one_line(exc)}); the file is "
+                         "damaged or not Parquet: write it again, or save the column as CSV") from None
     df.columns = [str(c) for c in df.columns]
     return df
 
@@ -788,8 +800,9 @@ def _read_npy(path: Path) -> pd.DataFrame:
                 if zipfile.is_zipfile(path):
                     raise InputError(f"{path} is a .npz archive, not a .npy array; save one array "
                                      "with numpy.save") from None
-                raise InputError(f"{path} is not a NumPy .npy file ({exc}); give a file written by "
-                                 "numpy.save, or use a .csv or .txt name for text") from None
+                raise InputError(f"{path} is not a NumPy .npy file ({one_line(exc)}); give a file "
+                                 "written by numpy.save, or use a .csv or .txt name for text"
+                                 ) from None
             read_header = (np.lib.format.read_array_header_1_0 if version == (1, 0)
                            else np.lib.format.read_array_header_2_0)
             shape, _fortran, dtype = read_header(fh)
@@ -810,7 +823,7 @@ def _read_npy(path: Path) -> pd.DataFrame:
     except EOFError as exc:
         raise InputError(f"{path} is empty: it holds no array") from exc
     except (ValueError, OSError, MemoryError) as exc:
-        raise InputError(f"{path} is not a NumPy .npy file ({type(exc).__name__}: {exc}); give a file "
+        raise InputError(f"{path} is not a NumPy .npy file ({one_line(exc)}); give a file "
                          "written by numpy.save, or use a .csv or .txt name for text") from None
     if arr.dtype.names:
         sub = [n for n in arr.dtype.names if arr.dtype[n].shape != ()]

@@ -18,7 +18,8 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import special
+
+from _glstat_runtime.validation import check_order
 
 from .._core import moments, quantile_function
 from .gld import GLD
@@ -199,18 +200,10 @@ def _moment_scalar(fam: int, order: int, kind: str, l1: float, l2: float, a: flo
             return _nonexistent(order)
         c, mk = moments.scaled_central_moment(fam, a, b, order)
         return float((c / inv_scale) ** order * mk)
-    # raw: E[X^n] = sum_j C(n, j) mean^(n-j) mu_j from the central moments of X
+    # raw: E[X^n] directly (a sum over the central moments would cost O(n**3) and cancel)
     if order == 1:
         return l1 + _mean_std(fam, a, b) / inv_scale
-    if not moments.moment_exists(a, b, order):
-        return _nonexistent(order)
-    mean = l1 + float(moments.mean_std(fam, a, b)) / inv_scale
-    total = mean**order
-    for j in range(2, order + 1):
-        c, mk = moments.scaled_central_moment(fam, a, b, j)
-        total += (special.comb(order, j, exact=True) * mean ** (order - j)
-                  * (c / inv_scale) ** j * mk)
-    return float(total)
+    return float(moments.moment_about(fam, a, b, order, -l1 * inv_scale, -math.log(inv_scale)))
 
 
 def _rows(params: dict[str, Any]) -> tuple[np.ndarray, tuple[int, ...]]:
@@ -224,7 +217,7 @@ def _moment_array(fam: int, valid_rows: ValidRows, order, kind: str,
     order_arr = np.asarray(order)
     if order_arr.ndim or order_arr != np.round(order_arr) or order_arr < 0:
         return None
-    n = int(order_arr)
+    n = check_order(order_arr[()], moments.MAX_ORDER)
     rows, shape = _rows(params)
     out = np.full(rows.shape[0], np.nan)
     cache: dict[tuple[float, ...], float] = {}
@@ -362,6 +355,12 @@ def distribution_base(protocol: GLDProtocol) -> type:
                      lam3: ArrayLike | None = None, lam4: ArrayLike | None = None,
                      **kwargs: Any) -> None:
             super().__init__(lam1=lam1, lam2=lam2, lam3=lam3, lam4=lam4, **kwargs)
+
+        def moment(self, order=1, kind="raw", *, method=None):
+            """scipy's ``moment`` after the check of ``order``: a whole number from 0 to
+            1000 (``glstat._core.moments.MAX_ORDER``), refused before any work."""
+            check_order(order, moments.MAX_ORDER)
+            return super().moment(order, kind, method=method)
 
         def to_gld(self) -> GLD:
             """The same distribution as a frozen ``glstat.GLD(lam1, lam2, lam3, lam4, param)``

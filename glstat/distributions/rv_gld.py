@@ -8,10 +8,13 @@ its magnitude.
 
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
 from scipy.stats import rv_continuous
+
+from _glstat_runtime.validation import check_order
 
 from .._core import inverse_table, moments, quantile_function
 from .._core.arrays import writeable_input
@@ -160,6 +163,21 @@ class _GLDGen(rv_continuous):
         if shape == ():
             res = [r[()] for r in res]
         return tuple(res)
+
+    def moment(self, order, *args, **kwds):
+        """Raw moment of order ``order`` (a whole number from 0 to 1000, checked before any
+        work): computed directly for scalar parameters, through scipy's generic method
+        otherwise (see :meth:`glstat.GLD.moment`)."""
+        k = check_order(order, moments.MAX_ORDER)
+        shapes, loc, scale = self._parse_args(*args, **kwds)
+        values = [*shapes, loc, scale]
+        if k < 2 or any(np.ndim(v) for v in values):
+            return super().moment(k, *args, **kwds)
+        a, b, loc, scale = (float(v) for v in values)
+        if not (self._argcheck(a, b) and scale > 0 and math.isfinite(loc)):
+            return np.float64(np.nan)
+        return np.float64(moments.moment_about(self._family, a, b, k, -loc / scale,
+                                               math.log(scale)))
 
     def _munp(self, n, lam3, lam4):
         n, a, b = np.broadcast_arrays(np.asarray(n), np.asarray(lam3, float),

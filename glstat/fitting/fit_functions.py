@@ -14,7 +14,9 @@ import warnings
 
 import numpy as np
 
+from _glstat_runtime.validation import check_sample_scale as _check_sample_scale
 from _glstat_runtime.validation import check_trim as _check_trim
+from _glstat_runtime.validation import real_values as _real_values
 
 from .._fit_engine import kernels as K
 from .._fit_engine import sample_statistics as S
@@ -362,8 +364,13 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
         Fewer than 5 finite points, constant data, tied quantiles, or statistics out of
         reach (the message says which method or parameterisation reaches them).
     ValueError
-        Unknown ``method``, ``param``, ``nan_policy`` or option, or non-finite data with
-        ``nan_policy="raise"``.
+        Unknown ``method``, ``param``, ``nan_policy`` or option, non-finite data with
+        ``nan_policy="raise"``, or data beyond the range the fits compute with: a magnitude
+        above 1e300 (powers overflow) or only subnormal values (below 2.2e-308); the message
+        says how to rescale the data and the lambdas.
+    TypeError
+        Data that are not real numbers (complex, dates, booleans, text, also in object
+        arrays and pandas Series of text, ``None``, ``pandas.NA``).
 
     Examples
     --------
@@ -376,11 +383,25 @@ def fit(data, param: str = "rs", method: str = "moments", nan_policy: str = "rai
     >>> f.issues                        # nothing to warn about
     ()
     """
+    _check_values(data)
     f = as_gldfit(fit_sample(data, param, method, nan_policy, **options))
     if warn:
         _warn_if_table(data)
         _emit(f.issues, stacklevel=2)
     return f
+
+
+def _check_values(data) -> None:
+    """Refuse, before any work, data that are not real numbers (the messages of
+    :func:`_glstat_runtime.validation.real_values`) or whose finite values lie beyond the
+    range the fits compute with (:func:`_glstat_runtime.validation.check_sample_scale`)."""
+    from scipy.stats import CensoredData
+
+    if isinstance(data, CensoredData):
+        return
+    values, keep = _real_values(data)
+    finite = np.isfinite(values)
+    _check_sample_scale(values[finite if keep is None else finite & keep])
 
 
 def _warn_if_table(data) -> None:
