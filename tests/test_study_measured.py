@@ -364,6 +364,12 @@ def test_report_markdown_quotes_names_from_files_literally():
     assert "\n# injected" not in md and "<script>" not in md
     assert "&lt;script&gt;" in md and "a\\|b.x3p |" in md
     assert "<script>" not in rep.to_html()
+    # a file name holding Markdown link or image syntax stays text
+    link = "[x](javascript:alert(1)) ![t](https://example.org/t.png).x3p"
+    rep.paragraph(f"The file {link} was read.")
+    md, _ = rep.to_markdown("figs")
+    assert "](javascript" not in md and "](https://example" not in md
+    assert "[x]\\(javascript:alert(1))" in md
 
 
 @UNIT_FREE
@@ -391,3 +397,14 @@ def test_implausible_si_values_warn_and_a_huge_grid_is_refused():
     s = contact.weierstrass((64, 64), 1e-3, 0.5, rq=1.6e-6, rng=1, n_terms=5)
     with pytest.warns(contact.ContactWarning, match=r"nominal_pressure = 20 Pa"):
         contact.solve(s, 20.0, 210e9, 0.3, jump="blend")
+
+
+def test_report_removes_figures_half_written_by_a_killed_run(tmp_path):
+    from glstat.study.report_document import Report
+
+    folder = tmp_path / "report_files"
+    folder.mkdir()
+    stale = folder / ".surfaces.png.k3j2.tmp"  # the temporary name of an atomic write
+    stale.write_bytes(b"\x89PNG half")
+    Report("study").write(tmp_path)
+    assert not stale.exists() and (tmp_path / "report.md").is_file()

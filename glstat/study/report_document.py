@@ -108,9 +108,10 @@ class Report(Blocks):
 
     @staticmethod
     def _inline_markdown(text: str) -> str:
-        """``text`` on one line, with HTML markup shown as text: what the report quotes from
-        the user's files (names, columns) can neither start a block nor inject HTML."""
-        return html.escape(re.sub(r"[\r\n]+", " ", text), quote=False)
+        """``text`` on one line, with HTML markup shown as text and link syntax broken: what the
+        report quotes from the user's files (names, columns) can neither start a block, inject
+        HTML, nor become a live link or image (``[x](url)``, ``![t](url)``)."""
+        return html.escape(re.sub(r"[\r\n]+", " ", text), quote=False).replace("](", "]\\(")
 
     @classmethod
     def _cell_markdown(cls, text: str) -> str:
@@ -181,6 +182,10 @@ class Report(Blocks):
         folder = out / "report_files"
         if folder.is_symlink():  # never write the figures through a link out of ``out``
             raise OSError(errno.ELOOP, "a symbolic link", str(folder))
+        if folder.is_dir():  # figures half-written by a run killed while it wrote them
+            from .files import remove_temporaries
+
+            remove_temporaries((folder,))
         md, files = self.to_markdown("report_files")
         for name, png in files.items():
             atomic_write(out / "report_files" / name, png)
