@@ -5,9 +5,11 @@ shared 2-core machine), ``--quick`` (n = 1000, m = 1e3: under 2 min), ``--reps R
 ``--slow-reps R``, ``--out PATH`` (CSV, default ``benchmarks/results/calibration.csv``);
 ``--help`` lists the rest. Results: docs/benchmarks.md, section "calibration".
 
-For every parent distribution (none but the control is a GLD), sample size n and number m of
-draws of the maximum, the data are drawn R times from the parent (seeded numpy Generators,
-the same data for every method) and every method predicts, with its nonparametric bootstrap:
+For every parent distribution (:data:`PARENTS`: five unimodal ones, a GLD control, a normal
+mixture with a second bump at the top and a Fréchet of tail index 3), sample size n and number
+m of draws of the maximum, the data are drawn R times from the parent (seeded numpy
+Generators, the same data for every method) and every method predicts, with its
+nonparametric bootstrap:
 
 * the damage probability ``P(max of m > t) = 1 - F(t)^m`` at thresholds t taken from the
   parent's exact upper quantiles, ``t = isf(1 - (1 - d)^(1/m))``, so that the true damage is d;
@@ -27,9 +29,13 @@ the conditional tail), ``pot_gpd_mle``, ``pot_gpd_zs`` and ``pot_gpd_zs_sqrt`` (
 Pareto peaks over threshold, fitted by scipy's maximum likelihood or by the Zhang-Stephens
 estimator, above the 0.9 sample quantile or to the sqrt(n) largest values). Every damage row
 of the CSV also holds the coverage of the wider 95 % and 98 % percentile intervals of the same
-resamples (a crude calibration by widening). "Slow" methods (one optimisation per resample)
-run on the first ``--slow-reps`` data sets only. Times are per call: fit, bootstrap and every
-maximum and damage probability (one core; numba compiled and cached beforehand).
+resamples (a crude calibration by widening), and the shares of its intervals that are a
+confident 0 % (``zero_interval``), at least 0.9 wide (``undetermined``) or wider than 0.5
+(``wide``). The library's methods are scored on the library's own interval (for a bounded
+Pareto tail its upper end reaches the tails compatible with the data). "Slow" methods (one
+optimisation per resample) run on the first ``--slow-reps`` data sets only. Times are per
+call: fit, bootstrap and every maximum and damage probability (one core; numba compiled and
+cached beforehand).
 """
 
 from __future__ import annotations
@@ -80,6 +86,82 @@ class Parent:
     dist: Any
 
 
+class NormalMixture:
+    """A mixture of normal distributions with the ``rvs`` and accurate ``isf`` of a parent.
+
+    Parameters
+    ----------
+    weights : sequence of float
+        Component probabilities (summing to 1).
+    locs, scales : sequence of float
+        Component means and standard deviations (units of the data).
+    """
+
+    def __init__(self, weights: Sequence[float], locs: Sequence[float], scales: Sequence[float]):
+        self.weights = np.asarray(weights, dtype=float)
+        self.locs = np.asarray(locs, dtype=float)
+        self.scales = np.asarray(scales, dtype=float)
+
+    def logsf(self, x: np.ndarray) -> np.ndarray:
+        """log P(X > x), accurate far in the upper tail (log-sum-exp of the components).
+
+        Parameters
+        ----------
+        x : array_like
+            Points (units of the data).
+
+        Returns
+        -------
+        ndarray
+            Shape of ``x``.
+        """
+        from scipy.special import logsumexp
+
+        x = np.asarray(x, dtype=float)[..., None]
+        return logsumexp(st.norm.logsf(x, self.locs, self.scales), b=self.weights, axis=-1)
+
+    def isf(self, p: np.ndarray) -> np.ndarray:
+        """The x with ``P(X > x) = p``, by Brent's method on :meth:`logsf` (to 1e-13).
+
+        Parameters
+        ----------
+        p : array_like
+            Upper-tail probabilities in (0, 1).
+
+        Returns
+        -------
+        ndarray
+            Shape of ``p`` (units of the data).
+        """
+        from scipy.optimize import brentq
+
+        lo = float(np.min(self.locs - 40 * self.scales))
+        hi = float(np.max(self.locs + 40 * self.scales))
+
+        def one(pp: float) -> float:
+            return brentq(lambda x: float(self.logsf(x)) - math.log(pp), lo, hi, xtol=1e-13)
+
+        return np.vectorize(one, otypes=[float])(np.asarray(p, dtype=float))
+
+    def rvs(self, size: int, random_state: np.random.Generator) -> np.ndarray:
+        """``size`` draws: a component picked by its weight, then a normal draw from it.
+
+        Parameters
+        ----------
+        size : int
+            Number of values.
+        random_state : numpy.random.Generator
+            Source of the draws.
+
+        Returns
+        -------
+        ndarray, shape (size,)
+        """
+        c = np.searchsorted(np.cumsum(self.weights), random_state.random(size), side="right")
+        c = np.minimum(c, self.weights.size - 1)
+        return random_state.normal(self.locs[c], self.scales[c])
+
+
 PARENTS = (
     Parent("lognormal", "lognormal σ 0.5", st.lognorm(0.5)),
     Parent("weibull", "Weibull k 2", st.weibull_min(2.0)),
@@ -90,6 +172,11 @@ PARENTS = (
     # are both well specified); power tails of index 0.1, moments up to order 9
     Parent("gld", "GLD FKML(0, 1, -0.1, -0.1) = RS(0, -0.1, -0.1, -0.1) (control)",
            glstat.GLD(0.0, 1.0, -0.1, -0.1, param="fkml")),
+    # appended: the seeds of the parents above are unchanged (a parent's index seeds its data)
+    Parent("two_bump", "0.9 N(0, 1) + 0.1 N(3, 0.5): a second bump at the top of the sample",
+           NormalMixture((0.9, 0.1), (0.0, 3.0), (1.0, 0.5))),
+    # tail index 3: moments up to order 2 only, the RS moment fit of many samples has no root
+    Parent("frechet", "Fréchet, tail index 3", st.invweibull(3.0)),
 )
 
 
@@ -131,12 +218,21 @@ class Prediction:
         Median of the maximum of m draws per resample.
     n_resamples : int
         Resamples drawn (B), successful or not.
+    interval : tuple of two ndarrays, shape (M, D), optional
+        The damage interval the library reports itself (for a bounded Pareto tail it also
+        reaches the tails compatible with the data), scored for a method that reads the
+        library's level ``interval_level``; otherwise the percentile interval of ``damage``
+        at the method's level is scored.
+    interval_level : float, optional
+        The percentile level of ``interval``.
     """
 
     damage: np.ndarray
     draws: np.ndarray
     medians: np.ndarray
     n_resamples: int
+    interval: tuple[np.ndarray, np.ndarray] | None = None
+    interval_level: float | None = None
 
 
 MethodFunc = Callable[[np.ndarray, np.ndarray, np.ndarray, np.random.Generator], Prediction | None]
@@ -223,23 +319,27 @@ def predict_glstat(x: np.ndarray, ms: np.ndarray, thresholds: np.ndarray, rng: n
         draws.append(qm[:, 0])
         medians.append(qm[:, 1])
     try:
-        damage = np.stack([
-            np.stack([p.damage.values if (i, j) == (0, 0)
-                      else boot.damage_probability(float(t), n=float(m)).values
-                      for j, t in enumerate(row)], axis=-1)
-            for i, (m, row) in enumerate(zip(ms, thresholds, strict=True))], axis=1)
+        probs = [[p.damage if (i, j) == (0, 0) else boot.damage_probability(float(t), n=float(m))
+                  for j, t in enumerate(row)]
+                 for i, (m, row) in enumerate(zip(ms, thresholds, strict=True))]
     except FitError:
         return None
-    # the interval scored below is the library's own (same percentiles of the same values)
+    damage = np.stack([np.stack([b.values for b in row], axis=-1) for row in probs], axis=1)
+    interval = tuple(np.array([[float(getattr(b, end)) for b in row] for row in probs])
+                     for end in ("low", "high"))
+    # the library's interval: the percentiles of the same values, the damage's upper end
+    # widened to the compatible tails of a bounded tail
     level = LEVEL if tail is None else glstat.resampling.maxima.interval_level(LEVEL, True)
     lo, hi = np.quantile(damage[:, 0, 0], [(1 - level) / 2, (1 + level) / 2])
-    if not np.allclose([lo, hi], [p.damage.low, p.damage.high], rtol=1e-12, atol=1e-15):
+    if not (np.isclose(lo, p.damage.low, rtol=1e-12, atol=1e-15)
+            and (np.isclose(hi, p.damage.high, rtol=1e-12, atol=1e-15)
+                 or (p.damage.tail_bound is not None and p.damage.high >= hi))):
         raise AssertionError("damage interval differs from predict_maximum's")
     if not np.allclose(p.maximum.interval(), np.quantile(draws[0], [(1 - level) / 2,
                                                                     (1 + level) / 2])):
         raise AssertionError("maximum interval differs from predict_maximum's")
     return Prediction(damage=damage, draws=np.column_stack(draws), medians=np.column_stack(medians),
-                      n_resamples=n_resamples)
+                      n_resamples=n_resamples, interval=interval, interval_level=level)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -673,8 +773,13 @@ class Tally:
         """
         nan_m = np.full(self.shape[0], np.nan)
         for lv, (lo, hi) in self.damage.items():
-            a, b = ((np.full(self.shape, np.nan),) * 2 if pred is None
-                    else percentile_interval(pred.damage, lv))
+            if pred is None:
+                a, b = (np.full(self.shape, np.nan),) * 2
+            elif (pred.interval is not None and lv == level
+                  and math.isclose(level, float(pred.interval_level or math.nan))):
+                a, b = pred.interval
+            else:
+                a, b = percentile_interval(pred.damage, lv)
             lo.append(a)
             hi.append(b)
         mlo, mhi = (nan_m, nan_m) if pred is None else percentile_interval(pred.draws, level)
@@ -714,6 +819,28 @@ def score(lo: np.ndarray, hi: np.ndarray, truth: np.ndarray) -> dict[str, np.nda
             "mean_width": mean_width}
 
 
+def interval_shares(lo: np.ndarray, hi: np.ndarray) -> dict[str, np.ndarray]:
+    """How often a damage interval says nothing, or says 0 for certain.
+
+    Parameters
+    ----------
+    lo, hi : ndarray, shape (R, ...)
+        Intervals (NaN where the method had no fit).
+
+    Returns
+    -------
+    dict
+        Shares of R: ``zero_interval`` (the upper end is at most 1e-12: a confident 0 %, a
+        miss whenever the true damage is not 0), ``undetermined`` (at least 0.9 wide:
+        :data:`glstat.prediction.UNDETERMINED_WIDTH`) and ``wide`` (wider than 0.5, where the
+        library estimates the data that would narrow it).
+    """
+    with np.errstate(invalid="ignore"):
+        return {"zero_interval": (hi <= 1e-12).mean(axis=0),
+                "undetermined": (hi - lo >= 0.9).mean(axis=0),
+                "wide": (hi - lo > 0.5).mean(axis=0)}
+
+
 def tally_rows(tally: Tally, parent: Parent, n: int, ms: np.ndarray, damages: Sequence[float],
                true_median: np.ndarray, method: Method) -> list[dict[str, Any]]:
     """CSV rows of one method in one (parent, n) cell.
@@ -748,8 +875,10 @@ def tally_rows(tally: Tally, parent: Parent, n: int, ms: np.ndarray, damages: Se
     d = np.asarray(damages, dtype=float)
     sc = {lv: score(np.array(lo), np.array(hi), d[None, None, :])
           for lv, (lo, hi) in tally.damage.items()}
+    shares = interval_shares(*(np.array(v) for v in tally.damage[method.interval_level]))
     wide_nan = {k: math.nan for lv in WIDE_LEVELS for k in (f"coverage_{lv * 100:.0f}",
                                                             f"mean_width_{lv * 100:.0f}")}
+    wide_nan.update(dict.fromkeys(shares, math.nan))
     out = []
     for i, m in enumerate(ms):
         for j, dj in enumerate(d):
@@ -757,6 +886,7 @@ def tally_rows(tally: Tally, parent: Parent, n: int, ms: np.ndarray, damages: Se
             for lv in WIDE_LEVELS:
                 wide[f"coverage_{lv * 100:.0f}"] = float(sc[lv]["coverage"][i, j])
                 wide[f"mean_width_{lv * 100:.0f}"] = float(sc[lv]["mean_width"][i, j])
+            wide.update({key: float(val[i, j]) for key, val in shares.items()})
             out.append({**base, "m": float(m), "quantity": "damage", "true_value": float(dj),
                         **{key: float(val[i, j])
                            for key, val in sc[method.interval_level].items()}, **wide})

@@ -187,7 +187,10 @@ def test_the_answer_closes_the_report(sample, tmp_path):
     lines = out.splitlines()
     start = lines.index(f"answer (90 % intervals; the GLD with a generalized Pareto tail on its "
                         f"{res.tail_size} largest values):")
-    block = lines[start + 1:start + 4]
+    # the answer's lines; those indented further say why an interval is wide or reaches far
+    answer = lines[start + 1:]
+    block = [line for line in answer if line.startswith("  ") and not line.startswith("    ")][:3]
+    extra = sum(line.startswith("    ") for line in answer)
     m = res.maximum
     def value(v):  # 4 significant digits, no exponent from 1000 on (the data are in MPa)
         return f"{v:.0f}" if 1e3 <= abs(v) < 1e7 else f"{v:.4g}"
@@ -200,7 +203,7 @@ def test_the_answer_closes_the_report(sample, tmp_path):
         assert block[1 + j].startswith(f"  damage P(max > {HARDNESS:g}) on n = {N_MAX * k:g} "
                                        "points: ")
         assert f"{100 * d['estimate'][j]:.3g} %" in block[1 + j] or "99.999 %" in block[1 + j]
-    assert lines[-1].startswith("wrote ") and start > len(lines) - 8
+    assert lines[-1].startswith("wrote ") and start > len(lines) - 8 - extra
     # the GLD alone says so; without --n-max and --hardness there is no answer to give
     _, out_none, _ = _run(path, tmp_path / "n", "--tail", "none")
     assert "answer (90 % intervals; the GLD alone):" in out_none
@@ -230,10 +233,17 @@ def test_a_damage_the_data_cannot_determine_is_said_so(tmp_path):
     wide = np.asarray(d["high"]) - np.asarray(d["low"]) >= 0.9
     assert wide[0] and not wide[1]  # the case this test is about, and one that is determined
     start = next(i for i, line in enumerate(lines) if line.startswith("answer ("))
-    answer = lines[start + 1:start + 5]
+    below = lines[start + 1:]
+    answer = [line for line in below if not line.startswith("    ")][:4]
     assert answer[1] == (f"  damage P(max > 1500 MPa) on n = 1000000 points: not determined by the data: "
                          f"anywhere in [{100 * d['low'][0]:.3g} %, {100 * d['high'][0]:.3g} %] "
                          f"(full-sample model {100 * d['estimate'][0]:.3g} %)")
+    # under it, what would narrow it: width 0.9 or more on 2000 values -> 2000 (w / 0.2)^2
+    hint = below[below.index(answer[1]) + 1]
+    needed = 2000 * ((d["high"][0] - d["low"][0]) / 0.2) ** 2
+    assert hint.startswith("    to narrow it to ±10 percentage points: at least about ")
+    assert f"about {float(f'{needed:.2g}'):.0f} values instead of 2000" in hint
+    assert "more, if the width shrank as 1/sqrt(N); it shrinks more slowly)" in hint
     assert "not determined" not in answer[2] and f"{100 * d['estimate'][1]:.3g} %" in answer[2]
     assert answer[3].startswith("  check by block cross-validation: ")
     assert answer[3].endswith(f" (on maxima of {res.cross_validation.block_size} values, not of 1000000)")

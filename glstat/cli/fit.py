@@ -133,7 +133,6 @@ def library_tail(tail: str) -> str | None:
 
 
 def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], None]) -> FitResults:
-    from ..fitting import fit
     from ..gof import gof_report
 
     x = sample.values
@@ -141,11 +140,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
     seed = (int(args.seed) if args.seed is not None
             else int(cast(int, np.random.SeedSequence().entropy) % 2**63))
     notes: list[str] = []
-    with phase(f"fitting ({METHOD_NAMES[args.method]}, n = {x.size})"), \
-            warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        f = fit(x, args.param, args.method)
-    collect_notes(caught, notes)
+    with phase(f"fitting ({METHOD_NAMES[args.method]}, n = {x.size})"):
+        f = _fit_or_fallback(x, args, notes)
     if f.dist is None:
         raise FitError(f"the {f.param.upper()} {f.method} fit has non-finite lambdas {f.lambdas}: "
                        "no distribution to report")
@@ -179,13 +175,21 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         with phase(f"bootstrap ({args.bootstrap} resamples)"):
             # a progress bar (stderr) shows when the resamples are long
             res.prediction = predict_maximum(
-                x, [(args.param, args.method)], n=None if args.count is not None else n,
+                x, [(f.param, f.method)], n=None if args.count is not None else n,
                 count=args.count, threshold=args.hardness, area_factor=factors,
                 n_resamples=args.bootstrap, confidence_level=args.confidence_level, rng=seed,
-                maximum=args.n_max is not None, progress=None, tail=library_tail(args.tail))
+                maximum=args.n_max is not None, progress=None, tail=library_tail(args.tail),
+                fallback=asked)
         if res.prediction.boot is None:
-            raise FitError(f"the {args.param.upper()} {args.method} bootstrap has no fit: "
+            raise FitError(f"the {f.param.upper()} {f.method} bootstrap has no fit: "
                            f"{res.prediction.note}")
+        if (res.prediction.param, res.prediction.method) != (f.param, f.method):
+            # the bootstrap of the fit above failed: the prediction uses a fallback fit
+            res.fit = res.prediction.boot.fit
+            res.support = tuple(float(v) for v in res.fit.dist.support())
+            emit(f"  the bootstrap uses the {res.fit.param.upper()} {METHOD_NAMES[res.fit.method]} "
+                 f"fit instead (see the notes); the goodness of fit above is that of "
+                 f"{f.param.upper()} {METHOD_NAMES[f.method]}")
         res.boot = res.prediction.boot
         res.model = res.prediction.dist
         if args.tail == "pareto" and res.prediction.tail_size is None:
@@ -213,13 +217,42 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
 
         with phase(f"block cross-validation ({k_cv} blocks x {b_cv} resamples)"):
             res.cross_validation = cross_validate_maximum(
-                x, [(args.param, args.method)], n_blocks=k_cv, threshold=args.hardness,
+                x, [(res.fit.param, res.fit.method)], n_blocks=k_cv, threshold=args.hardness,
                 confidence_level=args.confidence_level, n_resamples=b_cv, rng=seed,
                 tail=library_tail(args.tail))
     print_cross_validation(res, emit)
     if args.pareto_tail:
         _pareto_tail(args, res, x, n, factors, seed, emit)
     return res
+
+
+def _fit_or_fallback(x: np.ndarray, args: argparse.Namespace, notes: list[str]) -> GLDFit:
+    """The requested fit of ``x``; when it has no solution and a maximum or a damage is asked
+    for, the first fallback fit with one (:data:`glstat.prediction.FALLBACK_FITS`), with the
+    reason in ``notes``. Without a prediction to make the requested fit's error is raised."""
+    from ..fitting import fit
+    from ..prediction import fits_to_try
+
+    asked = args.n_max is not None or args.hardness is not None
+    failures: list[str] = []
+    first: FitError | None = None
+    for param, method, spare in fits_to_try([(args.param, args.method)], asked):
+        try:
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                f = fit(x, param, method)
+        except FitError as exc:
+            first = first or exc
+            failures.append(f"{param.upper()} {METHOD_NAMES[method]}: {str(exc).splitlines()[0]}")
+            continue
+        collect_notes(caught, notes)
+        if spare:
+            notes.append("; ".join(failures) + f"; used the {param.upper()} "
+                         f"{METHOD_NAMES[method]} fit instead, a fallback fit (the Pareto tail "
+                         "models the largest values; the GLD describes the body)")
+        return f
+    assert first is not None
+    raise first
 
 
 def _pareto_tail(args, res: FitResults, x: np.ndarray, n: float, factors, seed,

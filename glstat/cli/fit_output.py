@@ -267,16 +267,19 @@ def print_answer(res: FitResults, emit: Callable[[str], None]) -> None:
              f"{_value(m['high'])}]{_unit(m)}")
     if d is not None:
         loose = undetermined(d)
+        wider = _narrower(res)
         for j, k in enumerate(np.atleast_1d(d["area_factors"])):
             where = how_many({**d, "n": d["n"] * k}, "points")
             head = f"  damage P(max > {d['hardness']:g}{_unit(d)}) on {where}: "
             if loose[j]:
                 emit(f"{head}not determined by the data: anywhere in [{_percent(d['low'][j])}, "
                      f"{_percent(d['high'][j])}] (full-sample model {_percent(d['estimate'][j])})")
-                continue
-            interval = ("" if d["low"] is None else
-                        f" [{_percent(d['low'][j])}, {_percent(d['high'][j])}]")
-            emit(f"{head}{_percent(d['estimate'][j])}{interval}")
+            else:
+                interval = ("" if d["low"] is None else
+                            f" [{_percent(d['low'][j])}, {_percent(d['high'][j])}]")
+                emit(f"{head}{_percent(d['estimate'][j])}{interval}")
+            for line in wider.get(j, ()):
+                emit(f"    {line}")
         top = res.model_support[1]
         if top <= d["hardness"] and not loose.all():
             why = ("its fitted tail is bounded, xi = " + fmt_g(float(res.model.tail[0][2]), 3)
@@ -290,6 +293,33 @@ def print_answer(res: FitResults, emit: Callable[[str], None]) -> None:
         if n_max is not None and n_max > cv.block_size:
             scope = f" (on maxima of {cv.block_size} values, not of {n_max:.10g})"
         emit(f"  check by block cross-validation: {cv.verdict}{scope}")
+
+
+def _narrower(res: FitResults) -> dict[int, list[str]]:
+    """Per area factor of the damage (by position), the lines that say why its interval's high
+    end reaches beyond the bootstrap (the tails compatible with the data) and, for an
+    interval wider than half of [0, 1], what would narrow it
+    (:meth:`glstat.MaximumPrediction.data_for_width`)."""
+    from ..prediction import WIDE, narrower_text
+
+    p = res.prediction
+    if p is None or p.damage is None:
+        return {}
+    out: dict[int, list[str]] = {}
+    by_tails = np.ravel(p.damage.bounded_by_tails)
+    width = np.ravel(p.damage.high) - np.ravel(p.damage.low)
+    if by_tails.any():
+        pct = np.ravel(np.broadcast_to(p.damage.percentile_end, np.shape(p.damage.estimate)))
+        for j in np.flatnonzero(by_tails):
+            out.setdefault(int(j), []).append(
+                "the high end is the damage under the longest tail compatible with the data at "
+                f"this level (profile likelihood of the tail's end point); the bootstrap alone "
+                f"gives {_percent(pct[j])}")
+    if np.any(width > WIDE):
+        table = p.data_for_width()
+        for j in np.flatnonzero(table["wide"].to_numpy(dtype=bool)):
+            out.setdefault(int(j), []).append(narrower_text(table.iloc[j]))
+    return out
 
 
 def print_cross_validation(res: FitResults, emit: Callable[[str], None]) -> None:
@@ -392,7 +422,7 @@ def write_figures(res: FitResults, out: Path) -> None:
     if res.boot is not None:
         fig = new_figure((8.0, 6.0))
         axes = fig.subplots(2, 2)
-        plot_lambda_densities(res.boot, true=res.fit.lambdas, axes=axes)
+        plot_lambda_densities(res.boot, true=res.boot.fit.lambdas, axes=axes)
         save_figure(fig, out, "lambda_densities.png", res)
     if res.maximum is not None:
         fig = new_figure()

@@ -24,7 +24,8 @@ import numpy as np
 
 from _glstat_runtime.validation import check_level, real_values
 
-__all__ = ["TailPrediction", "fit_gpd", "predict_maximum_pot"]
+__all__ = ["MIN_TAIL_SIZE", "REGULAR_SHAPE", "TailPrediction", "checked_tail_size",
+           "compatible_tails", "fit_gpd", "predict_maximum_pot", "tail_profile"]
 
 #: Percentile pair reported for a nominal 90 % interval: the 2.5 % and 97.5 % bootstrap
 #: percentiles, the widening that reached nominal coverage in docs/benchmarks.md
@@ -213,7 +214,148 @@ class TailPrediction:
         return "\n".join(lines)
 
 
+#: Generalized Pareto shapes below this are irregular: the density of such a tail does not fall
+#: smoothly to 0 at its end (xi = -1 is a uniform, below -1 the density grows towards the end),
+#: and maximum likelihood loses its usual properties there (Smith 1985, Biometrika 72, 67-90).
+REGULAR_SHAPE = -0.5
+
+#: The fewest largest values :func:`checked_tail_size` fits a tail to.
+MIN_TAIL_SIZE = 10
+
+
+def checked_tail_size(x_sorted: np.ndarray, k: int) -> int:
+    """The number of largest values to fit the tail to: ``k``, or fewer when the top of the
+    sample is a bump of its own rather than a tail.
+
+    The generalized Pareto shape fitted (Zhang–Stephens) to the ``k`` largest values is
+    irregular, xi < -1/2 (:data:`REGULAR_SHAPE`), when their density does not decrease towards
+    the largest one: then they hold a second mode of the sample (e.g. a minority population at
+    the top, as in a mixture), and a tail fitted to them ends just above the sample's maximum.
+    Then the largest k' in [:data:`MIN_TAIL_SIZE`, k) whose fit is regular is taken, and
+    :data:`MIN_TAIL_SIZE` when none is: the tail is fitted above the bump's mode, and its
+    fewer values widen the bootstrap intervals.
+
+    Parameters
+    ----------
+    x_sorted : ndarray
+        The sample, sorted in increasing order (finite values; units of the data).
+    k : int
+        The tail size of the rule (:func:`tail_size_of`), ``2 <= k <= N - 1``.
+
+    Returns
+    -------
+    int
+        ``k`` or a smaller count, at least ``min(k, MIN_TAIL_SIZE)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from glstat.extremes.peaks_over_threshold import checked_tail_size
+    >>> g = np.random.default_rng(3)
+    >>> checked_tail_size(np.sort(g.normal(0.0, 1.0, 400)), 20)       # a tail: unchanged
+    20
+    >>> bump = np.r_[g.normal(0.0, 1.0, 380), g.uniform(3.0, 3.5, 20)]  # 20 values on a shelf
+    >>> checked_tail_size(np.sort(bump), 20) < 20
+    True
+    """
+    x = np.asarray(x_sorted, dtype=float)
+    n = x.size
+
+    def shape(j: int) -> float:
+        xi, _ = fit_gpd(x[n - j:] - x[n - j - 1])
+        return float(xi)
+
+    if k <= MIN_TAIL_SIZE or not shape(k) < REGULAR_SHAPE:  # NaN (no fit): left to the caller
+        return int(k)
+    for j in range(k - 1, MIN_TAIL_SIZE - 1, -1):
+        if shape(j) >= REGULAR_SHAPE:
+            return j
+    return MIN_TAIL_SIZE
+
+
+def tail_profile(exceedances, grid: int = 400) -> np.ndarray:
+    """The generalized Pareto tails compatible with the exceedances, from the profile likelihood.
+
+    Zhang and Stephens (2009) write the generalized Pareto model in ``theta = -xi / sigma``:
+    for a given theta the likelihood is largest at ``xi(theta) = mean(log(1 - theta y))``,
+    ``sigma = -xi / theta``, with the log-likelihood ``k (log(-theta / xi) - xi - 1)``. For a
+    bounded tail (theta > 0) the end point lies ``1 / theta`` above the threshold, so this
+    profile is that of the end point; theta <= 0 are the unbounded tails. The tails are kept
+    over the regular shapes, xi >= -1/2 (:data:`REGULAR_SHAPE`), where the likelihood is
+    bounded; the deficit of each is measured from the best regular one.
+
+    Parameters
+    ----------
+    exceedances : array_like, shape (k,)
+        Exceedances over the threshold (>= 0, units of the data), sorted in increasing
+        order, with a positive largest one.
+    grid : int
+        Number of values of theta: ``theta y_max = 1 - 10**s`` for s evenly spaced over
+        [-3, 3] (end points from 1.001 to 1000 times the largest exceedance, and tails up to
+        xi of about 5).
+
+    Returns
+    -------
+    ndarray, shape (G, 3)
+        Columns ``xi``, ``sigma`` (units of the data) and ``deficit``, the best regular
+        log-likelihood minus this tail's (>= 0), for the regular tails of the grid, in
+        increasing theta (decreasing xi). Empty when none is regular.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy import stats
+    >>> from glstat.extremes.peaks_over_threshold import tail_profile
+    >>> y = np.sort(stats.genpareto.rvs(-0.2, scale=1.0, size=200, random_state=1))
+    >>> prof = tail_profile(y)
+    >>> best = prof[np.argmin(prof[:, 2])]
+    >>> bool(abs(best[0] + 0.2) < 0.15), bool(prof[:, 2].min() == 0.0)
+    (True, True)
+    """
+    y = np.asarray(exceedances, dtype=float).ravel()
+    k = y.size
+    if k < 2 or not y[-1] > 0:
+        return np.empty((0, 3))
+    s = 1.0 - 10.0 ** np.linspace(-3.0, 3.0, grid)
+    s = s[s != 0.0]
+    theta = s / y[-1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xi = np.mean(np.log1p(-theta[:, None] * y[None, :]), axis=1)
+        ll = k * (np.log(-theta / xi) - xi - 1.0)
+        sigma = -xi / theta
+    ok = np.isfinite(ll) & np.isfinite(sigma) & (sigma > 0) & (xi >= REGULAR_SHAPE)
+    if not ok.any():
+        return np.empty((0, 3))
+    return np.column_stack([xi[ok], sigma[ok], ll[ok].max() - ll[ok]])
+
+
+def compatible_tails(profile: np.ndarray, level: float) -> np.ndarray:
+    """The tails of a :func:`tail_profile` that a likelihood-ratio test at ``level`` keeps.
+
+    Parameters
+    ----------
+    profile : ndarray, shape (G, 3)
+        ``xi``, ``sigma``, ``deficit`` rows (:func:`tail_profile`).
+    level : float
+        In (0, 1): the tails with ``2 deficit <= chi2_1(level)`` are kept; each end of a
+        two-sided interval of level ``level`` is then a one-sided bound of level
+        ``(1 + level) / 2``.
+
+    Returns
+    -------
+    ndarray, shape (J, 2)
+        ``xi`` and ``sigma`` of the kept tails.
+    """
+    from scipy.stats import chi2
+
+    keep = 2.0 * profile[:, 2] <= chi2.ppf(level, 1)
+    return profile[keep, :2]
+
+
 def tail_size_of(n: int, tail_size) -> int:
+    """k, the number of largest values of a tail of ``tail_size`` on N = ``n`` values (the
+    rules of :meth:`glstat.BootstrapFit.with_pareto_tail`); ValueError when it is not in
+    [2, N - 1]."""
     if isinstance(tail_size, str):
         if tail_size != "sqrt":
             raise ValueError(f"tail_size must be 'sqrt', a fraction in (0, 1) or a count, got "
@@ -230,6 +372,15 @@ def tail_size_of(n: int, tail_size) -> int:
         raise ValueError(f"a Pareto tail of k = {k} values (tail_size={tail_size!r}) needs "
                          f"2 <= k <= N - 1 = {n - 1}: the sample has N = {n} values (the default "
                          "tail takes ceil(sqrt(N)) of them, at least 20, so it needs at least 21)")
+    return k
+
+
+def tail_size_for(x_sorted: np.ndarray, tail_size) -> int:
+    """k for the sorted sample ``x_sorted``: :func:`tail_size_of`, and for the rules (``"sqrt"``
+    and a fraction; not for a count given as such) the check of :func:`checked_tail_size`."""
+    k = tail_size_of(x_sorted.size, tail_size)
+    if isinstance(tail_size, (str, float)):
+        k = checked_tail_size(x_sorted, k)
     return k
 
 

@@ -27,7 +27,7 @@ import numpy as np
 from scipy.stats import rv_continuous
 
 from ..distributions.gld import GLD
-from .peaks_over_threshold import fit_gpd, gpd_isf, log_gpd_sf, tail_size_of
+from .peaks_over_threshold import fit_gpd, gpd_isf, log_gpd_sf, tail_size_for
 from .tails import log1mexp
 
 __all__ = ["TAIL_COLUMNS", "ParetoTailGLD", "pareto_tail_rows", "spliced_log_tails",
@@ -233,12 +233,14 @@ class ParetoTailGLD(rv_continuous):
             The body; default ``glstat.fit(data).dist`` (RS, moments).
         tail_size : "sqrt", float or int
             The tail's values: ``ceil(sqrt(N))`` (at least 20; the default), a fraction of N,
-            or a count.
+            or a count. With a rule (not a count) fewer are taken when the largest values
+            form a bump of their own rather than a tail
+            (:func:`glstat.extremes.peaks_over_threshold.checked_tail_size`).
         """
         x = np.sort(np.asarray(data, dtype=float).ravel())
         if not np.all(np.isfinite(x)):
             raise ValueError("data must be finite: remove NaN and inf first")
-        k = tail_size_of(x.size, tail_size)
+        k = tail_size_for(x, tail_size)
         if body is None:
             from ..fitting import fit
 

@@ -95,6 +95,26 @@ def _bootstrap_pvalues(model: Model, observed: dict, n: int, bins, n_resamples: 
     return pv, failed, last_error
 
 
+def _outside_note(dist, x: np.ndarray) -> str:
+    """Why A² is infinite: how many of the sorted values ``x`` lie outside the model's support
+    (``F = 0`` or ``1 - F = 0`` there), with the support when the model has one."""
+    _, logf, logs = pit(dist, x)
+    below, above = int(np.sum(np.isneginf(logf))), int(np.sum(np.isneginf(logs)))
+    where = []
+    if below:
+        where.append(f"{below} below")
+    if above:
+        where.append(f"{above} above")
+    support = ""
+    if callable(getattr(dist, "support", None)):
+        with np.errstate(all="ignore"):
+            lo, hi = (float(v) for v in dist.support())
+        support = f" [{lo:.6g}, {hi:.6g}]"
+    return (f"A² is infinite: {below + above} of the {x.size} values lie outside the model's "
+            f"support{support} ({' and '.join(where) or 'at its ends'}), where it has no "
+            "probability, so the A² p-value is 0")
+
+
 def empty_row(model: Model, n: int, why: str) -> dict[str, Any]:
     """A table row without statistics: the model's name, family, method and k, NaN elsewhere.
 
@@ -189,6 +209,9 @@ def report_table(x: np.ndarray | None, n_total: int, models: list[Model], n_resa
         else:
             row.update(dict.fromkeys(("ks_pvalue", "ad_pvalue", "cvm_pvalue", "chi2_pvalue"), math.nan))
             how = _NOT_AVAILABLE
+        if s["ad"] == math.inf:  # a value the model cannot produce: rejected, whatever B says
+            row["ad_pvalue"] = 0.0
+            how += "; " + _outside_note(model.dist, x)
         row["pvalue_method"] = how
         row["n_resamples"] = n_resamples if (model.estimated and n_resamples > 0) else 0
         row["n_failed_refits"] = failed
@@ -268,7 +291,11 @@ def gof_report(data, *fits_or_dists, names: Sequence[str] | None = None, n_resam
           (Marsaglia & Marsaglia 2004), scipy's W² distribution and chi² with cells − 1
           dof; for estimated parameters ``"parametric bootstrap (B=...)"`` with
           p = (1 + #{T* >= T}) / (1 + B_ok), or ``"not available ..."`` when
-          ``n_resamples=0`` (the classical p-values would be too large);
+          ``n_resamples=0`` (the classical p-values would be too large). An infinite A² (a
+          value outside the model's support, where the model has no probability) has the
+          p-value 0 however it was obtained, and ``pvalue_method`` then says how many values
+          lie outside the support (replicates of the fitting method may also have infinite
+          statistics, which would make a bootstrap p-value of ties, not evidence of fit);
         * ``n_resamples`` and ``n_failed_refits`` (failed bootstrap refits are counted,
           named in ``pvalue_method`` and warned about, never silently dropped).
 

@@ -23,8 +23,12 @@ from ..regions import rs_region
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-__all__ = ["JUMP_SPREADS", "BootstrapWarning", "branch_note", "branches",
+__all__ = ["JUMP_SPREADS", "UNCOVERED", "BootstrapWarning", "branch_note", "branches",
            "failed_frame", "failure_reasons", "stat_failures", "warn_failures", "warn_uncovered"]
+
+#: The words of the warning of :func:`warn_uncovered` that name what it is about (resample fits
+#: whose support misses part of their resample).
+UNCOVERED = "have a support that does not cover their resample"
 
 #: A resample jumped to another root branch when its lambda3 or lambda4 lies farther from the
 #: full-sample fit's than this many robust standard deviations (1.4826 MAD) of the resamples'.
@@ -135,8 +139,8 @@ def warn_uncovered(lam: np.ndarray, n_cover: np.ndarray, method: str, param: str
     uncovered = int(np.sum(fitted & (n_cover == 0)))
     if uncovered:
         warnings.warn(
-            f"{uncovered} of {lam.shape[0]} resample fits ({method}, {param}) have a support that "
-            "does not cover their resample, as the full-sample fit does not cover the data "
+            f"{uncovered} of {lam.shape[0]} resample fits ({method}, {param}) {UNCOVERED}, as "
+            "the full-sample fit does not cover the data "
             "(statistics['covers'] says which); their maxima and tail probabilities are "
             "unreliable: a method matching the tails (moments, 'mle') covers the data",
             BootstrapWarning, stacklevel=stacklevel + 1)

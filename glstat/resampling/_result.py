@@ -4,6 +4,7 @@ and damage across them."""
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
@@ -37,6 +38,7 @@ from .maxima import (
     BootstrapMaximum,
     BootstrapProbability,
     interval_level,
+    reach_compatible_tails,
     resample_count_maximum,
     resample_maximum,
     resample_probability,
@@ -105,6 +107,7 @@ class BootstrapFit:
     _grouping: tuple | None = field(default=None, repr=False, compare=False)
     _tails: np.ndarray | None = field(default=None, repr=False, compare=False)
     _full_tail: np.ndarray | None = field(default=None, repr=False, compare=False)
+    _profile: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @property
     def tail(self) -> pd.DataFrame | None:
@@ -127,6 +130,11 @@ class BootstrapFit:
     def tail_size(self) -> int | None:
         """k, the number of largest values each Pareto tail is fitted to (None without tails)."""
         return self.options.get("tail_size") if self._tails is not None else None
+
+    @property
+    def n_groups(self) -> int | None:
+        """The number of groups G of a bootstrap with ``groups`` (None without)."""
+        return None if self._grouping is None else int(np.size(self._grouping[0]))
 
     @property
     def counts(self) -> ObservedCounts | None:
@@ -173,13 +181,24 @@ class BootstrapFit:
         96.5 % percentiles for a nominal 90 %, :func:`glstat.resampling.maxima.interval_level`).
         The lambdas, their intervals and :meth:`batch` stay those of the GLD fits.
 
+        When the full sample's tail is bounded (shape xi < 0), the bootstrap understates how
+        far its end may lie (every resample repeats the largest values): the interval of a
+        probability at a threshold above ``u`` then also reaches the probability under the
+        tails that a likelihood-ratio test of the full sample's exceedances keeps at the
+        interval's level (the profile likelihood of the end point, over the regular shapes
+        xi >= -1/2: :func:`glstat.extremes.peaks_over_threshold.tail_profile`), so it is not
+        [0, 0] when the data are compatible with a tail reaching the threshold.
+
         Parameters
         ----------
         tail_size : "sqrt", float or int
             k: ``ceil(sqrt(N))`` (at least 20; the default, the best calibrated in
-            docs/benchmarks.md "calibration"), a fraction of N, or a count. With groups, k is
-            set from the full sample and each resample's tail probability is k over its own
-            size.
+            docs/benchmarks.md "calibration"), a fraction of N, or a count. With a rule (not
+            a count), fewer (at least 10) when the largest values form a bump of their own
+            rather than a tail (their fitted shape is below -1/2:
+            :func:`glstat.extremes.peaks_over_threshold.checked_tail_size`). With groups, k
+            is set from the full sample and each resample's tail probability is k over its
+            own size.
 
         Returns
         -------
@@ -199,7 +218,7 @@ class BootstrapFit:
         >>> bt.tail_size, bt.tail.shape
         (32, (101, 4))
         """
-        from ..extremes.peaks_over_threshold import tail_size_of
+        from ..extremes.peaks_over_threshold import tail_profile, tail_size_for
         from ..extremes.spliced_tail import pareto_tail_rows
         from ._arguments import resample_seeds
         from ._driver import draw
@@ -207,7 +226,7 @@ class BootstrapFit:
         x = self._data
         if x is None:
             raise ValueError("the bootstrap holds no data (nan_policy='propagate'): no tail")
-        k = tail_size_of(x.size, tail_size)
+        k = tail_size_for(x, tail_size)
         full = pareto_tail_rows(x[None, x.size - k - 1:], x.size, k)[0]
         if not np.all(np.isfinite(full)):
             raise ValueError("the generalized Pareto fit of the sample's tail failed (its "
@@ -230,7 +249,8 @@ class BootstrapFit:
             tails[good] = pareto_tail_rows(tops[good], sizes[good], k)
         options = dict(self.options, tail_size=k)
         return replace(self, options=options, _tails=tails, _full_tail=full, _cache={},
-                       failed=self._tail_failures(tails, sizes, k))
+                       failed=self._tail_failures(tails, sizes, k),
+                       _profile=tail_profile(x[x.size - k:] - x[x.size - k - 1]))
 
     def _tail_failures(self, tails: np.ndarray, sizes: np.ndarray, k: int) -> pd.DataFrame:
         """:attr:`failed` with the resamples whose GLD was fitted but whose tail was not."""
@@ -559,8 +579,28 @@ class BootstrapFit:
         # the full-sample value and the argument checks come from glstat.extremes.damage itself
         est = np.asarray(func(self._full_dist(), t, n, k, count=cfull, outside_support="limit"),
                          dtype=float)
-        return resample_probability(self._lam(), self.param, what, t, n, k, est, level, cfull, rows,
-                                    self._tail_rows())
+        out = resample_probability(self._lam(), self.param, what, t, n, k, est, level, cfull, rows,
+                                   self._tail_rows())
+        logf = self._compatible_logf(t, interval_level(level, True))
+        return out if logf is None else reach_compatible_tails(out, logf, cfull)
+
+    def _compatible_logf(self, threshold: float, level: float) -> np.ndarray | None:
+        """log F(threshold) of the full-sample model under every tail compatible with the
+        exceedances at ``level`` (:meth:`with_pareto_tail`), or None: without tails, for an
+        unbounded full-sample tail or a threshold at or below its start ``u``."""
+        if self._full_tail is None or self._profile is None or self._profile.size == 0:
+            return None
+        from ..extremes.peaks_over_threshold import compatible_tails, log_gpd_sf
+        from ..extremes.tails import log1mexp
+
+        u, q, xi, _ = (float(v) for v in self._full_tail)
+        if not (xi < 0 and threshold > u):
+            return None
+        alt = compatible_tails(self._profile, level)
+        if alt.shape[0] == 0:
+            return None
+        log_s = math.log(q) + log_gpd_sf(threshold - u, alt[:, 0], alt[:, 1])
+        return log1mexp(log_s)
 
     # -- tables -------------------------------------------------------------------------------
     def to_frame(self) -> pd.DataFrame:

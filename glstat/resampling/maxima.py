@@ -6,7 +6,7 @@ their pooled mixture, and the bootstrap probabilities of integrity and damage (t
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -33,7 +33,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
 __all__ = ["BootstrapMaximum", "BootstrapProbability", "MaximumMixture", "interval_level",
-           "resample_count_maximum", "resample_maximum", "resample_probability",
+           "reach_compatible_tails", "resample_count_maximum", "resample_maximum", "resample_probability",
            "row_distributions"]
 
 
@@ -386,6 +386,12 @@ class BootstrapProbability:
     interval_level : float or None
         Level of the percentile pair ``low``, ``high`` when it is not ``confidence_level``
         (the calibrated widening of :func:`interval_level`).
+    tail_bound : ndarray or None
+        With a bounded full-sample Pareto tail and a threshold above its start: the largest
+        damage (smallest integrity) under the tails compatible with the data at the
+        interval's level (:meth:`glstat.BootstrapFit.with_pareto_tail`), which ``high``
+        (``low`` for the integrity) reaches when the bootstrap percentile does not; shape of
+        ``estimate``. None otherwise.
     """
 
     what: str
@@ -399,6 +405,28 @@ class BootstrapProbability:
     confidence_level: float
     count: Any = None
     interval_level: float | None = None
+    tail_bound: np.ndarray | None = None
+
+    @property
+    def bounded_by_tails(self) -> np.ndarray:
+        """Per area factor: whether the end of the interval on the side of the danger
+        (``high`` for the damage, ``low`` for the integrity) comes from the compatible tails
+        (:attr:`tail_bound`) rather than from the bootstrap percentile."""
+        shape = np.shape(self.estimate)
+        if self.tail_bound is None:
+            return np.zeros(shape, dtype=bool)
+        side = self.high if self.what == "damage" else self.low
+        pct = self.percentile_end
+        return np.broadcast_to(np.asarray(side != pct), shape)
+
+    @property
+    def percentile_end(self) -> np.ndarray:
+        """The bootstrap percentile on the side of the danger (the damage's upper, the
+        integrity's lower one), before the compatible tails (:attr:`tail_bound`) widen it."""
+        a = 1.0 - (self.interval_level if self.interval_level is not None
+                   else self.confidence_level)
+        q = a / 2 if self.what == "integrity" else 1 - a / 2
+        return np.quantile(self.values, q, axis=0)
 
     def to_frame(self) -> pd.DataFrame:
         """One row per area factor: estimate, low, high."""
@@ -474,6 +502,43 @@ def resample_count_maximum(lam: np.ndarray, param: str, full: MaximumCountDistri
                             mixture=MaximumMixture(lam, param, 1.0, counts=cond, tails=tails),
                             full=full, _lam=lam, _param=param, _counts=cond, count=count,
                             _tails=tails, calibrated=tails is not None)
+
+
+def reach_compatible_tails(prob: BootstrapProbability, logf: np.ndarray,
+                           count=None) -> BootstrapProbability:
+    """``prob`` with the end of its interval on the side of the danger reaching the
+    probabilities of the full-sample model under the compatible tails.
+
+    Parameters
+    ----------
+    prob : BootstrapProbability
+        The bootstrap probability (at one threshold).
+    logf : ndarray, shape (J,)
+        ``log F(threshold)`` of the full-sample model under each of the J tails compatible
+        with the data (:meth:`glstat.BootstrapFit.with_pareto_tail`).
+    count : CountDistribution, optional
+        The random count of the full-sample estimate (None: ``prob.n`` draws).
+
+    Returns
+    -------
+    BootstrapProbability
+        ``high`` (damage) or ``low`` (integrity) widened where the compatible tails go
+        further, and :attr:`BootstrapProbability.tail_bound` set.
+    """
+    k = np.asarray(prob.area_factor, dtype=float)
+    lf = np.asarray(logf, dtype=float).reshape((-1,) + (1,) * k.ndim)
+    if count is None:
+        y = lf * k * prob.n
+        vals = np.exp(y) if prob.what == "integrity" else -np.expm1(y)
+    elif prob.what == "integrity":
+        vals = np.exp(count.log_integrity(lf, k))
+    else:
+        vals = count.damage(lf, k)
+    if prob.what == "damage":
+        bound = np.max(vals, axis=0)
+        return replace(prob, high=np.maximum(prob.high, bound), tail_bound=bound)
+    bound = np.min(vals, axis=0)
+    return replace(prob, low=np.minimum(prob.low, bound), tail_bound=bound)
 
 
 def resample_probability(lam: np.ndarray, param: str, what: str, threshold: float, n, k: np.ndarray,

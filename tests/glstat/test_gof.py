@@ -97,6 +97,33 @@ def test_anderson_darling_infinite_outside_support():
     assert a2 == math.inf
 
 
+def test_an_infinite_anderson_darling_has_p_zero_and_says_why():
+    """Rainfall-like data (gamma shape 0.6, scale 8 mm, rounded to 0.1 mm, zeros dropped): the
+    FKML L-moment fit ends below the largest values. A² is infinite there (a value the model
+    cannot produce); its bootstrap replicates, refitted the same way, are often infinite too,
+    so the share of replicates with A²* >= A² would be a share of ties (about one half), not
+    evidence of fit: the p-value is 0 and the table says which values lie outside."""
+    g = np.random.default_rng(0)
+    x = np.round(g.gamma(0.6, 8.0, 300), 1)
+    x = x[x > 0]
+    f = glstat.fit(x, "fkml", "lmoments", warn=False)
+    top = float(f.dist.support()[1])
+    outside = int(np.sum(x > top))
+    assert outside > 0
+    for b in (0, 19):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            row = gof_report(x, f, n_resamples=b, rng=1).iloc[0]
+        assert row["ad"] == math.inf and row["ad_pvalue"] == 0.0
+        assert (f"A² is infinite: {outside} of the {x.size} values lie outside the model's "
+                f"support [{float(f.dist.support()[0]):.6g}, {top:.6g}] ({outside} above)"
+                in row["pvalue_method"])
+    # a known model: the classical p-value was already 0; the reason is added
+    row = gof_report([-0.5, 0.2, 0.4], stats.uniform()).iloc[0]
+    assert row["ad_pvalue"] == 0.0 and "1 of the 3 values" in row["pvalue_method"]
+    assert "(1 below)" in row["pvalue_method"]
+
+
 @pytest.mark.parametrize(("a2", "p"), [(1.248, 0.25), (1.933, 0.10), (2.492, 0.05), (3.070, 0.025),
                                        (3.857, 0.01)])
 def test_ad_asymptotic_pvalue_at_published_points(a2, p):

@@ -6,6 +6,7 @@ from __future__ import annotations
 import time
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import glstat
@@ -35,3 +36,12 @@ def test_a_valid_call_still_predicts():
     p = glstat.predict_maximum(X, n=100, threshold=5.0, n_resamples=50, rng=2,
                                groups=np.repeat(np.arange(20), 10))
     assert p.damage is not None and 0.0 < float(np.ravel(p.damage.estimate)[0]) < 1.0
+
+
+@pytest.mark.parametrize("threshold, error", [
+    ("5", TypeError), (pd.NA, TypeError), (5 + 1j, TypeError), (np.array([5.0, 6.0]), TypeError),
+    (float("inf"), ValueError), (float("nan"), ValueError),
+])
+def test_a_threshold_that_is_not_a_finite_number_is_refused_by_name(threshold, error):
+    with pytest.raises(error, match="threshold"):
+        glstat.predict_maximum(X, n=100, threshold=threshold, n_resamples=50)
