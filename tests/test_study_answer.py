@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import math
 from types import SimpleNamespace
+
+import numpy as np
 
 
 def test_validation_figure_draws_intervals_that_exclude_the_point_prediction():
@@ -48,3 +51,28 @@ def test_area_scaling_sentence_counts_levels_inside_per_group_size():
                     reject=False, calibration=pd.DataFrame([r for r in rows if r["area_factor"] == 1]))
     assert area_scaling_sentence(CampaignSettings(hurst=(0.5,)),
                                  {(0, 0): {"spot": SimpleNamespace(validation=v1)}}) == ""
+
+
+def test_a_wide_damage_interval_says_what_would_narrow_it():
+    import glstat
+    from glstat.study import CampaignSettings
+    from glstat.study.analysis import SampleAnalysis
+    from glstat.study.answer import width_note
+
+    rng = np.random.default_rng(1)
+    x = rng.lognormal(0.0, 1.0, 60)
+    groups = np.repeat(np.arange(3), 20)  # three surfaces of 20 spots
+    t = float(np.median([x[groups == i].max() for i in range(3)]))
+    p = glstat.predict_maximum(x, groups=groups, threshold=t, n_resamples=200, rng=2)
+    settings = CampaignSettings(hurst=(0.5,), pressures=(20e6,))
+    wide = {(0, 0): {"spot": SampleAnalysis(sample="spot", data=x, n_ref=20.0, prediction=p)}}
+    assert p.damage.high - p.damage.low > 0.5
+    text = width_note(settings, wide)
+    need = p.data_for_width().iloc[0]
+    assert f"from 3 surfaces; at least about {math.ceil(need['needed'])} surfaces" in text
+    assert "±10 percentage points" in text and "an area of" in text
+    # a narrow interval says nothing
+    q = glstat.predict_maximum(rng.lognormal(0.0, 1.0, 2000), groups=np.repeat(np.arange(100), 20),
+                               threshold=t, n_resamples=200, rng=2)
+    narrow = {(0, 0): {"spot": SampleAnalysis(sample="spot", data=x, n_ref=20.0, prediction=q)}}
+    assert q.damage.high - q.damage.low < 0.5 and width_note(settings, narrow) == ""

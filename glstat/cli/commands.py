@@ -573,7 +573,7 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
     from ..formatting import fmt_mpa, fmt_probability
     from ..formatting import fmt_number as _num
     from ..study.analysis_settings import PRIMARY_SAMPLE
-    from ..study.answer import case_name, degenerate_scene, overlap_note
+    from ..study.answer import case_name, degenerate_scene, overlap_note, width_note
     from ..study.report_surfaces import area_text
 
     def _damage(p) -> str:
@@ -627,6 +627,7 @@ def _print_answer(res, settings, asettings, hardness: float) -> None:
     if res.allowable_curves:
         _print_allowable(res, settings, asettings)
     for warn in (degenerate_scene(res.analysis, settings), overlap_note(settings, res.analysis),
+                 width_note(settings, res.analysis, res.bem_analysis),
                  elastic_validity_note(settings, crit, res.bem_analysis),
                  resolution_note(settings, res.scales())):
         if warn:

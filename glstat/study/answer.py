@@ -309,6 +309,42 @@ def overlap_note(settings, analysis: dict, threshold: float = 0.1) -> str:
               "and understates the damage probability there.")
 
 
+def width_note(settings, analysis: dict, bem_analysis: dict | None = None) -> str:
+    """What would narrow the answer's damage interval on one analysed area to ±10 percentage
+    points when it is wider than half of [0, 1] ("" otherwise): how many surfaces at least
+    (:meth:`glstat.prediction.MaximumPrediction.data_for_width`, a low estimate) or what
+    smaller area, per case of the answer's model (the elastic BEM's when it ran on every
+    surface)."""
+    from .allowable import area_words
+
+    model, an = ("elastic BEM", bem_analysis) if bem_analysis else ("asperity model", analysis)
+    parts = []
+    area = settings.size[0] * settings.size[1]
+    for (ih, il), case in sorted(an.items()):
+        sa = case[PRIMARY_SAMPLE]
+        if not sa.ok or sa.prediction.damage is None:
+            continue
+        t = sa.prediction.data_for_width()
+        if not len(t) or not bool(t["wide"].iloc[0]):
+            continue
+        r = t.iloc[0]
+        load = (f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1 else "")
+        text = (f"{case_name(settings, ih)}{load}: [{fmt_probability(r['low'])}, "
+                f"{fmt_probability(r['high'])}] from {int(r['size'])} surfaces; at least about "
+                f"{math.ceil(r['needed'])} surfaces")
+        if r["smaller_area_factor"] == r["smaller_area_factor"]:
+            smaller = float(f"{area * r['smaller_area_factor']:.2g}")
+            text += (f", or an area of {area_words(smaller)} "
+                     f"([{fmt_probability(r['smaller_low'])}, "
+                     f"{fmt_probability(r['smaller_high'])}] from these surfaces)")
+        parts.append(text)
+    if not parts:
+        return ""
+    return (f"The damage interval on one area spans more than half of [0, 1] ({model}): "
+            + "; ".join(parts) + " would narrow it to ±10 percentage points (the number of "
+            "surfaces is a low estimate: the interval shrinks more slowly than 1/√N).")
+
+
 def first_screen_rows(settings, asettings, analysis: dict, bem: dict | None,
                       bem_analysis: dict | None = None, criterion=None
                       ) -> tuple[list[list[Any]], list[str]]:

@@ -16,6 +16,7 @@ from .answer import (
     first_screen_rows,
     overlap_note,
     scene_choice_sentence,
+    width_note,
 )
 from .report_document import Blocks, fmt_cell
 from .report_figures import (
@@ -69,7 +70,8 @@ def answer_section(settings, asettings, analysis: dict, info: dict) -> Blocks:
     if odd:
         out.paragraph("⚠ Implausible values for their SI unit (a unit mix-up?): " + "; ".join(odd)
                       + ".")
-    for warn in (degenerate_scene(analysis, settings), overlap_note(settings, analysis)):
+    for warn in (degenerate_scene(analysis, settings), overlap_note(settings, analysis),
+                 width_note(settings, analysis, info.get("bem_analysis"))):
         if warn:
             out.paragraph("⚠ " + warn)
     quality = spike_note(settings, info.get("results") or {}, info.get("bem_records"))
