@@ -19,6 +19,7 @@ __all__ = [
     "PARAMS",
     "PLAUSIBLE_MODULUS",
     "PLAUSIBLE_PRESSURE",
+    "PLAUSIBLE_PRESSURE_MAX",
     "PLAUSIBLE_ROUGHNESS",
     "PLAUSIBLE_SPACING",
     "TRIM_MAX",
@@ -454,6 +455,8 @@ def warn_at_caller(message: str) -> None:
 #: Below these values (SI) a nominal pressure or a Young's modulus is more likely given in MPa
 #: or GPa than meant; above it an RMS roughness is more likely given in µm.
 PLAUSIBLE_PRESSURE = 1e3
+#: Nominal pressures (Pa) above this (1 TPa, about diamond's Young's modulus) are implausible.
+PLAUSIBLE_PRESSURE_MAX = 1e12
 PLAUSIBLE_MODULUS = 1e6
 PLAUSIBLE_ROUGHNESS = 1e-3
 
@@ -506,11 +509,15 @@ def implausible_spacing(dx: float, dy: float, size: tuple[float, float]) -> str 
 
 
 def implausible_pressure(p: float, name: str = "nominal_pressure") -> str | None:
-    """Why a nominal pressure ``p`` (Pa) looks like MPa given as Pa (below 1 kPa), in words;
+    """Why a nominal pressure ``p`` (Pa) looks like MPa given as Pa (below 1 kPa) or lies
+    beyond any material's stiffness (above :data:`PLAUSIBLE_PRESSURE_MAX`, 1 TPa), in words;
     None when it is plausible."""
     if p < PLAUSIBLE_PRESSURE:
         return (f"{name} = {p:g} Pa is implausibly small for a contact pressure in pascals; "
                 f"did you mean {p:g}e6 ({p:g} MPa)?")
+    if p > PLAUSIBLE_PRESSURE_MAX:
+        return (f"{name} = {p:g} Pa is implausibly large for a contact pressure in pascals "
+                f"(above 1 TPa, the stiffest material's modulus); check its unit")
     return None
 
 
@@ -540,7 +547,8 @@ def positive_pressure(value, warn: bool = True) -> float:
     value : object
         The imposed nominal pressure in pascals (compressive positive).
     warn : bool, default True
-        Warn when it is implausibly small for pascals (below 1 kPa: MPa given as Pa?).
+        Warn when it is implausibly small for pascals (below 1 kPa: MPa given as Pa?) or
+        implausibly large (above 1 TPa).
 
     Returns
     -------

@@ -172,3 +172,10 @@ def test_a_rough_small_scan_is_named_without_a_unit_guess_and_like_adds_no_warni
         like = contact.weierstrass_like(scan, 1, rng=1)[0]
     assert float(like.roughness(level="plane", warn=False)["Sq"]) == pytest.approx(
         contact.fit_spectrum(scan).rq, rel=1e-10)
+
+
+@pytest.mark.parametrize("load, words", [(1e-300, "implausibly small"), (1e30, "implausibly large")])
+def test_an_implausible_nominal_pressure_warns_at_either_end(load, words):
+    surface = contact.self_affine((32, 32), 1e-4, 0.8, rq=1e-7, rng=1)
+    with pytest.warns(contact.ContactWarning, match=words):
+        contact.solve_bem(surface, load, 210e9, 0.3, max_iter=5)
