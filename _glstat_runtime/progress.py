@@ -3,6 +3,7 @@ log (a file, a pipe, CI), where a bar's carriage returns would pile up as one lo
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from typing import Any
@@ -46,10 +47,11 @@ class LineProgress:
 def progress_bar(total: int, desc: str, unit: str, *, enabled: bool = True, initial: int = 0,
                  **tqdm_options: Any) -> Any:
     """A progress report for ``total`` items: a tqdm bar when standard error is a terminal,
-    :class:`LineProgress` lines otherwise; a disabled tqdm bar (a no-op) when not ``enabled``."""
+    :class:`LineProgress` lines otherwise; a disabled tqdm bar (a no-op) when not ``enabled``
+    or when the environment variable ``TQDM_DISABLE`` is set (as by ``glstat -q``)."""
     from tqdm import tqdm
 
-    if not enabled:
+    if not enabled or os.environ.get("TQDM_DISABLE", "").strip().lower() in ("1", "true", "yes"):
         return tqdm(total=total, disable=True)
     stream = sys.stderr
     if not (hasattr(stream, "isatty") and stream.isatty()):

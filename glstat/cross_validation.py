@@ -104,6 +104,16 @@ class MaximumCrossValidation:
     shuffle: bool
     notes: tuple[str, ...] = ()
 
+    def __repr__(self) -> str:
+        """One line: the verdict, the blocks and how many the predicted interval covered
+        (the table of blocks is :attr:`table`)."""
+        cov = self.coverage_check
+        threshold = "" if self.threshold is None else f", threshold={self.threshold:g}"
+        return (f"MaximumCrossValidation(verdict={self.verdict!r}, n_blocks={self.n_blocks}, "
+                f"block_size={self.block_size}, covered={cov.hits} of {cov.n}, n_above="
+                f"{self.n_above}, n_below={self.n_below}, confidence_level="
+                f"{self.confidence_level:g}{threshold}, n_resamples={self.n_resamples})")
+
     @property
     def pit(self) -> np.ndarray:
         """The PIT values u_b = P(max of m <= observed) of the blocks with a prediction: about

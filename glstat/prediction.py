@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
+from _glstat_runtime.reprs import short_values
 from _glstat_runtime.validation import draws_or_count, real_number, real_scalar, real_values
 
 from .errors import FitError
@@ -204,6 +205,24 @@ class MaximumPrediction:
     note: str = ""
     notes: tuple[str, ...] = ()
     tail_size: int | None = None
+
+    def __repr__(self) -> str:
+        """A few lines: the fit used, the sample's size and range (never its values), the
+        analysed area, and the bootstrap, maximum and damage with their estimates."""
+        fit = f"{self.param} {self.method}" if self.ok else "none"
+        where = (f"n={self.n:g}" if self.n is not None else
+                 f"count={self._count_text()!r}" if self._count_text() else "n=None")
+        threshold = "" if self.threshold is None else f", threshold={self.threshold:g}"
+        tail = "" if self.tail_size is None else f", tail_size={self.tail_size}"
+        lines = [f"MaximumPrediction(fit={fit!r}, data={short_values(self.data)}, {where}"
+                 f"{threshold}, area_factor={short_values(self.area_factor)}, "
+                 f"confidence_level={self.confidence_level:g}{tail},"]
+        lines += [f"  {name}={getattr(self, name)!r}," for name in ("boot", "maximum", "damage")
+                  if getattr(self, name) is not None]
+        if self.note:
+            note = self.note if len(self.note) <= 100 else self.note[:97] + "..."
+            lines.append(f"  note={note!r},")
+        return "\n".join(lines)[:-1] + ")"
 
     @property
     def ok(self) -> bool:
@@ -555,24 +574,12 @@ def _bootstrap_first_fit(data, fits, *, n_resamples, likelihood_resamples, confi
 
 
 def predict_maximum(
-    data,
-    fits: Sequence[tuple[str, str]] = (("rs", "moments"),),
-    *,
-    n: float | None = None,
-    count=None,
-    groups=None,
-    threshold: float | None = None,
-    area_factor=1.0,
-    n_resamples: int = 1000,
-    likelihood_resamples: int | None = LIKELIHOOD_RESAMPLES,
-    confidence_level: float = 0.9,
-    rng=None,
-    maximum: bool = True,
-    maximum_rng=None,
-    progress: bool | None = False,
-    tail: str | None = "pareto",
-    tail_size: str | float | int = "sqrt",
-    fallback: bool = True,
+    data, fits: Sequence[tuple[str, str]] = (("rs", "moments"),), *,
+    n: float | None = None, count=None, groups=None, threshold: float | None = None,
+    area_factor=1.0, n_resamples: int = 1000,
+    likelihood_resamples: int | None = LIKELIHOOD_RESAMPLES, confidence_level: float = 0.9,
+    rng=None, maximum: bool = True, maximum_rng=None, progress: bool | None = False,
+    tail: str | None = "pareto", tail_size: str | float | int = "sqrt", fallback: bool = True,
 ) -> MaximumPrediction:
     """Fit, bootstrap, maximum and damage of a sample, in one call.
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import math
+import signal
 import sys
 import time
 from typing import TypedDict
@@ -747,8 +748,42 @@ def _measured_settings(args, argv: list[str], settings, surfaces: int):
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``glstat`` console script; dispatches to the subcommands."""
-    argv = list(sys.argv[1:] if argv is None else argv)
+    """Entry point of the ``glstat`` console script; dispatches to the subcommands.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``glstat`` (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The command's exit status; :data:`CLOSED_PIPE_STATUS` (141 on POSIX) when the reader
+        of standard output closed it early, e.g. ``glstat fit FILE | head -1``.
+    """
+    try:
+        return _main(list(sys.argv[1:] if argv is None else argv))
+    except BrokenPipeError:
+        if not _stdout_closed():  # another pipe (a worker's): a genuine error
+            raise
+        return _closed_pipe()
+
+
+def _stdout_closed() -> bool:
+    """Whether standard output is a pipe whose reader has gone (True too where that cannot be
+    told: no ``select.poll`` or no file descriptor)."""
+    import select
+
+    try:
+        poll = select.poll()
+        poll.register(sys.stdout.fileno(), select.POLLOUT)
+        return any(ev & select.POLLERR for _, ev in poll.poll(0))
+    except (AttributeError, OSError, ValueError):
+        return True
+
+
+def _main(argv: list[str]) -> int:
+    """:func:`main` for a list of arguments."""
     if not argv or argv[0] in ("-h", "--help"):
         print(USAGE)
         return 0 if argv else 2
@@ -767,7 +802,27 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     cmd, rest = argv[0], argv[1:]
     with _logging_at(verbosity):
-        return _dispatch(cmd, rest)
+        return _dispatch(cmd, rest, quiet=verbosity < 0)
+
+
+#: Exit status after the reader of standard output went away (``glstat fit FILE | head``):
+#: 128 + SIGPIPE, the status of a Unix tool ended by that signal; 1 where there is no SIGPIPE.
+CLOSED_PIPE_STATUS = 128 + int(getattr(signal, "SIGPIPE", -127))
+
+
+def _closed_pipe() -> int:
+    """End quietly after standard output was closed by its reader: the rest of the output
+    goes to the null device (so the interpreter's final flush raises nothing) and the status is
+    :data:`CLOSED_PIPE_STATUS`, as for a Unix tool ended by SIGPIPE."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):  # stdout without a file descriptor (e.g. captured)
+        pass
+    return CLOSED_PIPE_STATUS
 
 
 #: Command-line flags of the verbosity and their effect on the level (−1 quiet, 1 and 2 verbose).
@@ -819,14 +874,14 @@ def _logging_at(verbosity: int):
                 os.environ["TQDM_DISABLE"] = previous_tqdm
 
 
-def _dispatch(cmd: str, rest: list[str]) -> int:
-    """Run one subcommand."""
+def _dispatch(cmd: str, rest: list[str], *, quiet: bool = False) -> int:
+    """Run one subcommand (``quiet``: ``-q``, only errors on stderr)."""
     if cmd == "study":
         return study_main(rest)
     if cmd == "fit":
         from .fit import main as fit_main
 
-        return fit_main(rest)
+        return fit_main(rest, quiet=quiet)
     if cmd == "demo":
         from ..__main__ import main as demo_main
 

@@ -1,7 +1,7 @@
 """``glstat fit``: fit a GLD to one's own sample and report fit, goodness of fit and damage.
 
-Reads one column of values from a delimited text, Parquet, Excel or NPY file
-(:mod:`glstat.cli.sample_files`), fits a Generalized Lambda Distribution (:func:`glstat.fit`),
+Reads one column of values from a delimited text, Parquet, Excel or NPY file, or from standard
+input for ``-`` (:mod:`glstat.cli.sample_files`), fits a Generalized Lambda Distribution (:func:`glstat.fit`),
 tabulates every root found and the goodness of fit (:func:`glstat.gof_report`), bootstraps
 the fit (:func:`glstat.bootstrap`) and, on request, gives the distribution of the maximum of
 ``--n-max`` values and the damage probability at a hardness ``--hardness`` for the analysed
@@ -9,12 +9,14 @@ area and for areas ``--area-factor`` times larger (:func:`glstat.predict_maximum
 from the GLD with a generalized Pareto tail on its largest values and the calibrated
 bootstrap interval, ``--tail pareto``; ``--tail none`` for the GLD alone), and checks that
 prediction by block cross-validation (:func:`glstat.cross_validate_maximum`). Figures, ``fit.json``,
-``summary.csv`` and ``cross_validation.csv`` go to ``--out``. Phases longer than two seconds
-announce themselves on stderr.
+``summary.csv`` and ``cross_validation.csv`` go to ``--out``; ``--json`` prints ``fit.json`` on
+stdout instead of the report. Phases longer than two seconds announce themselves on stderr
+(none with ``glstat -q``).
 
 Run as ``glstat fit FILE ...`` or ``python -m glstat.cli.fit FILE ...``; ``--help`` lists the
 options and ``docs/cli_fit.md`` shows an example session. Exit status: 0 on success, 2 for bad
-input or options (the message names the problem and the fix), 1 when no GLD can be fitted.
+input or options (the message names the problem and the fix), 1 when no GLD can be fitted,
+130 on Ctrl-C and, run as ``glstat fit``, 141 when the reader of standard output closed it early.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ import threading
 import time
 import warnings
 from collections.abc import Callable
+from contextvars import ContextVar
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, cast
 
@@ -65,7 +68,7 @@ from .fit_results import (
     full_sample_model,
     maximum_summary,
 )
-from .sample_files import InputError, Sample, read_sample
+from .sample_files import STDIN, InputError, Sample, read_sample
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..fitting import GLDFit
@@ -90,12 +93,17 @@ def gof_refit(f: GLDFit, bar) -> Callable[[np.ndarray], Any]:
 
 #: Seconds after which a phase of the run announces itself on stderr.
 PHASE_NOTICE = 2.0
+#: True while a run is quiet (``glstat fit -q``): no phase notices and no progress bars.
+QUIET: ContextVar[bool] = ContextVar("glstat_fit_quiet", default=False)
 
 
 @contextlib.contextmanager
 def phase(label: str, delay: float = PHASE_NOTICE):
     """Announce ``label`` on stderr when the phase lasts longer than ``delay`` seconds, and
-    its duration when it ends (quick phases stay silent)."""
+    its duration when it ends (quick phases stay silent; every phase does in a quiet run)."""
+    if QUIET.get():
+        yield
+        return
     t0 = time.perf_counter()
     shown = threading.Event()
 
@@ -155,7 +163,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
 
     # the bar shows on stderr as soon as the replicates take longer than PHASE_NOTICE seconds
     bar = tqdm(total=res.gof_resamples, desc="goodness-of-fit p-values", unit="replicate",
-               file=sys.stderr, leave=False, delay=PHASE_NOTICE, disable=res.gof_resamples == 0)
+               file=sys.stderr, leave=False, delay=PHASE_NOTICE,
+               disable=res.gof_resamples == 0 or QUIET.get())
     try:
         with phase("goodness of fit (statistics; the p-value replicates show a bar)"), \
                 warnings.catch_warnings(record=True) as caught:
@@ -178,7 +187,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
                 x, [(f.param, f.method)], n=None if args.count is not None else n,
                 count=args.count, threshold=args.hardness, area_factor=factors,
                 n_resamples=args.bootstrap, confidence_level=args.confidence_level, rng=seed,
-                maximum=args.n_max is not None, progress=None, tail=library_tail(args.tail),
+                maximum=args.n_max is not None, progress=False if QUIET.get() else None,
+                tail=library_tail(args.tail),
                 fallback=asked)
         if res.prediction.boot is None:
             raise FitError(f"the {f.param.upper()} {f.method} bootstrap has no fit: "
@@ -280,7 +290,8 @@ def _pareto_tail(args, res: FitResults, x: np.ndarray, n: float, factors, seed,
 # ---------------------------------------------------------------------------------------------
 # entry point
 # ---------------------------------------------------------------------------------------------
-def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitResults:
+def run(args: argparse.Namespace, emit: Callable[[str], None] = print, *,
+        quiet: bool = False) -> FitResults:
     """Carry out ``glstat fit`` for parsed arguments.
 
     Parameters
@@ -289,6 +300,8 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
         As returned by :func:`build_parser`.
     emit : callable, optional
         Receives each line of the report (default ``print``).
+    quiet : bool, optional
+        Write nothing on stderr: no phase notices and no progress bars (``glstat fit -q``).
 
     Returns
     -------
@@ -304,13 +317,23 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
     FitError
         No GLD of the requested kind can be fitted.
     """
+    token = QUIET.set(quiet)
+    try:
+        return _run(args, emit)
+    finally:
+        QUIET.reset(token)
+
+
+def _run(args: argparse.Namespace, emit: Callable[[str], None]) -> FitResults:
+    """:func:`run` once the quietness is set."""
     check_options(args)
     check_whole_points(args)
     with phase(f"reading {args.file}"):
         sample = read_sample(args.file, args.column, args.nan_policy, sep=args.sep,
                              decimal=args.decimal)
     check_sample(args, sample)
-    out = check_output_dir(args.out if args.out is not None else f"glstat_fit_{Path(args.file).stem}")
+    stem = "stdin" if args.file == STDIN else Path(args.file).stem
+    out = check_output_dir(args.out if args.out is not None else f"glstat_fit_{stem}")
     print_header(sample, emit)
     res = _compute(args, sample, emit)
     if res.notes:
@@ -331,13 +354,15 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print) -> FitRes
     return res
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, *, quiet: bool = False) -> int:
     """Command line ``glstat fit FILE [options]``.
 
     Parameters
     ----------
     argv : list of str, optional
         The arguments after ``fit`` (default ``sys.argv[1:]``).
+    quiet : bool, optional
+        Write only errors on stderr: no notices and no progress bars (``glstat fit -q``).
 
     Returns
     -------
@@ -352,11 +377,11 @@ def main(argv: list[str] | None = None) -> int:
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
     from _glstat_runtime.numba_cache import compile_note
 
-    note = compile_note()
+    note = None if quiet else compile_note()
     if note:
         print(f"glstat fit: {note}", file=sys.stderr, flush=True)
     try:
-        run(args)
+        res = run(args, emit=(lambda line: None) if args.json else print, quiet=quiet)
     except InputError as exc:
         print(f"glstat fit: error: {exc}", file=sys.stderr)
         return 2
@@ -367,6 +392,9 @@ def main(argv: list[str] | None = None) -> int:
         print("glstat fit: interrupted (Ctrl-C); nothing was written unless listed above",
               file=sys.stderr)
         return 130
+    if args.json:
+        sys.stdout.write(res.document or "")
+        sys.stdout.flush()
     return 0
 
 

@@ -93,7 +93,8 @@ def build_parser() -> argparse.ArgumentParser:
                "--hardness 2050 --area-factor 1 10 100 --bootstrap 1000 --out fit_out --seed 1",
     )
     p.add_argument("file", metavar="FILE", help="data file: .csv, .tsv, .parquet, .xlsx, .npy, or text "
-                   "(optionally compressed: .gz, .bz2, .xz, .zip)")
+                   "(optionally compressed: .gz, .bz2, .xz, .zip); '-' reads standard input, its "
+                   "format found from its content")
     p.add_argument("--column", "-c", metavar="C", help="column name or 1-based position (default: the "
                    "only numeric column)")
     p.add_argument("--sep", metavar="S", default=None,
@@ -144,7 +145,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "points only")
     p.add_argument("--out", default=None, metavar="DIR",
                    help="output directory for figures, fit.json and summary.csv (default "
-                        "glstat_fit_<file stem> in the current directory)")
+                        "glstat_fit_<file stem> in the current directory; glstat_fit_stdin for -)")
+    p.add_argument("--json", action="store_true",
+                   help="print the answer as one JSON document on stdout, the content of fit.json, "
+                        "instead of the report (the files are written as without it)")
     p.add_argument("--seed", type=int, default=None, metavar="S",
                    help="random seed of the bootstrap, of the goodness-of-fit p-values and of the block "
                         "cross-validation (default: fresh entropy, recorded in fit.json)")
@@ -263,7 +267,7 @@ def check_sample(args: argparse.Namespace, sample: Sample) -> None:
     """Refuse samples no fit or bootstrap can use, before anything is computed or written."""
     x = sample.values
     if x.size < MIN_N:
-        raise InputError(f"column {quoted(sample.column)} in {sample.path} has {x.size} finite "
+        raise InputError(f"column {quoted(sample.column)} in {sample.source} has {x.size} finite "
                          f"value(s); a GLD fit by {METHOD_NAMES[args.method]} estimates 4 parameters "
                          f"and needs at least {MIN_N} (a reliable fit, hundreds); give more data")
     if np.min(x) == np.max(x):

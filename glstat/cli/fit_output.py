@@ -56,7 +56,7 @@ def gof_table(gof) -> Any:
 
 
 def print_header(sample: Sample, emit: Callable[[str], None]) -> None:
-    emit(f"glstat fit: {sample.path} ({sample.fmt}), column {sample.column!r}: {sample.values.size} "
+    emit(f"glstat fit: {sample.source} ({sample.fmt}), column {sample.column!r}: {sample.values.size} "
          f"values used of {sample.n_total}")
     for note in sample.notes:
         emit(f"  read: {note}")
@@ -550,7 +550,8 @@ def write_tables(res: FitResults, args: argparse.Namespace, out: Path) -> None:
     if res.cross_validation is not None:
         names.append("cross_validation.csv")
     doc["files"] = sorted(res.files + names)
-    (out / "fit.json").write_text(json.dumps(jsonable(doc), indent=2) + "\n", encoding="utf-8")
+    res.document = json.dumps(jsonable(doc), indent=2) + "\n"
+    (out / "fit.json").write_text(res.document, encoding="utf-8")
     summary_frame(res).to_csv(out / "summary.csv", index=False)
     if res.cross_validation is not None:
         res.cross_validation.to_frame().to_csv(out / "cross_validation.csv", index=False)

@@ -85,6 +85,8 @@ class FitResults:
     unit : str or None
         Unit of the values (``--unit``, or read from the column name), shown beside the
         maximum and the hardness; None when unknown.
+    document : str or None
+        The text of ``fit.json`` (what ``--json`` prints), once it is written.
     """
 
     sample: Sample
@@ -108,6 +110,7 @@ class FitResults:
     cross_validation_note: str | None = None
     pareto_tail: Any = None
     unit: str | None = None
+    document: str | None = None
 
     def __post_init__(self) -> None:
         if self.model is None:

@@ -31,9 +31,11 @@ from __future__ import annotations
 import bz2
 import codecs
 import contextlib
+import dataclasses
 import lzma
 import math
 import re
+import sys
 import warnings
 import zipfile
 import zlib
@@ -48,7 +50,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     import pandas as pd
 
-__all__ = ["MAX_DECOMPRESSED", "InputError", "Sample", "read_sample"]
+__all__ = ["MAX_DECOMPRESSED", "STDIN", "InputError", "Sample", "read_sample"]
 
 #: Largest decompressed size (bytes) of a compressed text file, and of the values it may hold as
 #: 8-byte numbers (lines x fields x 8); largest declared uncompressed size of the data read from
@@ -83,7 +85,7 @@ class Sample:
     values : ndarray
         The finite values, in file order (a new array; the file is never modified).
     path : pathlib.Path
-        The file read.
+        The file read (``-`` for standard input).
     fmt : str
         ``"csv"``, ``"tsv"``, ``"parquet"``, ``"npy"``, ``"excel"`` or ``"text"``.
     column : str
@@ -111,6 +113,11 @@ class Sample:
     n_inf: int
     nan_policy: str
     notes: tuple[str, ...] = ()
+
+    @property
+    def source(self) -> str:
+        """The file name, or "standard input" for ``-``, as messages name the data."""
+        return "standard input" if str(self.path) == STDIN else str(self.path)
 
     @property
     def n_dropped(self) -> int:
@@ -966,7 +973,8 @@ def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "
     Parameters
     ----------
     path : str or pathlib.Path
-        The file; the format follows the name (see the module documentation).
+        The file; the format follows the name (see the module documentation). ``"-"`` reads
+        standard input (:data:`STDIN`), its format found from its first bytes.
     column : str, optional
         Column name, or its 1-based position. Default: the only numeric column.
     nan_policy : {"raise", "omit"}, optional
@@ -988,8 +996,25 @@ def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "
         File not found, empty, unreadable, damaged or larger than the limits; unknown column
         (the message lists the available ones); several numeric columns and no ``column``; a
         non-numeric column; non-finite entries with ``nan_policy="raise"``; Parquet without
-        ``pyarrow``, Excel without ``openpyxl``.
+        ``pyarrow``, Excel without ``openpyxl``; standard input that is a terminal.
     """
+    if str(path) != STDIN:
+        return _read_file(Path(path), column, nan_policy, sep, decimal)
+    if sys.stdin is None or sys.stdin.isatty():
+        raise InputError("FILE is '-' (standard input) but standard input is a terminal; pipe "
+                         "the data in (cat data.csv | glstat fit -) or give a file name")
+    with _stdin_file(sys.stdin.buffer) as tmp:
+        try:
+            sample = _read_file(tmp, column, nan_policy, sep, decimal)
+        except InputError as exc:
+            raise InputError(str(exc).replace(str(tmp), "standard input")) from None
+    notes = tuple(n.replace(str(tmp), "standard input") for n in sample.notes)
+    return dataclasses.replace(sample, path=Path(STDIN), notes=notes)
+
+
+def _read_file(path: Path, column: str | None, nan_policy: str, sep: str | None,
+               decimal: str) -> Sample:
+    """:func:`read_sample` of a file."""
     if nan_policy not in ("raise", "omit"):
         raise InputError(f"--nan-policy must be 'raise' or 'omit', got {nan_policy!r}")
     if decimal not in (".", ","):
@@ -1001,7 +1026,6 @@ def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "
         if sep == "," and decimal == ",":
             raise InputError("--sep , and --decimal , cannot both be commas; decimal commas come with "
                              "--sep ';' (or tab)")
-    path = Path(path)
     if not path.exists():
         raise InputError(f"file not found: {path} (looked in {path.resolve().parent}); check the path "
                          "and the file name")
@@ -1062,6 +1086,47 @@ def read_sample(path: str | Path, column: str | None = None, nan_policy: str = "
     return Sample(values=np.array(values, dtype=float), path=path, fmt=fmt, column=str(name),
                   n_total=int(nan.size), n_nan=n_nan, n_inf=n_inf, nan_policy=nan_policy,
                   notes=tuple(notes))
+
+
+#: The file name that stands for standard input.
+STDIN = "-"
+#: The first bytes of the binary formats and compressions read from standard input.
+_MAGIC = ((b"\x1f\x8b", ".gz"), (b"BZh", ".bz2"), (b"\xfd7zXZ\x00", ".xz"),
+          (b"\x28\xb5\x2f\xfd", ".zst"), (b"\x93NUMPY", ".npy"), (b"PAR1", ".parquet"),
+          (b"PK\x03\x04", ".zip"))
+
+
+@contextlib.contextmanager
+def _stdin_file(stream) -> Iterator[Path]:
+    """Standard input copied, a chunk at a time, into a temporary file whose name gives its
+    format (the files of a folder that is removed afterwards): the same reader, with the same
+    limits, then reads it as any file."""
+    import shutil
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="glstat-stdin-") as folder:
+        raw = Path(folder) / "stdin"
+        with open(raw, "wb") as f:
+            shutil.copyfileobj(stream, f, _CHUNK)
+        with open(raw, "rb") as f:
+            first = f.read(_HEAD)
+        yield raw.rename(raw.with_name("stdin" + _stdin_suffix(first, raw)))
+
+
+def _stdin_suffix(first: bytes, path: Path) -> str:
+    """The file name suffix of data whose first bytes are ``first``: a binary format or a
+    compression from its signature, an Excel workbook among zip archives, ``.tsv`` or
+    ``.csv`` for text whose first line holding a value has tabs or commas, else ``.txt``."""
+    for magic, suffix in _MAGIC:
+        if first.startswith(magic):
+            if suffix == ".zip":
+                with contextlib.suppress(zipfile.BadZipFile, OSError), zipfile.ZipFile(path) as z:
+                    if "xl/workbook.xml" in z.namelist():
+                        return ".xlsx"
+            return suffix
+    lines = _data_lines(first.decode("utf-8", errors="replace"), 1)
+    line = lines[0] if lines else ""
+    return ".tsv" if "\t" in line else ".csv" if "," in line else ".txt"
 
 
 def pd_to_numeric_comma(series):

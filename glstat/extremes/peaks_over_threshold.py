@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from _glstat_runtime.reprs import short_values
 from _glstat_runtime.validation import check_level, real_values
 
 __all__ = ["MIN_TAIL_SIZE", "REGULAR_SHAPE", "TailPrediction", "checked_tail_size",
@@ -188,6 +189,18 @@ class TailPrediction:
     area_factor: np.ndarray
     damage: np.ndarray | None
     maximum: np.ndarray
+
+    def __repr__(self) -> str:
+        """One line: the tail, the maximum's median and interval and the damage per area
+        factor (a long array as its size and range)."""
+        d, m = self.damage, self.maximum
+        damage = "" if d is None else (f", hardness={self.hardness:g}, damage={short_values(d[0])}, "
+                                       f"low={short_values(d[1])}, high={short_values(d[2])}")
+        return (f"TailPrediction(n={self.n:g}, tail_size={self.tail_size}, threshold_u="
+                f"{self.threshold_u:.6g}, xi={self.xi:.4g}, sigma={self.sigma:.6g}, "
+                f"area_factor={short_values(self.area_factor)}, median={short_values(m[0])}, "
+                f"interval=({short_values(m[1])}, {short_values(m[2])}){damage}, confidence_level="
+                f"{self.confidence_level:g}, n_resamples={self.n_resamples})")
 
     def to_frame(self):
         """The damage per area factor as a pandas DataFrame: ``area_factor``, ``estimate``,

@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from scipy import special
 
+from _glstat_runtime.reprs import SHOWN, short_values
+
 from ..distributions.gld import GLD
 from ..errors import InvalidParameterError
 from ._diagnostics import BootstrapWarning
@@ -63,6 +65,18 @@ class BootstrapInterval:
     confidence_level: float
     n_used: int
     note: str = ""
+
+    def __repr__(self) -> str:
+        """One line: the names, estimates and bounds (long arrays as their size and range),
+        the method and the level; a long note shortened."""
+        names = (repr(self.names) if len(self.names) <= SHOWN else
+                 f"<{len(self.names)} names, {self.names[0]!r} to {self.names[-1]!r}>")
+        note = self.note if len(self.note) <= 100 else self.note[:97] + "..."
+        return (f"BootstrapInterval(names={names}, estimate={short_values(self.estimate)}, "
+                f"low={short_values(self.low)}, high={short_values(self.high)}, "
+                f"standard_error={short_values(self.standard_error)}, method={self.method!r}, "
+                f"confidence_level={self.confidence_level:g}, n_used={self.n_used}"
+                + (f", note={note!r})" if note else ")"))
 
     def to_frame(self) -> pd.DataFrame:
         """One row per quantity: estimate, low, high, standard_error, note."""

@@ -13,6 +13,7 @@ import numpy as np
 from scipy import optimize, special
 from scipy.stats import rv_continuous
 
+from _glstat_runtime.reprs import short_values
 from _glstat_runtime.validation import check_level
 
 from ..distributions.gld import GLD
@@ -264,6 +265,19 @@ class BootstrapMaximum:
     _tails: np.ndarray | None = field(repr=False, compare=False, default=None)
     calibrated: bool = False
 
+    def __repr__(self) -> str:
+        """One line: the number of draws, of bootstrap GLDs, the median and the interval of
+        the maximum (never the draws)."""
+        count = "" if self.count is None else f", count={self.count!r}"
+        if self.draws.size:
+            lo, hi = self.interval()
+            centre = (f", median={short_values(self.median)}, interval=({short_values(lo)}, "
+                      f"{short_values(hi)})")
+        else:
+            centre = ""
+        return (f"BootstrapMaximum(n={self.n:g}{count}, n_draws={self.draws.size}{centre}, "
+                f"confidence_level={self.confidence_level:g}, calibrated={self.calibrated})")
+
     @property
     def means(self) -> np.ndarray:
         """Mean of each bootstrap GLD's maximum (NaN where it does not exist); with a random
@@ -406,6 +420,17 @@ class BootstrapProbability:
     count: Any = None
     interval_level: float | None = None
     tail_bound: np.ndarray | None = None
+
+    def __repr__(self) -> str:
+        """One line: what, where, the estimate and the interval per area factor (a long array
+        as its size and range) and the number of bootstrap values, never the values."""
+        count = "" if self.count is None else f", count={self.count!r}"
+        level = "" if self.interval_level is None else f", interval_level={self.interval_level:g}"
+        return (f"BootstrapProbability(what={self.what!r}, threshold={self.threshold:g}, "
+                f"n={self.n:g}{count}, area_factor={short_values(self.area_factor)}, "
+                f"estimate={short_values(self.estimate)}, low={short_values(self.low)}, "
+                f"high={short_values(self.high)}, confidence_level={self.confidence_level:g}"
+                f"{level}, n_values={len(self.values)})")
 
     @property
     def bounded_by_tails(self) -> np.ndarray:

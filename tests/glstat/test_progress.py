@@ -29,3 +29,12 @@ def test_not_a_terminal_gives_lines_and_disabled_gives_nothing(capsys):
     off.update(10)
     off.close()
     assert capsys.readouterr().err.splitlines()[-1].startswith("resamples: 10 of 10 resamples")
+
+
+def test_tqdm_disable_in_the_environment_silences_the_lines_too(capsys, monkeypatch):
+    monkeypatch.setenv("TQDM_DISABLE", "1")  # as glstat -q sets it
+    bar = progress_bar(10, "resamples", "resample")
+    assert not isinstance(bar, LineProgress)
+    bar.update(10)
+    bar.close()
+    assert capsys.readouterr().err == ""
