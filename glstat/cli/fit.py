@@ -196,7 +196,8 @@ def _compute(args: argparse.Namespace, sample: Sample, emit: Callable[[str], Non
         if (res.prediction.param, res.prediction.method) != (f.param, f.method):
             # the bootstrap of the fit above failed: the prediction uses a fallback fit
             res.fit = res.prediction.boot.fit
-            res.support = tuple(float(v) for v in res.fit.dist.support())
+            lo, hi = res.fit.dist.support()
+            res.support = (float(lo), float(hi))
             emit(f"  the bootstrap uses the {res.fit.param.upper()} {METHOD_NAMES[res.fit.method]} "
                  f"fit instead (see the notes); the goodness of fit above is that of "
                  f"{f.param.upper()} {METHOD_NAMES[f.method]}")

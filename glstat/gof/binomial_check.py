@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -421,8 +422,8 @@ def binomial_check(predicted: float, hits: int, n: int, *, interval=None,
     if not 0.0 < max_miss < 1.0:
         raise ValueError(f"max_miss must lie in (0, 1), got {max_miss!r}")
     hits, n = int(hits), int(n)
-    common = dict(significance=significance, power=power, max_miss=max_miss, low=low,
-                  high=high, alternative=alternative)
+    common: dict[str, Any] = dict(significance=significance, power=power, max_miss=max_miss,
+                                  low=low, high=high, alternative=alternative)
     if n == 0:
         return BinomialCheck(predicted, 0, 0, math.nan, math.inf, verdict=NOT_CHECKABLE,
                              **common)

@@ -599,7 +599,7 @@ class BootstrapFit:
         alt = compatible_tails(self._profile, level)
         if alt.shape[0] == 0:
             return None
-        log_s = math.log(q) + log_gpd_sf(threshold - u, alt[:, 0], alt[:, 1])
+        log_s = math.log(q) + log_gpd_sf(np.asarray(threshold - u), alt[:, 0], alt[:, 1])
         return log1mexp(log_s)
 
     # -- tables -------------------------------------------------------------------------------

@@ -95,7 +95,7 @@ def area_words(m2: float) -> str:
     return f"{mm2:g} mm²" if mm2 < 100 else f"{mm2 / 100:g} cm²"
 
 
-def _end_text(value: float, status: str, loads_mpa: Sequence[float]) -> str:
+def _end_text(value: float, status: str, loads_mpa: Sequence[float] | np.ndarray) -> str:
     """One end of the allowable load's interval: its value, or the load it lies beyond."""
     if math.isfinite(value):
         return f"{value:.3g}"

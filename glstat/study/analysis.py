@@ -244,6 +244,8 @@ def _derived_quantities(sa: SampleAnalysis, per: list, a: AnalysisSettings, ih: 
 
     import glstat
 
+    if sa.prediction is None or sa.prediction.boot is None:
+        raise ValueError("a sample without a bootstrap has no derived quantities")
     bf = sa.prediction.boot
     count_kw = sa.prediction.count_kwargs()
     sa.integrity = bf.integrity_probability(a.hardness_mpa, area_factor=np.asarray(a.area_factors),
