@@ -282,7 +282,7 @@ def real_scalar(value) -> float | None:
         try:
             return float(value)
         except OverflowError:  # an integer or fraction beyond the double range
-            return math.inf if value > 0 else -math.inf
+            return math.inf if value > 0 else -math.inf  # type: ignore[operator]
     return None
 
 
@@ -598,7 +598,7 @@ def positive_finite(value, name: str, what: str) -> float:
     return x
 
 
-def elastic_constants(E, nu, which: str = "") -> tuple[float, float]:
+def elastic_constants(E, nu, which: str = "", warn: bool = True) -> tuple[float, float]:
     """``(E, nu)`` of one body as floats: a positive finite Young's modulus and a Poisson
     ratio in (-1, 0.5].
 
@@ -610,6 +610,9 @@ def elastic_constants(E, nu, which: str = "") -> tuple[float, float]:
         Poisson ratio (dimensionless).
     which : str, optional
         Suffix of the argument names in messages, e.g. ``"2 (counter_face)"``.
+    warn : bool, default True
+        Warn when the modulus is implausibly small for pascals (below 1 MPa: GPa given as
+        Pa?).
 
     Returns
     -------
@@ -622,7 +625,7 @@ def elastic_constants(E, nu, which: str = "") -> tuple[float, float]:
         Not one real number each (see :func:`real_scalar`), or outside the ranges.
     """
     e = positive_finite(E, f"E{which}", "Young's modulus in pascals")
-    note = implausible_modulus(e, f"E{which}")
+    note = implausible_modulus(e, f"E{which}") if warn else None
     if note:
         warn_at_caller(note)
     n = real_scalar(nu)

@@ -58,7 +58,7 @@ def _check_surface(surface: Surface) -> tuple[np.ndarray, np.ndarray]:
 class _Model:
     """The asperity model of one surface, with its summits sorted by decreasing height."""
 
-    def __init__(self, surface: Surface, E, nu, cone_factor, counter_face):
+    def __init__(self, surface: Surface, E, nu, cone_factor, counter_face, warn: bool = True):
         c = real_scalar(cone_factor)
         if c is None or not (math.isfinite(c) and c > 0):
             raise ValueError(
@@ -67,7 +67,7 @@ class _Model:
             )
         self.h, self.valid = _check_surface(surface)
         self.surface = surface
-        self.e_star = effective_modulus(E, nu, counter_face)
+        self.e_star = effective_modulus(E, nu, counter_face, warn=warn)
         self.cone_factor = c
         self.pm_coef = self.cone_factor * self.e_star
         self.dx, self.dy = surface.dx, surface.dy
@@ -368,7 +368,8 @@ def solve(
     warn : bool, default True
         Issue the :class:`~contact.ContactWarning` of a load inside a jump; False keeps its
         message in ``info["warning"]`` only (for worker threads, where changing the warning
-        filters is not safe).
+        filters is not safe). False also silences the warnings on an implausible nominal
+        pressure or Young's modulus.
 
     Returns
     -------
@@ -429,7 +430,7 @@ def solve(
     ``F``.
     """
     nominal_pressure, tol, max_iter = _check_options(jump, nominal_pressure, tol, max_iter, warn)
-    model = _Model(surface, E, nu, cone_factor, counter_face)
+    model = _Model(surface, E, nu, cone_factor, counter_face, warn)
     target = float(nominal_pressure) * model.nominal_area
     lo, hi, it = _separation(model, target, tol, max_iter)
     if lo == hi:

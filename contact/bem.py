@@ -101,14 +101,15 @@ class _Problem(NamedTuple):
 
 def _problem(
     surface: Surface, E, nu, counter_face, tol, max_iter, workers: int | None, accelerate,
-    hardness, nominal_pressure: float | None, periodic,
+    hardness, nominal_pressure: float | None, periodic, warn: bool = True,
 ) -> _Problem:
     """The surface, elastic constants and options checked, and the compliance operator.
 
-    ``nominal_pressure`` (Pa, already checked) is None under displacement control.
+    ``nominal_pressure`` (Pa, already checked) is None under displacement control; ``warn``
+    False silences the warning on an implausible Young's modulus.
     """
     h, valid = _check_surface(surface)
-    e_star = effective_modulus(E, nu, counter_face)
+    e_star = effective_modulus(E, nu, counter_face, warn=warn)
     tol, max_iter = _check_options(tol, max_iter, workers)
     accelerate = flag(accelerate, "accelerate")
     hardness = _check_hardness(hardness, nominal_pressure)
@@ -263,9 +264,9 @@ def solve_bem(surface: Surface, nominal_pressure: float, E: float, nu: float, *,
         (1999) as published, for reference: the same criterion and solution to about ``tol``,
         but it can cycle when one cell carries much of the load (a spike of a measurement).
     warn : bool, default True
-        Issue a :class:`BEMConvergenceWarning` when the tolerance is not reached; False keeps
-        its message in ``info["warning"]`` only (for worker threads, where changing the
-        warning filters is not safe).
+        False: no :class:`BEMConvergenceWarning` (its message stays in ``info["warning"]``,
+        for worker threads, where changing the warning filters is not safe) and no
+        :class:`~contact.ContactWarning` on an implausible pressure or Young's modulus.
     hardness : float, optional
         Hardness ``H`` in pascals of an elastic-perfectly-plastic surface: the pressure is
         capped at ``H``, and a point at ``H`` flows plastically (the flat may
@@ -334,7 +335,7 @@ def solve_bem(surface: Surface, nominal_pressure: float, E: float, nu: float, *,
     """
     nominal_pressure = positive_pressure(nominal_pressure, warn=warn)
     problem = _problem(surface, E, nu, counter_face, tol, max_iter, workers, accelerate, hardness,
-                       nominal_pressure, periodic)
+                       nominal_pressure, periodic, warn)
     out = _load_controlled(problem, surface, nominal_pressure)
     return _result(out, surface, problem, nominal_pressure, "bem", warn)
 
@@ -395,7 +396,7 @@ def solve_bem_displacement(
     """
     separation = finite_separation(separation)
     problem = _problem(surface, E, nu, counter_face, tol, max_iter, workers, accelerate, hardness,
-                       None, False)
+                       None, False, warn)
     out = polonsky_keer(
         problem.op, problem.h, problem.valid, separation=float(separation), tol=problem.tol,
         max_iter=problem.max_iter, accelerate=problem.accelerate, pmax=problem.hardness,

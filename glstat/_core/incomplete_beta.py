@@ -37,6 +37,7 @@ __all__ = [
     "betainccinv",
     "betaincinv",
     "binomial_tail_inv",
+    "binomial_tail_rank_one",
     "binomial_tails",
     "log_betainc_small",
 ]
@@ -138,8 +139,8 @@ class BinomialTails(NamedTuple):
     up: np.ndarray  #: P(Bin(n, p) >= r) = I_p(r, n - r + 1)
     loglow: np.ndarray
     logup: np.ndarray
-    dloglow: np.ndarray  #: d log(low) / dw with w = log(p / q)
-    dlogup: np.ndarray  #: d log(up) / dw
+    dloglow: np.ndarray | None  #: d log(low) / dw with w = log(p / q) (None when not asked)
+    dlogup: np.ndarray | None  #: d log(up) / dw
 
 
 def _lower_sum(r, n, p, q, logp, logq):
@@ -203,7 +204,7 @@ def _upper_series(r, n, p, q, logp, logq):
     return up, logup
 
 
-def binomial_tails(r: int, n: float, p, q, logp, logq) -> BinomialTails:
+def binomial_tails(r: int, n: float, p, q, logp, logq, derivatives: bool = True) -> BinomialTails:
     """Both tails of the binomial distribution Bin(n, p) at the rank r, in both tails.
 
     Parameters
@@ -219,6 +220,8 @@ def binomial_tails(r: int, n: float, p, q, logp, logq) -> BinomialTails:
     logp, logq : array_like
         Their logarithms, each accurate (``log1p(-q)``, ``log1p(-p)`` where the argument is
         near 1).
+    derivatives : bool, optional
+        Whether to form ``dloglow`` and ``dlogup`` (None otherwise; the tails are the same).
 
     Returns
     -------
@@ -256,11 +259,47 @@ def binomial_tails(r: int, n: float, p, q, logp, logq) -> BinomialTails:
             # log(low) = log1p(-up): the sum form cancels where up is small
             body = low > 0.5
             loglow[body] = np.log1p(-up[body])
+        if not derivatives:
+            return BinomialTails(low, up, loglow, logup, None, None)
         # d log(low)/dw = -(n - r + 1) p u_(r-1) / U; d log(up)/dw = (n - r + 1) p t_(r-1) / up
         lead = math.log(n - r + 1.0) + logp + log_last
         dloglow = -np.exp(lead - log_total)
         dlogup = np.exp(lead + nlogq - logup)
     return BinomialTails(low, up, loglow, logup, dloglow, dlogup)
+
+
+def binomial_tail_rank_one(n: float, q, logq, which: str):
+    """One tail of Bin(n, p) at the rank 1, from q = 1 - p alone.
+
+    Parameters
+    ----------
+    n : float
+        Number of trials.
+    q, logq : array_like
+        ``1 - p`` and its logarithm, accurate.
+    which : {"low", "up", "loglow", "logup"}
+        The field of :func:`binomial_tails` (``r = 1``) to return: ``low = q^n``,
+        ``up = 1 - q^n`` or their logarithms.
+
+    Returns
+    -------
+    ndarray
+        The same values as ``getattr(binomial_tails(1, n, p, q, logp, logq), which)``, with
+        only the operations that field needs.
+    """
+    q, logq = (np.asarray(a, dtype=float) for a in np.broadcast_arrays(q, logq))
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+        loglow = np.where(q > 0, n * logq + 0.0, -np.inf)
+        if which == "loglow":
+            return loglow
+        if which == "up":
+            return -np.expm1(loglow)
+        low = np.exp(loglow)
+        if which == "low":
+            return low
+        if which != "logup":
+            raise ValueError(f"which must be low, up, loglow or logup, got {which!r}")
+        return np.where(low > 0.5, np.log(-np.expm1(loglow)), np.log1p(-low))
 
 
 def _log_pair(p, q):
@@ -320,6 +359,8 @@ def binomial_tail_inv(r: int, n: float, log_target, lower, p0):
         t = binomial_tails(r, n, pa, qa, *_log_pair(pa, qa))
         low = lower[active]
         g = np.where(low, t.loglow, t.logup) - log_target[active]
+        if t.dloglow is None or t.dlogup is None:  # asked for above (derivatives=True)
+            raise AssertionError("binomial_tails returned no derivatives")
         slope = np.where(low, t.dloglow, t.dlogup)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             dw = np.clip(-g / slope, -5.0, 5.0)

@@ -16,7 +16,7 @@ from scipy.stats import rv_continuous
 
 from _glstat_runtime.validation import check_order
 
-from .._core import inverse_table, moments, quantile_function
+from .._core import inverse_table, moments, quantile_bulk, quantile_function
 from .._core.arrays import writeable_input
 from ..errors import ConvergenceWarning
 from ..regions import fkml_valid, rs_valid
@@ -95,7 +95,12 @@ def quantile(family: int, u, lam3, lam4, upper: bool = False, loc: float = 0.0,
     uf, lam3, lam4, shape = _broadcast_flat(u, lam3, lam4)
     a, b = _shapes(lam3, lam4)
     out = np.empty(uf.shape)
-    quantile_function.quantile_kernel(uf, a, b, family, 1 if upper else 0, out, float(loc), float(inv_scale))
+    if uf.size >= quantile_bulk.BULK_MIN_POINTS and quantile_bulk.bulk_applies(family, a, b):
+        # many points, one set of moderate shapes: NumPy's vectorized log1p/expm1
+        quantile_bulk.quantile_bulk(family, uf, a, b, upper, out, float(loc), float(inv_scale))
+    else:
+        quantile_function.quantile_kernel(uf, a, b, family, 1 if upper else 0, out, float(loc),
+                                          float(inv_scale))
     return out.reshape(shape)
 
 

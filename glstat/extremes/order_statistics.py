@@ -57,6 +57,7 @@ from .._core.incomplete_beta import (
     betainccinv,
     betaincinv,
     binomial_tail_inv,
+    binomial_tail_rank_one,
     binomial_tails,
 )
 from ._rv_extreme import ExtremeFrozen, ExtremeGen, flat
@@ -314,6 +315,15 @@ def maximum(dist, n: float | None = None, *, count=None) -> MaximumDistribution:
 # ------------------------------------------------------------------------------------------
 # order statistics
 # ------------------------------------------------------------------------------------------
+# the tail of Bin(n, p) that each function is, with p the parent's probability on the near
+# side: X_(k) <= x  <=>  at least k draws <= x (p = F), and X_(k) > x  <=>  at least n - k + 1
+# draws > x (p = S)
+_FIELD = {
+    True: {"cdf": "up", "sf": "low", "logcdf": "logup", "logsf": "loglow"},
+    False: {"cdf": "low", "sf": "up", "logcdf": "loglow", "logsf": "logup"},
+}
+
+
 class _OrderStatisticGen(ExtremeGen):
     """k-th smallest of n i.i.d. draws; ``order = (k, n)``."""
 
@@ -335,41 +345,49 @@ class _OrderStatisticGen(ExtremeGen):
             logs = np.where(s >= 0.5, np.log1p(-f), logs)
         return f, logf, s, logs
 
-    def _small(self, x):
-        """(cdf, sf, logcdf, logsf) by the binomial tails at the rank from the nearer end."""
+    def _small(self, x, which):
+        """cdf, sf, logcdf or logsf (``which``) by the binomial tails at the rank from the
+        nearer end; at the rank 1 only the parent's far-side tail is evaluated."""
         r, near = self._rank()
         n = self._order[1]
+        field = _FIELD[near][which]
+        if r == 1:  # P(Bin(n, p) < 1) = q^n
+            q, logq = self._parent.upper(x) if near else self._parent.lower(x)
+            return binomial_tail_rank_one(n, q, logq, field)
         f, logf, s, logs = self._logs(x)
-        if near:  # X_(k) <= x  <=>  at least k draws <= x
-            t = binomial_tails(r, n, f, s, logf, logs)
-            return t.up, t.low, t.logup, t.loglow
-        # X_(k) > x  <=>  at least n - k + 1 draws > x
-        t = binomial_tails(r, n, s, f, logs, logf)
-        return t.low, t.up, t.loglow, t.logup
-
-    def _both(self, x):
-        return self._small(x)[:2]
+        if near:
+            t = binomial_tails(r, n, f, s, logf, logs, derivatives=False)
+        else:
+            t = binomial_tails(r, n, s, f, logs, logf, derivatives=False)
+        return getattr(t, field)
 
     @flat
     def _cdf(self, x):
-        return self._both(x)[0]
+        return self._small(x, "cdf")
 
     @flat
     def _sf(self, x):
-        return self._both(x)[1]
+        return self._small(x, "sf")
 
     @flat
     def _logcdf(self, x):
-        return self._small(x)[2]
+        return self._small(x, "logcdf")
 
     @flat
     def _logsf(self, x):
-        return self._small(x)[3]
+        return self._small(x, "logsf")
 
     @flat
     def _logpdf(self, x):
         k, m = self._km()
-        _, logf, _, logs = self._logs(x)
+        if k == 1:  # the minimum: only log S enters
+            logf = None
+            _, logs = self._parent.upper(x)
+        elif m == 1:  # the maximum: only log F
+            _, logf = self._parent.lower(x)
+            logs = None
+        else:
+            _, logf, _, logs = self._logs(x)
         lp = self._parent.logpdf(x)
         a = 0.0 if k == 1 else (k - 1.0) * logf
         b = 0.0 if m == 1 else (m - 1.0) * logs

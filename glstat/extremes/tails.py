@@ -3,7 +3,9 @@ statistics and damage probabilities (:mod:`glstat.extremes`, :mod:`glstat.extrem
 
 ``TailAccess(dist).tail(x)`` gives ``(F, log F, S, log S)`` at x, each to a few ulp in both
 tails: ``log F`` is ``log1p(-sf)`` where ``sf < 1/2`` and ``logcdf`` elsewhere, and the
-parent's ``logsf`` takes over where ``sf`` may underflow.
+parent's ``logsf`` takes over where ``sf`` may underflow. ``lower(x)`` and ``upper(x)`` give
+one side each, ``(F, log F)`` and ``(S, log S)``, with the same values and without the
+other side's logarithms (the minimum and the maximum need one side only).
 """
 
 from __future__ import annotations
@@ -149,6 +151,45 @@ class TailAccess:
         if high.any():
             out[high] = self.isf(q[high])
         return out
+
+    def _sf_split(self, x):
+        """x flattened, a copy of the sf there, the mask where it is >= 1/2 and the cdf there."""
+        x = np.asarray(x, dtype=float).reshape(-1)
+        s = np.array(self.sf(x), dtype=float, copy=True).reshape(x.shape)
+        lower = s >= 0.5
+        fl = self.cdf(x[lower]).reshape(-1) if lower.any() else np.empty(0)
+        return x, s, lower, fl
+
+    def lower(self, x):
+        """(F, log F) at x, as :meth:`tail` gives them, without the upper tail's logarithm."""
+        shape = np.shape(x)
+        x, s, lower, fl = self._sf_split(x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            f = 1.0 - s
+            logf = np.log1p(-s)
+        if lower.any():
+            with np.errstate(divide="ignore"):
+                lfl = np.log(fl)
+            deep = fl < SF_TINY
+            if deep.any():
+                lfl[deep] = self.logcdf(x[lower][deep])
+            f[lower] = fl
+            logf[lower] = lfl
+        return f.reshape(shape), logf.reshape(shape)
+
+    def upper(self, x):
+        """(S, log S) at x with ``log S`` accurate in both tails: ``log1p(-F)`` where
+        ``S >= 1/2``, ``log S`` below and the parent's ``logsf`` where S may underflow."""
+        shape = np.shape(x)
+        x, s, lower, fl = self._sf_split(x)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            logs = np.log(s)
+            if lower.any():
+                logs[lower] = np.log1p(-fl)
+        deep = s < SF_TINY
+        if deep.any():
+            logs[deep] = self.logsf(x[deep])
+        return s.reshape(shape), logs.reshape(shape)
 
     def tail(self, x):
         """(F, log F, S, log S) at x, each to a few ulp in both tails."""

@@ -179,3 +179,38 @@ def test_an_implausible_nominal_pressure_warns_at_either_end(load, words):
     surface = contact.self_affine((32, 32), 1e-4, 0.8, rq=1e-7, rng=1)
     with pytest.warns(contact.ContactWarning, match=words):
         contact.solve_bem(surface, load, 210e9, 0.3, max_iter=5)
+
+
+_IMPLAUSIBLE = [(1e-300, 210e9, None), (1e6, 210.0, None), (1e6, 210e9, (70.0, 0.3)),
+                (1.0, 1.0, (1.0, 0.3))]
+
+
+@pytest.mark.parametrize("solver, load, modulus, counter_face", [
+    *(("solve_bem", *case) for case in [*_IMPLAUSIBLE, (1e30, 210e9, None)]),
+    # loads the asperity model reaches with the soft moduli (1 Pa is implausible too)
+    *(("solve", *case) for case in [(1e-300, 210e9, None), (1.0, 210.0, None),
+                                    (1.0, 210e9, (70.0, 0.3))]),
+])
+def test_warn_false_silences_every_implausibility_warning(solver, load, modulus, counter_face):
+    surface = contact.self_affine((32, 32), 1e-4, 0.8, rq=1e-7, rng=1)
+    solve = getattr(contact, solver)
+    kwargs = {"max_iter": 5} if solver == "solve_bem" else {}
+    with pytest.warns(contact.ContactWarning, match="implausibly"):
+        solve(surface, load, modulus, 0.3, counter_face=counter_face, **kwargs)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        solve(surface, load, modulus, 0.3, counter_face=counter_face, warn=False, **kwargs)
+
+
+def test_warn_false_silences_the_modulus_warning_under_displacement_control():
+    surface = contact.self_affine((32, 32), 1e-4, 0.8, rq=1e-7, rng=1)
+    with pytest.warns(contact.ContactWarning, match="Young's modulus"):
+        contact.solve_bem_displacement(surface, 0.0, 210.0, 0.3, max_iter=5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        contact.solve_bem_displacement(surface, 0.0, 210.0, 0.3, max_iter=5, warn=False)
+    with pytest.warns(contact.ContactWarning, match="Young's modulus"):
+        contact.effective_modulus(210.0, 0.3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert contact.effective_modulus(210.0, 0.3, warn=False) > 0
