@@ -61,7 +61,7 @@ def main() -> None:
     res = run_study(settings, analysis, Path(args.out) / "measured", workers=1,
                     progress=False, compare_bem=0)
     row = res.summary().query("sample == 'asperity'").iloc[0]
-    print(f"measured: damage probability at {analysis.hardness:g} MPa on one scan "
+    print(f"measured: damage probability at {analysis.hardness_mpa:g} MPa on one scan "
           f"{row['damage']:.3g} [{row['damage_low']:.3g}, {row['damage_high']:.3g}], "
           f"observed on {row['observed_damage']:.0%} of {row['n_surfaces']} scans")
     print(f"report: {res.report_html}")

@@ -164,3 +164,13 @@ def test_gallery_shows_the_code_of_every_figure():
         include = section.find(f'--8<-- "examples/{script}"')
         assert 0 <= figure < include, f"the code of {script} is not included below its figure"
         assert (ROOT / "examples" / script).is_file()
+
+
+def test_every_example_has_its_gallery_section_and_its_row_on_the_home_page():
+    gallery = (DOCS / "gallery.md").read_text(encoding="utf-8")
+    home = (DOCS / "index.md").read_text(encoding="utf-8")
+    headings = [s.splitlines()[0] for s in re.split(r"^## ", gallery, flags=re.M)[1:]]
+    for script in sorted(p.name for p in (ROOT / "examples").glob("*.py")):
+        assert any(f"`{script}`" in h for h in headings), f"docs/gallery.md lacks {script}"
+        assert f'--8<-- "examples/{script}"' in gallery, f"docs/gallery.md omits the code of {script}"
+        assert f"| `{script}` |" in home, f"docs/index.md's table of examples lacks {script}"
