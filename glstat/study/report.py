@@ -86,10 +86,19 @@ def build_report(settings, asettings, results: dict, analysis: dict, info: dict,
          lambda: (bem_section(settings, asettings, info["bem"], info["bem_settings"],
                               info.get("bem_maps") or {}),)),
     ]
+    from ..prediction import collect_warnings
+
+    notes: dict[str, None] = {}
     for label, present, make in sections:
         if present:
             say(f"report: {label}")
-            rep.extend(*make())
+            # what the figures' curves warn about (an inversion at its iteration limit at a few
+            # plotted points) is stated once at the end of the page, never printed
+            blocks, caught = collect_warnings(make)
+            rep.extend(*blocks)
+            notes.update(dict.fromkeys(caught))
+    if notes:
+        rep.paragraph("Notes from drawing the figures: " + "; ".join(notes) + ".")
     from .scales import scale_text
 
     # every table and figure says at what length scale its numbers hold
