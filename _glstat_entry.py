@@ -1,5 +1,6 @@
-"""The ``glstat`` console script: answers ``--version`` without importing the package (which
-loads NumPy, SciPy and pandas), and hands every other command to :func:`glstat.cli.main`."""
+"""The ``glstat`` console script: answers ``--version`` from the package metadata, and hands
+every other command to :func:`glstat.cli.main` (which parses the options before NumPy, SciPy
+and the kernels load, so ``--help`` and option errors answer at once)."""
 
 from __future__ import annotations
 
@@ -32,7 +33,7 @@ def main(argv: list[str] | None = None) -> int:
     if args[:1] in (["-V"], ["--version"]):
         print(f"glstat {_version()}")
         return 0
-    try:  # loading NumPy, SciPy and the kernels takes a moment: Ctrl-C then ends quietly
+    try:  # Ctrl-C while the command starts ends quietly
         from glstat.cli.commands import main as glstat_main
     except KeyboardInterrupt:
         print("glstat: interrupted while starting; nothing was run", file=sys.stderr)

@@ -14,6 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from .choices import FIT_METHODS, PARAMS
+
 __all__ = [
     "FIT_METHODS",
     "PARAMS",
@@ -55,10 +57,6 @@ __all__ = [
 ]
 
 
-#: The parameterisations of the GLD.
-PARAMS = ("rs", "fkml")
-#: The fitting methods of :func:`glstat.fit`.
-FIT_METHODS = ("moments", "percentiles", "lmoments", "tlmoments", "mle", "mps", "starship")
 #: Largest number of values trimmed on one side by the TL-moments (``trim`` of
 #: :func:`check_trim`).
 TRIM_MAX = 4095

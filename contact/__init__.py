@@ -7,7 +7,7 @@ load-controlled semi-analytical asperity contact model, with an elastic boundary
 solver (:func:`solve_bem`) as its reference.
 """
 
-import _glstat_runtime  # noqa: F401  (first: numba caches outside the package)
+import _glstat_runtime.numba_cache  # noqa: F401  (first: numba caches outside the package)
 
 from . import reference  # noqa: F401  (contact.reference: analytic solutions)
 from ._spike_search import Spikes

@@ -451,8 +451,11 @@ def study_main(argv: list[str]) -> int:
     except SystemExit as exc:  # --help, or a usage error already printed by argparse
         return exc.code if isinstance(exc.code, int) else 2
     out = args.out or (QUICK if args.quick else DEFAULTS)["out"]
-    from ..study import CampaignError
-    from .signals import Signals, Terminated
+    try:  # the options are parsed before NumPy, SciPy and the kernels load
+        from ..study import CampaignError
+        from .signals import Signals, Terminated
+    except KeyboardInterrupt:
+        return _interrupted_while_starting()
 
     try:
         settings, asettings, _ = _study_settings(args, argv)
@@ -874,14 +877,27 @@ def _logging_at(verbosity: int):
                 os.environ["TQDM_DISABLE"] = previous_tqdm
 
 
+def _interrupted_while_starting() -> int:
+    """Ctrl-C while NumPy, SciPy and the kernels load: one line and exit status 130."""
+    print("glstat: interrupted while starting; nothing was run", file=sys.stderr)
+    return 130
+
+
 def _dispatch(cmd: str, rest: list[str], *, quiet: bool = False) -> int:
     """Run one subcommand (``quiet``: ``-q``, only errors on stderr)."""
     if cmd == "study":
         return study_main(rest)
     if cmd == "fit":
-        from .fit import main as fit_main
+        try:  # the options are checked before NumPy and the fits load
+            from .fit_options import parse_arguments
 
-        return fit_main(rest, quiet=quiet)
+            args = parse_arguments(rest)
+            if isinstance(args, int):  # --help, or an option refused (the message is printed)
+                return args
+            from .fit import run_command
+        except KeyboardInterrupt:
+            return _interrupted_while_starting()
+        return run_command(args, quiet=quiet)
     if cmd == "demo":
         from ..__main__ import main as demo_main
 

@@ -39,13 +39,14 @@ from _glstat_runtime.validation import draws_or_count
 from ..errors import FitError
 from .fit_options import (
     METHOD_NAMES,
-    build_parser,
+    build_parser,  # noqa: F401  (re-exported: the parser whose arguments run takes)
     check_options,
     check_output_dir,
     check_sample,
     column_unit,
     cross_validation_plan,
     gof_resamples_for,
+    parse_arguments,
 )
 from .fit_output import (
     indent,
@@ -73,7 +74,7 @@ from .sample_files import STDIN, InputError, Sample, read_sample
 if TYPE_CHECKING:  # pragma: no cover
     from ..fitting import GLDFit
 
-__all__ = ["main", "run"]
+__all__ = ["main", "run", "run_checked", "run_command"]
 
 
 def gof_refit(f: GLDFit, bar) -> Callable[[np.ndarray], Any]:
@@ -318,6 +319,14 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print, *,
     FitError
         No GLD of the requested kind can be fitted.
     """
+    check_options(args)
+    return run_checked(args, emit, quiet=quiet)
+
+
+def run_checked(args: argparse.Namespace, emit: Callable[[str], None] = print, *,
+                quiet: bool = False) -> FitResults:
+    """:func:`run` for arguments :func:`~glstat.cli.fit_options.check_options` has checked
+    (as :func:`~glstat.cli.fit_options.parse_arguments` returns them)."""
     token = QUIET.set(quiet)
     try:
         return _run(args, emit)
@@ -326,8 +335,7 @@ def run(args: argparse.Namespace, emit: Callable[[str], None] = print, *,
 
 
 def _run(args: argparse.Namespace, emit: Callable[[str], None]) -> FitResults:
-    """:func:`run` once the quietness is set."""
-    check_options(args)
+    """:func:`run_checked` once the quietness is set."""
     check_whole_points(args)
     with phase(f"reading {args.file}"):
         sample = read_sample(args.file, args.column, args.nan_policy, sep=args.sep,
@@ -371,18 +379,28 @@ def main(argv: list[str] | None = None, *, quiet: bool = False) -> int:
         Exit status: 0 success; 2 bad options or input (message on stderr); 1 no GLD could be
         fitted (message on stderr).
     """
-    parser = build_parser()
-    try:
-        args = parser.parse_args(argv)
-    except SystemExit as exc:  # --help, or an option argparse rejected (it printed why)
-        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    args = parse_arguments(argv)
+    if isinstance(args, int):  # --help, or an option refused (the message is printed)
+        return args
+    return run_command(args, quiet=quiet)
+
+
+def run_command(args: argparse.Namespace, *, quiet: bool = False) -> int:
+    """:func:`main` for the options :func:`~glstat.cli.fit_options.parse_arguments` returned:
+    the report on stdout (or the JSON document with ``--json``), notices and errors on stderr.
+
+    Returns
+    -------
+    int
+        Exit status, as for :func:`main`.
+    """
     from _glstat_runtime.numba_cache import compile_note
 
     note = None if quiet else compile_note()
     if note:
         print(f"glstat fit: {note}", file=sys.stderr, flush=True)
     try:
-        res = run(args, emit=(lambda line: None) if args.json else print, quiet=quiet)
+        res = run_checked(args, emit=(lambda line: None) if args.json else print, quiet=quiet)
     except InputError as exc:
         print(f"glstat fit: error: {exc}", file=sys.stderr)
         return 2

@@ -5,14 +5,12 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 import tempfile
 from pathlib import Path
 
-import numpy as np
+from _glstat_runtime.choices import FIT_METHODS, PARAMS
 
-from _glstat_runtime.validation import FIT_METHODS, PARAMS
-
-from .._fit_engine.sample_statistics import MIN_N
 from .sample_files import InputError, Sample, quoted
 
 __all__ = [
@@ -34,6 +32,7 @@ __all__ = [
     "column_unit",
     "cross_validation_plan",
     "gof_resamples_for",
+    "parse_arguments",
     "parse_n_max",
 ]
 
@@ -164,6 +163,33 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace | int:
+    """The options of ``glstat fit``, parsed by :func:`build_parser` and checked by
+    :func:`check_options`; NumPy and the fits are not loaded to refuse them.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``fit`` (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    argparse.Namespace or int
+        The checked options; or the exit status when there is nothing to run: 0 after
+        ``--help``, 2 after an option refused (the reason is printed on stderr).
+    """
+    try:
+        args = build_parser().parse_args(argv)
+    except SystemExit as exc:  # --help, or an option argparse rejected (it printed why)
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    try:
+        check_options(args)
+    except InputError as exc:
+        print(f"glstat fit: error: {exc}", file=sys.stderr)
+        return 2
+    return args
+
+
 def check_options(args: argparse.Namespace) -> None:
     if args.bootstrap < 0 or args.bootstrap == 1:
         raise InputError(f"--bootstrap must be 0 (no bootstrap) or at least 2, got {args.bootstrap}")
@@ -265,6 +291,10 @@ def parse_n_max(text: str):
 
 def check_sample(args: argparse.Namespace, sample: Sample) -> None:
     """Refuse samples no fit or bootstrap can use, before anything is computed or written."""
+    import numpy as np
+
+    from .._fit_engine.sample_statistics import MIN_N
+
     x = sample.values
     if x.size < MIN_N:
         raise InputError(f"column {quoted(sample.column)} in {sample.source} has {x.size} finite "

@@ -43,11 +43,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 if TYPE_CHECKING:  # pragma: no cover
     from collections.abc import Iterator
 
+    import numpy as np
     import pandas as pd
 
 __all__ = ["MAX_DECOMPRESSED", "STDIN", "InputError", "Sample", "read_sample"]
@@ -503,6 +502,7 @@ def _drop_index_column(df, notes: list[str]):
     if name and not name.startswith("Unnamed: 0"):
         return df
     col = df.iloc[:, 0]
+    import numpy as np
     import pandas as pd
 
     if not pd.api.types.is_integer_dtype(col):
@@ -797,6 +797,7 @@ def _read_excel(path: Path) -> pd.DataFrame:
 
 
 def _read_npy(path: Path) -> pd.DataFrame:
+    import numpy as np
     import pandas as pd
 
     try:
@@ -924,6 +925,7 @@ def _select_column(df, column: str | None, path: Path, fmt: str) -> tuple[str, A
 
 
 def _to_float(series, name: str, path: Path, df) -> np.ndarray:
+    import numpy as np
     import pandas as pd
 
     if _numeric(series):
@@ -1067,6 +1069,8 @@ def _read_file(path: Path, column: str | None, nan_policy: str, sep: str | None,
         notes.append(f"every line looks like one number with a decimal comma (e.g. {line}); "
                      "read as two columns separated by commas, as "
                      "--column asks (--decimal , reads them as numbers)")
+    import numpy as np
+
     values = _to_float(series, name, path, df)
     nan = np.isnan(values)
     inf = np.isinf(values)
