@@ -11,10 +11,8 @@ from _glstat_runtime import moved_modules as _moved_modules
 
 from ._version import __version__  # noqa: F401  (the one version source)
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # every public name but the two classes built by a factory on first use
     from .cross_validation import MaximumCrossValidation, cross_validate_maximum
-    from .distributions.generalized_lambda import GeneralizedLambda
-    from .distributions.generalized_lambda_rs import GeneralizedLambdaRS
     from .distributions.gld import GLD
     from .distributions.rv_gld import gld_fkml, gld_rs
     from .errors import ConvergenceWarning, FitError, FitWarning, InvalidParameterError

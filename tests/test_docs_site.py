@@ -38,10 +38,20 @@ def _source(module_name: str) -> tuple[Path, ast.Module]:
     return path, ast.parse(path.read_text(encoding="utf-8"))
 
 
+def _is_type_checking_block(node: ast.stmt) -> bool:
+    """Whether ``node`` is ``if TYPE_CHECKING:`` (the static reader renders its imports, as the
+    package's names that load on first use are declared there)."""
+    return (isinstance(node, ast.If) and isinstance(node.test, ast.Name)
+            and node.test.id == "TYPE_CHECKING")
+
+
 def _top_level_bindings(tree: ast.Module) -> dict[str, ast.stmt]:
-    """Names bound by the module's own top-level statements (not inside ``__getattr__``)."""
+    """Names bound by the module's own top-level statements, the imports of a top-level
+    ``if TYPE_CHECKING:`` block included (not inside ``__getattr__``)."""
     out: dict[str, ast.stmt] = {}
-    for node in tree.body:
+    body = [n for node in tree.body
+            for n in (node.body if _is_type_checking_block(node) else [node])]
+    for node in body:
         if isinstance(node, ast.ImportFrom | ast.Import):
             for alias in node.names:
                 out[alias.asname or alias.name.split(".")[0]] = node
