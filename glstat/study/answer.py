@@ -315,6 +315,7 @@ def width_note(settings, analysis: dict, bem_analysis: dict | None = None) -> st
     (:meth:`glstat.prediction.MaximumPrediction.data_for_width`, a low estimate) or what
     smaller area, per case of the answer's model (the elastic BEM's when it ran on every
     surface)."""
+    from ..prediction import WIDE
     from .allowable import area_words
 
     model, an = ("elastic BEM", bem_analysis) if bem_analysis else ("asperity model", analysis)
@@ -322,11 +323,10 @@ def width_note(settings, analysis: dict, bem_analysis: dict | None = None) -> st
     area = settings.size[0] * settings.size[1]
     for (ih, il), case in sorted(an.items()):
         sa = case[PRIMARY_SAMPLE]
-        if not sa.ok or sa.prediction.damage is None:
-            continue
+        d = None if not sa.ok else sa.prediction.damage
+        if d is None or not float(np.ravel(d.high)[0]) - float(np.ravel(d.low)[0]) > WIDE:
+            continue  # a narrow interval: no search for a smaller area
         t = sa.prediction.data_for_width()
-        if not len(t) or not bool(t["wide"].iloc[0]):
-            continue
         r = t.iloc[0]
         load = (f", {settings.pressures[il] / 1e6:g} MPa" if len(settings.pressures) > 1 else "")
         text = (f"{case_name(settings, ih)}{load}: [{fmt_probability(r['low'])}, "
